@@ -1,0 +1,19 @@
+#pragma once
+// Binding points shared by the C++ side and the GLSL side (passed to shaders as defines, see
+// binding_defines()). Structures own bindings 0-3; the harness owns the rest.
+#include <cstdint>
+
+#include "harness/gl/shader_program.h"
+
+namespace ldm {
+
+constexpr uint32_t kStructureBinding0 = 0;  // structure storage buffers: 0, 1, 2, 3
+constexpr uint32_t kStructureCounterBinding = 0;  // atomic counter buffer binding
+constexpr uint32_t kViewsBinding = 4;
+constexpr uint32_t kCensusBinding = 5;
+constexpr uint32_t kValidationBinding = 6;
+constexpr uint32_t kPassBinding0 = 7;  // passes: 7, 8, ...
+
+ShaderDefines binding_defines();
+
+}  // namespace ldm

@@ -1,0 +1,56 @@
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <string>
+
+namespace ldm {
+
+// Which EGL platform to open. Auto picks an NVIDIA GPU through the EGL device platform when
+// there is one, otherwise Mesa's surfaceless platform (llvmpipe on machines without a GPU).
+enum class EglPlatform { Auto, Device, Surfaceless };
+
+struct ContextOptions {
+  EglPlatform platform = EglPlatform::Auto;
+  bool debug_output = false;  // GL_KHR_debug messages to stderr; errors become exceptions
+};
+
+// What the context runs on; copied into every record.
+struct DeviceInfo {
+  std::string egl_platform;  // "device" or "surfaceless"
+  std::string egl_vendor;
+  std::string gl_renderer;
+  std::string gl_vendor;
+  std::string gl_version;
+  std::string glsl_version;
+  int gl_major = 0;
+  int gl_minor = 0;
+  int64_t max_ssbo_block_bytes = 0;  // GL_MAX_SHADER_STORAGE_BLOCK_SIZE
+  int64_t max_ssbo_bindings = 0;
+  bool has_int64_atomics = false;  // GL_NV_shader_atomic_int64 (64-bit atomicMax on SSBOs)
+  bool has_timer_queries = false;  // timestamp counter with > 0 bits
+  bool debug_output = false;
+};
+
+// An OpenGL 4.5 core context with no window, current on the calling thread for its lifetime.
+// Rendering goes into framebuffer objects. Throws UserError with what was found when the
+// device cannot give OpenGL 4.5 core.
+class HeadlessContext {
+ public:
+  static std::unique_ptr<HeadlessContext> create(const ContextOptions& options = {});
+  ~HeadlessContext();
+  HeadlessContext(const HeadlessContext&) = delete;
+  HeadlessContext& operator=(const HeadlessContext&) = delete;
+
+  const DeviceInfo& device() const { return device_; }
+  bool has_extension(const std::string& name) const;
+
+ private:
+  HeadlessContext() = default;
+  void* display_ = nullptr;
+  void* context_ = nullptr;
+  DeviceInfo device_;
+};
+
+EglPlatform parse_egl_platform(const std::string& name);  // "auto" | "device" | "surfaceless"
+
+}  // namespace ldm

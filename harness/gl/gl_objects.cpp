@@ -1,0 +1,141 @@
+#include "harness/gl/gl_objects.h"
+
+#include <cstdio>
+#include <string>
+
+#include "harness/util/error.h"
+
+namespace ldm {
+
+void delete_gl_buffer(GLuint id) { glDeleteBuffers(1, &id); }
+void delete_gl_texture(GLuint id) { glDeleteTextures(1, &id); }
+void delete_gl_framebuffer(GLuint id) { glDeleteFramebuffers(1, &id); }
+void delete_gl_vertex_array(GLuint id) { glDeleteVertexArrays(1, &id); }
+void delete_gl_program(GLuint id) { glDeleteProgram(id); }
+void delete_gl_query(GLuint id) { glDeleteQueries(1, &id); }
+
+void check_gl(const char* where) {
+  GLenum error = glGetError();
+  if (error == GL_NO_ERROR) return;
+  std::string codes;
+  while (error != GL_NO_ERROR) {
+    char buffer[16];
+    std::snprintf(buffer, sizeof buffer, " 0x%04x", error);
+    codes += buffer;
+    error = glGetError();
+  }
+  if (codes.find("0x0505") != std::string::npos)
+    throw GpuError(std::string(where) + ": the device is out of memory (GL_OUT_OF_MEMORY)");
+  throw GpuError(std::string(where) + ": GL error" + codes);
+}
+
+GlBuffer::GlBuffer(std::string name, uint64_t bytes, const void* data, GLbitfield flags)
+    : bytes_(bytes), name_(std::move(name)) {
+  GLuint id = 0;
+  glCreateBuffers(1, &id);
+  handle_ = GlHandle<delete_gl_buffer>(id);
+  // A zero-byte storage is invalid; keep one word so that bindings stay legal.
+  glNamedBufferStorage(id, GLsizeiptr(bytes ? bytes : 4), data, flags);
+  check_gl(("allocating buffer '" + name_ + "'").c_str());
+}
+
+void GlBuffer::clear_to_zero() { clear_to_uint(0u); }
+
+void GlBuffer::clear_to_uint(uint32_t value) {
+  glClearNamedBufferData(id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &value);
+}
+
+void GlBuffer::upload(const void* data, uint64_t bytes, uint64_t offset) {
+  glNamedBufferSubData(id(), GLintptr(offset), GLsizeiptr(bytes), data);
+}
+
+void GlBuffer::download(void* out, uint64_t bytes, uint64_t offset) const {
+  if (bytes == 0) return;
+  glGetNamedBufferSubData(id(), GLintptr(offset), GLsizeiptr(bytes), out);
+  check_gl(("reading back buffer '" + name_ + "'").c_str());
+}
+
+void GlBuffer::bind_storage(GLuint binding) const {
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, id());
+}
+
+void GlBuffer::bind_atomic_counter(GLuint binding) const {
+  glBindBufferBase(GL_ATOMIC_COUNTER_BUFFER, binding, id());
+}
+
+GlTexture2D::GlTexture2D(GLenum internal_format, int width, int height)
+    : width_(width), height_(height), format_(internal_format) {
+  GLuint id = 0;
+  glCreateTextures(GL_TEXTURE_2D, 1, &id);
+  handle_ = GlHandle<delete_gl_texture>(id);
+  glTextureStorage2D(id, 1, internal_format, width, height);
+  glTextureParameteri(id, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTextureParameteri(id, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTextureParameteri(id, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(id, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  check_gl("allocating texture");
+}
+
+std::vector<float> GlTexture2D::read_floats(int channels) const {
+  static const GLenum formats[] = {GL_RED, GL_RG, GL_RGB, GL_RGBA};
+  std::vector<float> out(size_t(width_) * size_t(height_) * size_t(channels));
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glGetTextureImage(id(), 0, formats[channels - 1], GL_FLOAT, GLsizei(out.size() * sizeof(float)),
+                    out.data());
+  check_gl("reading back texture");
+  return out;
+}
+
+GlFramebuffer::GlFramebuffer() {
+  GLuint id = 0;
+  glCreateFramebuffers(1, &id);
+  handle_ = GlHandle<delete_gl_framebuffer>(id);
+}
+
+void GlFramebuffer::attach_color(int index, const GlTexture2D& texture) {
+  glNamedFramebufferTexture(id(), GLenum(GL_COLOR_ATTACHMENT0 + index), texture.id(), 0);
+}
+
+void GlFramebuffer::attach_depth(const GlTexture2D& texture) {
+  glNamedFramebufferTexture(id(), GL_DEPTH_ATTACHMENT, texture.id(), 0);
+}
+
+void GlFramebuffer::set_default_size(int width, int height) {
+  glNamedFramebufferParameteri(id(), GL_FRAMEBUFFER_DEFAULT_WIDTH, width);
+  glNamedFramebufferParameteri(id(), GL_FRAMEBUFFER_DEFAULT_HEIGHT, height);
+}
+
+void GlFramebuffer::check_complete(const char* what) const {
+  GLenum status = glCheckNamedFramebufferStatus(id(), GL_FRAMEBUFFER);
+  if (status != GL_FRAMEBUFFER_COMPLETE) {
+    char buffer[128];
+    std::snprintf(buffer, sizeof buffer, "%s: framebuffer incomplete (0x%04x)", what, status);
+    throw GpuError(buffer);
+  }
+}
+
+GlVertexArray::GlVertexArray() {
+  GLuint id = 0;
+  glCreateVertexArrays(1, &id);
+  handle_ = GlHandle<delete_gl_vertex_array>(id);
+}
+
+void GlProgram::use() const { glUseProgram(id()); }
+GLint GlProgram::uniform(const char* name) const { return glGetUniformLocation(id(), name); }
+void GlProgram::set(const char* name, int value) const {
+  glProgramUniform1i(id(), uniform(name), value);
+}
+void GlProgram::set(const char* name, unsigned value) const {
+  glProgramUniform1ui(id(), uniform(name), value);
+}
+void GlProgram::set(const char* name, float value) const {
+  glProgramUniform1f(id(), uniform(name), value);
+}
+void GlProgram::set(const char* name, float x, float y, float z) const {
+  glProgramUniform3f(id(), uniform(name), x, y, z);
+}
+void GlProgram::set_mat4(const char* name, const float* column_major) const {
+  glProgramUniformMatrix4fv(id(), uniform(name), 1, GL_FALSE, column_major);
+}
+
+}  // namespace ldm

@@ -1,0 +1,140 @@
+#include "harness/gl/shader_program.h"
+
+#include <regex>
+#include <set>
+#include <sstream>
+
+#include "harness/gl/embedded_shaders.h"
+#include "harness/util/error.h"
+
+namespace ldm {
+namespace {
+
+const std::string& shader_text(const std::string& file) {
+  static std::map<std::string, std::string> cache;
+  auto cached = cache.find(file);
+  if (cached != cache.end()) return cached->second;
+  const auto& table = embedded_shader_sources();
+  auto found = table.find(file);
+  if (found == table.end()) throw GpuError("shader file not found in shaders/: " + file);
+  return cache.emplace(file, std::string(found->second)).first->second;
+}
+
+int file_index(const std::string& file, std::vector<std::string>& table) {
+  for (size_t i = 0; i < table.size(); ++i)
+    if (table[i] == file) return int(i);
+  table.push_back(file);
+  return int(table.size() - 1);
+}
+
+void expand(const std::string& file, std::vector<std::string>& table,
+            std::set<std::string>& included, std::ostringstream& out) {
+  if (!included.insert(file).second) return;  // include once
+  const int id = file_index(file, table);
+  static const std::regex include_line(R"(^\s*#\s*include\s+"([^"]+)\"\s*$)");
+  std::istringstream in(shader_text(file));
+  std::string line;
+  int line_number = 0;
+  out << "#line 1 " << id << "\n";
+  while (std::getline(in, line)) {
+    ++line_number;
+    std::smatch match;
+    if (std::regex_match(line, match, include_line)) {
+      expand(match[1].str(), table, included, out);
+      out << "#line " << line_number + 1 << " " << id << "\n";
+    } else {
+      out << line << "\n";
+    }
+  }
+}
+
+// Rewrites "0:12(3): error" / "0(12) : error" prefixes into "file.glsl:12: error".
+std::string annotate_log(const std::string& log, const std::vector<std::string>& table) {
+  static const std::regex mesa(R"((\d+):(\d+)\((\d+)\))");
+  static const std::regex nvidia(R"((\d+)\((\d+)\))");
+  std::string out;
+  std::istringstream in(log);
+  std::string line;
+  while (std::getline(in, line)) {
+    std::smatch m;
+    if (std::regex_search(line, m, mesa) && m.position(0) == 0) {
+      size_t id = std::stoul(m[1].str());
+      std::string name = id < table.size() ? table[id] : "string " + m[1].str();
+      line = name + ":" + m[2].str() + m.suffix().str();
+    } else if (std::regex_search(line, m, nvidia) && m.position(0) == 0) {
+      size_t id = std::stoul(m[1].str());
+      std::string name = id < table.size() ? table[id] : "string " + m[1].str();
+      line = name + ":" + m[2].str() + m.suffix().str();
+    }
+    out += line + "\n";
+  }
+  return out;
+}
+
+}  // namespace
+
+std::string ShaderDefines::text() const {
+  std::string out;
+  for (const auto& [name, value] : values) out += "#define " + name + " " + value + "\n";
+  return out;
+}
+
+std::string preprocess_shader(const std::string& file, const ShaderDefines& defines,
+                              const std::vector<std::string>& prelude_files,
+                              std::vector<std::string>* file_table) {
+  std::vector<std::string> table = {"<defines>"};
+  std::set<std::string> included;
+  std::ostringstream out;
+  out << "#version 450 core\n";
+  out << defines.text();
+  for (const auto& prelude : prelude_files) expand(prelude, table, included, out);
+  expand(file, table, included, out);
+  if (file_table) *file_table = table;
+  return out.str();
+}
+
+GlProgram build_program(const std::vector<ShaderStage>& stages, const ShaderDefines& defines) {
+  GLuint program = glCreateProgram();
+  GlProgram owner(program);
+  std::vector<GLuint> shaders;
+  std::string names;
+  for (const auto& stage : stages) {
+    std::vector<std::string> table;
+    const std::string source = preprocess_shader(stage.file, defines, stage.prelude_files, &table);
+    GLuint shader = glCreateShader(stage.type);
+    const char* text = source.c_str();
+    glShaderSource(shader, 1, &text, nullptr);
+    glCompileShader(shader);
+    GLint ok = 0;
+    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+      GLint length = 0;
+      glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
+      std::string log(size_t(std::max(length, 1)), '\0');
+      glGetShaderInfoLog(shader, length, nullptr, log.data());
+      glDeleteShader(shader);
+      for (GLuint s : shaders) glDeleteShader(s);
+      throw GpuError("compiling " + stage.file + " failed:\n" + annotate_log(log, table));
+    }
+    glAttachShader(program, shader);
+    shaders.push_back(shader);
+    names += (names.empty() ? "" : " + ") + stage.file;
+  }
+  glLinkProgram(program);
+  for (GLuint s : shaders) {
+    glDetachShader(program, s);
+    glDeleteShader(s);
+  }
+  GLint ok = 0;
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    GLint length = 0;
+    glGetProgramiv(program, GL_INFO_LOG_LENGTH, &length);
+    std::string log(size_t(std::max(length, 1)), '\0');
+    glGetProgramInfoLog(program, length, nullptr, log.data());
+    throw GpuError("linking " + names + " failed:\n" + log);
+  }
+  return owner;
+}
+
+}  // namespace ldm

@@ -1,0 +1,59 @@
+#include "harness/measure/gpu_timer.h"
+
+#include "harness/util/error.h"
+
+namespace ldm {
+
+GpuTimer::~GpuTimer() {
+  if (!pool_.empty()) glDeleteQueries(GLsizei(pool_.size()), pool_.data());
+}
+
+GLuint GpuTimer::query(size_t index) {
+  while (pool_.size() <= index) {
+    GLuint id = 0;
+    glGenQueries(1, &id);
+    pool_.push_back(id);
+  }
+  return pool_[index];
+}
+
+void GpuTimer::begin_frame() {
+  names_.clear();
+  used_ = 0;
+  open_ = false;
+}
+
+void GpuTimer::begin(const std::string& subpass) {
+  if (open_) throw GpuError("GpuTimer: sub-pass '" + subpass + "' begun inside another");
+  names_.push_back(subpass);
+  glQueryCounter(query(used_++), GL_TIMESTAMP);
+  open_ = true;
+}
+
+void GpuTimer::end() {
+  if (!open_) throw GpuError("GpuTimer: end() without begin()");
+  glQueryCounter(query(used_++), GL_TIMESTAMP);
+  open_ = false;
+}
+
+FrameTimes GpuTimer::end_frame() {
+  if (open_) throw GpuError("GpuTimer: frame ended inside sub-pass '" + names_.back() + "'");
+  FrameTimes times;
+  for (size_t i = 0; i < names_.size(); ++i) {
+    GLuint64 start = 0, stop = 0;
+    glGetQueryObjectui64v(pool_[2 * i], GL_QUERY_RESULT, &start);
+    glGetQueryObjectui64v(pool_[2 * i + 1], GL_QUERY_RESULT, &stop);
+    const double ms = double(stop - start) * 1e-6;
+    bool merged = false;
+    for (auto& [name, total] : times) {
+      if (name == names_[i]) {
+        total += ms;
+        merged = true;
+      }
+    }
+    if (!merged) times.emplace_back(names_[i], ms);
+  }
+  return times;
+}
+
+}  // namespace ldm

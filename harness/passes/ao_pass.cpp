@@ -1,0 +1,49 @@
+#include "harness/passes/ao_pass.h"
+
+#include "harness/gl/bindings.h"
+
+namespace ldm {
+
+AoPass::AoPass(const LdmStructure& structure, const BuildInputs& in, int width, int height,
+               const AoSettings& settings)
+    : structure_(structure),
+      views_(in.views),
+      width_(width),
+      height_(height),
+      settings_(settings),
+      output_(GL_R32F, width, height) {
+  framebuffer_.attach_color(0, output_);
+  framebuffer_.check_complete("AO output");
+  ShaderDefines defines = binding_defines();
+  const ShaderDefines query = structure.query_defines();
+  defines.values.insert(defines.values.end(), query.values.begin(), query.values.end());
+  defines.set("LDM_VIEW_COUNT", std::to_string(in.views.views().size()) + "u");
+  defines.set("AO_ATTENUATED", settings.attenuated ? 1 : 0);
+  program_ = build_program({{GL_VERTEX_SHADER, "passes/fullscreen.vert", {}},
+                            {GL_FRAGMENT_SHADER, "passes/ao.frag", structure.query_sources()}},
+                           defines);
+  program_.set("ao_d_max", settings.d_max);
+  program_.set("ao_falloff_exponent", settings.falloff_exponent);
+  program_.set("ao_normal_offset_pixels", settings.normal_offset_pixels);
+}
+
+void AoPass::render(const GBufferPass& gbuffer, GpuTimer* timer) {
+  ScopedSubpass timed(timer, "ao");
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
+  glViewport(0, 0, width_, height_);
+  glDisable(GL_DEPTH_TEST);
+  glBindTextureUnit(0, gbuffer.positions().id());
+  glBindTextureUnit(1, gbuffer.normals().id());
+  structure_.bind_for_query();
+  views_.bind();
+  program_.use();
+  glBindVertexArray(empty_vao_.id());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+Image AoPass::read_image() const {
+  return image_from_gl_rows(output_.read_floats(1), width_, height_, 1);
+}
+
+}  // namespace ldm

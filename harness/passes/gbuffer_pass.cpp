@@ -1,0 +1,59 @@
+#include "harness/passes/gbuffer_pass.h"
+
+#include "harness/gl/bindings.h"
+#include "harness/passes/camera.h"
+#include "harness/util/error.h"
+
+namespace ldm {
+
+GBufferPass::GBufferPass(int width, int height)
+    : width_(width),
+      height_(height),
+      positions_(GL_RGBA32F, width, height),
+      normals_(GL_RGBA32F, width, height),
+      depth_(GL_DEPTH_COMPONENT32F, width, height) {
+  framebuffer_.attach_color(0, positions_);
+  framebuffer_.attach_color(1, normals_);
+  framebuffer_.attach_depth(depth_);
+  const GLenum targets[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+  glNamedFramebufferDrawBuffers(framebuffer_.id(), 2, targets);
+  framebuffer_.check_complete("G-buffer");
+  program_ = build_program({{GL_VERTEX_SHADER, "passes/gbuffer.vert", {}},
+                            {GL_FRAGMENT_SHADER, "passes/gbuffer.frag", {}}},
+                           binding_defines());
+}
+
+void GBufferPass::render(const GpuScene& scene, const Scene& description, GpuTimer* timer) {
+  if (!scene.attributes().normals) throw GpuError("G-buffer pass needs scene normals uploaded");
+  ScopedSubpass timed(timer, "gbuffer");
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
+  glViewport(0, 0, width_, height_);
+  const float zero[4] = {0, 0, 0, 0};
+  const float far_depth = 1.0f;
+  glClearNamedFramebufferfv(framebuffer_.id(), GL_COLOR, 0, zero);
+  glClearNamedFramebufferfv(framebuffer_.id(), GL_COLOR, 1, zero);
+  glClearNamedFramebufferfv(framebuffer_.id(), GL_DEPTH, 0, &far_depth);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_BLEND);
+  program_.use();
+  const glm::mat4 vp = camera_view_projection(description.camera, width_, height_,
+                                              description.bounding_sphere());
+  program_.set_mat4("camera_view_projection", &vp[0][0]);
+  const glm::vec3 eye = description.camera.eye;
+  program_.set("camera_eye", eye.x, eye.y, eye.z);
+  scene.draw();
+  glDisable(GL_DEPTH_TEST);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+Image GBufferPass::read_positions() const {
+  return image_from_gl_rows(positions_.read_floats(4), width_, height_, 4);
+}
+
+Image GBufferPass::read_normals() const {
+  return image_from_gl_rows(normals_.read_floats(4), width_, height_, 4);
+}
+
+}  // namespace ldm

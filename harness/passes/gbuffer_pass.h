@@ -1,0 +1,30 @@
+#pragma once
+// Rasterises the scene from the user's camera into world positions and camera-facing
+// normals, one sample per pixel centre (the points the AO pass and the reference shade).
+#include "harness/gl/gl_objects.h"
+#include "harness/image/image.h"
+#include "harness/measure/gpu_timer.h"
+#include "harness/scene/gpu_scene.h"
+
+namespace ldm {
+
+class GBufferPass {
+ public:
+  GBufferPass(int width, int height);
+  void render(const GpuScene& scene, const Scene& description, GpuTimer* timer);
+  const GlTexture2D& positions() const { return positions_; }
+  const GlTexture2D& normals() const { return normals_; }
+  int width() const { return width_; }
+  int height() const { return height_; }
+  // Top-row-first copies (xyzw), for tests and the reference renderer's cross-checks.
+  Image read_positions() const;
+  Image read_normals() const;
+
+ private:
+  int width_, height_;
+  GlTexture2D positions_, normals_, depth_;
+  GlFramebuffer framebuffer_;
+  GlProgram program_;
+};
+
+}  // namespace ldm

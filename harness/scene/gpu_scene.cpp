@@ -1,0 +1,61 @@
+#include "harness/scene/gpu_scene.h"
+
+namespace ldm {
+
+std::string AttributeSet::describe() const {
+  std::string s = "position";
+  if (normals) s += "+normal";
+  if (materials) s += "+material";
+  return s;
+}
+
+GpuScene::GpuScene(const Scene& scene, AttributeSet attributes)
+    : attributes_(attributes), triangle_count_(scene.mesh.triangles.size()) {
+  const auto& mesh = scene.mesh;
+  positions_ = GlBuffer("scene_positions", mesh.positions.size() * sizeof(glm::vec3),
+                        mesh.positions.data(), 0);
+  indices_ = GlBuffer("scene_indices", mesh.triangles.size() * sizeof(glm::uvec3),
+                      mesh.triangles.data(), 0);
+  glVertexArrayVertexBuffer(vao_.id(), 0, positions_.id(), 0, sizeof(glm::vec3));
+  glVertexArrayAttribFormat(vao_.id(), 0, 3, GL_FLOAT, GL_FALSE, 0);
+  glVertexArrayAttribBinding(vao_.id(), 0, 0);
+  glEnableVertexArrayAttrib(vao_.id(), 0);
+  glVertexArrayElementBuffer(vao_.id(), indices_.id());
+  if (attributes.normals) {
+    normals_ = GlBuffer("scene_normals", mesh.normals.size() * sizeof(glm::vec3),
+                        mesh.normals.data(), 0);
+    glVertexArrayVertexBuffer(vao_.id(), 1, normals_.id(), 0, sizeof(glm::vec3));
+    glVertexArrayAttribFormat(vao_.id(), 1, 3, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(vao_.id(), 1, 1);
+    glEnableVertexArrayAttrib(vao_.id(), 1);
+  }
+  if (attributes.materials) {
+    triangle_materials_ = GlBuffer("scene_triangle_materials",
+                                   mesh.triangle_materials.size() * sizeof(uint32_t),
+                                   mesh.triangle_materials.data(), 0);
+    std::vector<glm::vec4> albedo;
+    for (const auto& m : scene.materials) albedo.emplace_back(m.albedo, 1.0f);
+    albedo_ = GlBuffer("scene_albedo", albedo.size() * sizeof(glm::vec4), albedo.data(), 0);
+  }
+  check_gl("uploading the scene");
+}
+
+void GpuScene::draw() const {
+  glBindVertexArray(vao_.id());
+  glDrawElements(GL_TRIANGLES, GLsizei(triangle_count_ * 3), GL_UNSIGNED_INT, nullptr);
+}
+
+std::vector<const GlBuffer*> GpuScene::buffers() const {
+  std::vector<const GlBuffer*> out;
+  for (const GlBuffer* b : {&positions_, &normals_, &indices_, &triangle_materials_, &albedo_})
+    if (*b) out.push_back(b);
+  return out;
+}
+
+uint64_t GpuScene::bytes() const {
+  uint64_t total = 0;
+  for (const GlBuffer* b : buffers()) total += b->bytes();
+  return total;
+}
+
+}  // namespace ldm

@@ -1,0 +1,42 @@
+#pragma once
+// The scene's geometry on the GPU. Only the attributes that the enabled passes read are
+// uploaded (model only what the scene requires): LDM construction needs positions alone,
+// the G-buffer adds normals, lighting passes add per-triangle materials.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "harness/gl/gl_objects.h"
+#include "harness/scene/scene.h"
+
+namespace ldm {
+
+struct AttributeSet {
+  bool normals = false;    // vertex attribute 1
+  bool materials = false;  // per-triangle material index + albedo table (storage buffers)
+  AttributeSet& operator|=(const AttributeSet& o) {
+    normals = normals || o.normals;
+    materials = materials || o.materials;
+    return *this;
+  }
+  std::string describe() const;  // "position", "position+normal", ...
+};
+
+class GpuScene {
+ public:
+  GpuScene(const Scene& scene, AttributeSet attributes);
+  // Draws every triangle with the bound program (positions at location 0, normals at 1).
+  void draw() const;
+  const AttributeSet& attributes() const { return attributes_; }
+  uint64_t triangle_count() const { return triangle_count_; }
+  uint64_t bytes() const;  // all geometry buffers
+  std::vector<const GlBuffer*> buffers() const;
+
+ private:
+  AttributeSet attributes_;
+  uint64_t triangle_count_ = 0;
+  GlVertexArray vao_;
+  GlBuffer positions_, normals_, indices_, triangle_materials_, albedo_;
+};
+
+}  // namespace ldm

@@ -1,0 +1,79 @@
+#include "harness/scene/scene.h"
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "harness/util/error.h"
+#include "harness/util/hash.h"
+
+namespace ldm {
+
+Bounds Scene::bounds() const {
+  Bounds b;
+  b.lo = glm::vec3(std::numeric_limits<float>::max());
+  b.hi = glm::vec3(-std::numeric_limits<float>::max());
+  for (const auto& p : mesh.positions) {
+    b.lo = glm::min(b.lo, p);
+    b.hi = glm::max(b.hi, p);
+  }
+  return b;
+}
+
+BoundingSphere Scene::bounding_sphere() const {
+  const Bounds b = bounds();
+  BoundingSphere s;
+  s.centre = 0.5f * (b.lo + b.hi);
+  float r2 = 0.0f;
+  for (const auto& p : mesh.positions) {
+    glm::vec3 d = p - s.centre;
+    r2 = std::max(r2, glm::dot(d, d));
+  }
+  s.radius = std::sqrt(r2);
+  return s;
+}
+
+uint64_t Scene::content_hash() const {
+  Fnv1a h;
+  h.add_vector(mesh.positions);
+  h.add_vector(mesh.normals);
+  h.add_vector(mesh.triangles);
+  h.add_vector(mesh.triangle_materials);
+  for (const auto& m : materials) {
+    h.add_string(m.name);
+    h.add(m.albedo);
+  }
+  h.add(camera);
+  h.add(light);
+  // Field by field: AoSettings has padding after its bool.
+  h.add(uint8_t(ao.attenuated));
+  h.add(ao.d_max);
+  h.add(ao.falloff_exponent);
+  h.add(ao.normal_offset_pixels);
+  return h.value();
+}
+
+void Scene::validate() const {
+  const std::string where = "scene '" + name + "' (" + origin + ")";
+  if (mesh.triangles.empty()) throw UserError(where + ": has no triangles");
+  if (mesh.normals.size() != mesh.positions.size())
+    throw UserError(where + ": normals and positions differ in count");
+  if (mesh.triangle_materials.size() != mesh.triangles.size())
+    throw UserError(where + ": every triangle needs a material");
+  for (const auto& p : mesh.positions)
+    if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+      throw UserError(where + ": a vertex position is not finite");
+  const auto vertex_count = mesh.positions.size();
+  for (const auto& t : mesh.triangles)
+    if (t.x >= vertex_count || t.y >= vertex_count || t.z >= vertex_count)
+      throw UserError(where + ": a triangle indexes past the vertex list");
+  for (auto m : mesh.triangle_materials)
+    if (m >= materials.size()) throw UserError(where + ": a triangle names a missing material");
+  if (!(ao.d_max > 0.0f)) throw UserError(where + ": ao.d_max must be positive");
+  if (!(camera.fov_y_deg > 0.0f && camera.fov_y_deg < 180.0f))
+    throw UserError(where + ": camera.fov_y_deg must lie in (0, 180)");
+  if (glm::length(camera.target - camera.eye) <= 0.0f)
+    throw UserError(where + ": camera.eye and camera.target coincide");
+}
+
+}  // namespace ldm

@@ -1,0 +1,87 @@
+#pragma once
+// The scene: one triangle soup with per-triangle materials, a camera, a spot light and the
+// ambient-occlusion settings. Everything a pass or a reference renderer reads comes from here.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace ldm {
+
+struct Material {
+  std::string name;
+  glm::vec3 albedo{0.8f};  // diffuse reflectance, linear RGB
+};
+
+// Vertex positions and shading normals (same length), triangles as index triples, one
+// material index per triangle. Flat-shaded geometry simply repeats vertices per face.
+struct TriangleMesh {
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;
+  std::vector<glm::uvec3> triangles;
+  std::vector<uint32_t> triangle_materials;
+
+  size_t triangle_count() const { return triangles.size(); }
+};
+
+// A pinhole camera. Pixel (x, y) of a W x H image (y = 0 the top row) looks through
+//   ndc = ((x + 0.5) / W * 2 - 1, 1 - (y + 0.5) / H * 2),
+//   dir = normalize(forward + ndc.x * tan(fov_y / 2) * W / H * right + ndc.y * tan(fov_y / 2) * up)
+// on both the GPU (rasterised pixel centres) and the reference renderer (primary rays).
+struct Camera {
+  glm::vec3 eye{0.0f, 0.0f, 5.0f};
+  glm::vec3 target{0.0f};
+  glm::vec3 up{0.0f, 1.0f, 0.0f};
+  float fov_y_deg = 40.0f;
+};
+
+// A spot light: radiant intensity `intensity` (W/sr, RGB) along `direction`, smoothly
+// falling to zero between the inner and outer cone angles.
+struct SpotLight {
+  glm::vec3 position{0.0f, 1.0f, 0.0f};
+  glm::vec3 direction{0.0f, -1.0f, 0.0f};
+  glm::vec3 intensity{10.0f};
+  float inner_angle_deg = 30.0f;
+  float outer_angle_deg = 45.0f;
+};
+
+// Ambient occlusion settings of thesis §4.1.2 and §4.4.2.
+struct AoSettings {
+  bool attenuated = true;        // V = min(d / d_max, 1)^falloff; otherwise V = (no hit) ? 1 : 0
+  float d_max = 1.0f;            // attenuation distance, scene units
+  float falloff_exponent = 2.0f;
+  // Normal offset of §4.4.2, in LDM pixels: x += n * sin(angle(n, w)) * normal_offset * pixel.
+  // Expressed in pixels (not scene units) so that it scales with R_LDM.
+  float normal_offset_pixels = 1.0f;
+};
+
+struct BoundingSphere {
+  glm::vec3 centre{0.0f};
+  float radius = 1.0f;
+};
+
+struct Bounds {
+  glm::vec3 lo{0.0f}, hi{0.0f};
+};
+
+struct Scene {
+  std::string name;
+  std::string origin;  // "built-in:<generator>" or the scene file's path
+  TriangleMesh mesh;
+  std::vector<Material> materials;
+  Camera camera;
+  SpotLight light;
+  AoSettings ao;
+
+  Bounds bounds() const;
+  // Centre of the bounds and the largest vertex distance from it: every vertex lies inside.
+  BoundingSphere bounding_sphere() const;
+  // A 64-bit FNV-1a hash of everything that affects an image (geometry, materials, camera,
+  // light, AO settings), for reference caching.
+  uint64_t content_hash() const;
+  // Throws UserError (naming the scene) on empty geometry, NaN coordinates, bad indices.
+  void validate() const;
+};
+
+}  // namespace ldm

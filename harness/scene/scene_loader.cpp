@@ -1,0 +1,188 @@
+#include "harness/scene/scene_loader.h"
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "harness/scene/generators.h"
+#include "harness/scene/obj_loader.h"
+#include "harness/util/error.h"
+
+namespace ldm {
+namespace {
+
+using nlohmann::json;
+
+// Typed access to one JSON object with errors that name the file and the key's path.
+class Fields {
+ public:
+  Fields(const json& object, std::string file, std::string path)
+      : object_(object), file_(std::move(file)), path_(std::move(path)) {
+    if (!object_.is_object()) fail("", "must be a JSON object");
+  }
+  [[noreturn]] void fail(const std::string& key, const std::string& what) const {
+    throw UserError(file_ + ": " + path_ + (key.empty() ? "" : "/" + key) + " " + what);
+  }
+  bool has(const std::string& key) const { return object_.contains(key); }
+  void only(std::initializer_list<const char*> keys) const {
+    for (const auto& [key, value] : object_.items()) {
+      bool known = false;
+      for (const char* k : keys) known = known || key == k;
+      if (!known) fail(key, "is not a known key here");
+    }
+  }
+  float number(const std::string& key, float fallback) const {
+    if (!has(key)) return fallback;
+    const json& v = object_.at(key);
+    if (!v.is_number()) fail(key, "must be a number");
+    return v.get<float>();
+  }
+  bool boolean(const std::string& key, bool fallback) const {
+    if (!has(key)) return fallback;
+    const json& v = object_.at(key);
+    if (!v.is_boolean()) fail(key, "must be true or false");
+    return v.get<bool>();
+  }
+  std::string string(const std::string& key) const {
+    if (!has(key)) fail(key, "is required");
+    const json& v = object_.at(key);
+    if (!v.is_string()) fail(key, "must be a string");
+    return v.get<std::string>();
+  }
+  glm::vec3 vec3(const std::string& key, glm::vec3 fallback) const {
+    if (!has(key)) return fallback;
+    const json& v = object_.at(key);
+    if (v.is_number()) return glm::vec3(v.get<float>());
+    if (!v.is_array() || v.size() != 3 || !v[0].is_number() || !v[1].is_number() ||
+        !v[2].is_number())
+      fail(key, "must be an array of 3 numbers");
+    return {v[0].get<float>(), v[1].get<float>(), v[2].get<float>()};
+  }
+  const json& at(const std::string& key) const { return object_.at(key); }
+  Fields child(const std::string& key) const { return Fields(object_.at(key), file_, path_ + "/" + key); }
+  const std::string& file() const { return file_; }
+  const std::string& path() const { return path_; }
+
+ private:
+  const json& object_;
+  std::string file_;
+  std::string path_;
+};
+
+void read_camera(const Fields& f, Camera& camera) {
+  f.only({"eye", "target", "up", "fov_y_deg"});
+  camera.eye = f.vec3("eye", camera.eye);
+  camera.target = f.vec3("target", camera.target);
+  camera.up = f.vec3("up", camera.up);
+  camera.fov_y_deg = f.number("fov_y_deg", camera.fov_y_deg);
+  if (!(camera.fov_y_deg > 0 && camera.fov_y_deg < 180)) f.fail("fov_y_deg", "must lie in (0, 180)");
+  if (glm::length(camera.up) == 0.0f) f.fail("up", "must not be zero");
+}
+
+void read_light(const Fields& f, SpotLight& light) {
+  f.only({"type", "position", "direction", "intensity", "inner_angle_deg", "outer_angle_deg"});
+  if (f.has("type") && f.string("type") != "spot") f.fail("type", "must be \"spot\"");
+  light.position = f.vec3("position", light.position);
+  light.direction = f.vec3("direction", light.direction);
+  if (glm::length(light.direction) == 0.0f) f.fail("direction", "must not be zero");
+  light.direction = glm::normalize(light.direction);
+  light.intensity = f.vec3("intensity", light.intensity);
+  light.inner_angle_deg = f.number("inner_angle_deg", light.inner_angle_deg);
+  light.outer_angle_deg = f.number("outer_angle_deg", light.outer_angle_deg);
+  if (!(light.inner_angle_deg >= 0 && light.inner_angle_deg <= light.outer_angle_deg &&
+        light.outer_angle_deg <= 180))
+    f.fail("outer_angle_deg", "needs 0 <= inner_angle_deg <= outer_angle_deg <= 180");
+}
+
+void read_ao(const Fields& f, AoSettings& ao) {
+  f.only({"attenuated", "d_max", "falloff_exponent", "normal_offset"});
+  ao.attenuated = f.boolean("attenuated", ao.attenuated);
+  ao.d_max = f.number("d_max", ao.d_max);
+  if (!(ao.d_max > 0)) f.fail("d_max", "must be positive");
+  ao.falloff_exponent = f.number("falloff_exponent", ao.falloff_exponent);
+  if (!(ao.falloff_exponent > 0)) f.fail("falloff_exponent", "must be positive");
+  ao.normal_offset_pixels = f.number("normal_offset", ao.normal_offset_pixels);
+  if (!(ao.normal_offset_pixels >= 0)) f.fail("normal_offset", "must be >= 0");
+}
+
+void append_mesh(Scene& scene, const Fields& f, const std::filesystem::path& base_dir) {
+  f.only({"file", "material", "scale", "translate"});
+  const std::string file = f.string("file");
+  std::filesystem::path path = file;
+  if (path.is_relative()) path = base_dir / path;
+  ObjLoadOptions options;
+  options.scale = f.vec3("scale", glm::vec3(1.0f));
+  options.translate = f.vec3("translate", glm::vec3(0.0f));
+  if (f.has("material")) options.override_material = f.string("material");
+  load_obj_into(scene, path.string(), options, f.file() + ": " + f.path() + "/file");
+}
+
+}  // namespace
+
+Scene parse_scene_file(const std::string& text, const std::string& path) {
+  json root;
+  try {
+    root = json::parse(text);
+  } catch (const json::parse_error& e) {
+    // nlohmann's message carries "at line L, column C".
+    std::string what = e.what();
+    const auto at = what.find("at line");
+    throw UserError(path + ": malformed JSON " +
+                    (at != std::string::npos ? what.substr(at) : what));
+  }
+  Fields top(root, path, "");
+  top.only({"name", "generator", "meshes", "materials", "camera", "light", "ao"});
+  if (!top.has("generator") && !top.has("meshes"))
+    throw UserError(path + ": needs \"generator\" or \"meshes\" (or both)");
+
+  Scene scene;
+  if (top.has("generator")) {
+    Fields g = top.child("generator");
+    const std::string type = g.string("type");
+    scene = generate_scene(type, root.at("generator"), path + ": /generator");
+  }
+  scene.origin = path;
+  if (top.has("name")) scene.name = top.string("name");
+  if (scene.name.empty()) scene.name = std::filesystem::path(path).stem().string();
+
+  if (top.has("materials")) {
+    Fields m = top.child("materials");
+    for (const auto& [name, value] : root.at("materials").items()) {
+      Material material{name, m.vec3(name, glm::vec3(0.8f))};
+      bool replaced = false;
+      for (auto& existing : scene.materials)
+        if (existing.name == name) existing = material, replaced = true;
+      if (!replaced) scene.materials.push_back(material);
+    }
+  }
+  if (top.has("meshes")) {
+    const json& meshes = root.at("meshes");
+    if (!meshes.is_array()) throw UserError(path + ": /meshes must be an array");
+    const auto base = std::filesystem::path(path).parent_path();
+    for (size_t i = 0; i < meshes.size(); ++i)
+      append_mesh(scene, Fields(meshes[i], path, "/meshes/" + std::to_string(i)), base);
+  }
+  if (top.has("camera")) read_camera(top.child("camera"), scene.camera);
+  if (top.has("light")) read_light(top.child("light"), scene.light);
+  if (top.has("ao")) read_ao(top.child("ao"), scene.ao);
+  scene.validate();
+  return scene;
+}
+
+Scene load_scene(const std::string& spec) {
+  if (find_scene_generator(spec)) return generate_scene(spec, nlohmann::json(), "--scene " + spec);
+  std::ifstream in(spec, std::ios::binary);
+  if (!in) {
+    std::string known;
+    for (const auto& g : scene_generators()) known += (known.empty() ? "" : ", ") + g.name;
+    throw UserError("--scene: '" + spec + "' is neither a built-in scene (" + known +
+                    ") nor a readable scene file");
+  }
+  std::stringstream text;
+  text << in.rdbuf();
+  return parse_scene_file(text.str(), spec);
+}
+
+}  // namespace ldm

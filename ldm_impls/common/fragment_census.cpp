@@ -1,0 +1,45 @@
+#include "ldm_impls/common/fragment_census.h"
+
+#include <algorithm>
+
+#include "harness/gl/bindings.h"
+#include "harness/util/error.h"
+#include "ldm_impls/common/ldm_rasterizer.h"
+
+namespace ldm {
+
+uint64_t FragmentCensus::fragments_beyond(uint32_t k) const {
+  uint64_t lost = 0;
+  for (uint32_t n : counts)
+    if (n > k) lost += n - k;
+  return lost;
+}
+
+FragmentCensus take_fragment_census(const GpuScene& scene, const GpuViewSet& views) {
+  const ViewSet& set = views.views();
+  const uint64_t pixels = set.total_pixels();
+  if (pixels * sizeof(uint32_t) > (uint64_t(1) << 31))
+    throw UserError("N x R_LDM^2 = " + std::to_string(pixels) +
+                    " pixels is beyond what one counting buffer can address here");
+  GlBuffer counts("census_counts", pixels * sizeof(uint32_t));
+  counts.clear_to_zero();
+  counts.bind_storage(kCensusBinding);
+  const GlProgram program = build_ldm_raster_program("ldm/census.frag", {});
+  LdmRasterizer(set.resolution).rasterize(scene, views, program);
+
+  FragmentCensus census;
+  census.counts = counts.download_all<uint32_t>();
+  census.total_pixels = pixels;
+  census.fragments_per_view.assign(set.size(), 0);
+  const uint64_t per_view = set.pixels_per_view();
+  for (uint64_t i = 0; i < pixels; ++i) {
+    const uint32_t n = census.counts[i];
+    census.total_fragments += n;
+    census.fragments_per_view[i / per_view] += n;
+    census.max_depth_complexity = std::max(census.max_depth_complexity, n);
+    census.nonempty_pixels += n > 0;
+  }
+  return census;
+}
+
+}  // namespace ldm

@@ -1,0 +1,117 @@
+#pragma once
+// The interface every layered-depth-map structure implements (the heart of ldmbench).
+//
+// C++ side: prepare() sizes GPU storage from what the scene needs (the fragment census) and
+// the structure's parameters; build() runs the construction sub-passes, each timed; stats()
+// reports what the last build stored and lost; memory() breaks storage down by buffer.
+// GLSL side: query_sources()/query_defines() implement the query API of
+// shaders/common/ldm_query_api.glsl, which is all a pass ever reads.
+//
+// Adding a structure touches ldm_impls/<name>/ and shaders/ldm/<name>/ only; register it in
+// ldm_impls/structure_registry.cpp.
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "harness/gl/shader_program.h"
+#include "harness/measure/gpu_timer.h"
+#include "harness/scene/gpu_scene.h"
+#include "harness/views/view_set.h"
+#include "ldm_impls/common/fragment_census.h"
+
+namespace ldm {
+
+// Per-fragment data the enabled passes need stored besides depth. AO needs nothing more;
+// the indirect-light pass (a later issue) will ask for normals and albedo.
+struct FragmentPayload {
+  bool normal = false;
+  bool albedo = false;
+  std::string describe() const;  // "depth", "depth+normal", ...
+};
+
+struct BuildInputs {
+  const GpuScene& scene;
+  const GpuViewSet& views;
+  const FragmentCensus& census;
+  FragmentPayload payload;
+};
+
+struct BufferMemory {
+  std::string name;
+  uint64_t allocated = 0;  // bytes reserved on the device
+  uint64_t used = 0;       // bytes holding data after the last build
+};
+
+struct BuildStats {
+  uint64_t fragments_rasterized = 0;  // fragments the construction tried to store
+  uint64_t fragments_stored = 0;      // fragments the structure holds
+  uint64_t fragments_lost = 0;        // rasterized - stored: overflow, drops, aborted inserts
+  bool overflow = false;              // storage too small for the fragments
+  // Structure-specific counts, e.g. {"lists_sorted_in_place", 3}.
+  std::vector<std::pair<std::string, double>> counters;
+};
+
+// key=value parameters of a structure (--structure-param psppsll:pool=grow). Getters check
+// ranges and remember which keys were read; finish() rejects the rest, so a typo is an error.
+class StructureParams {
+ public:
+  StructureParams() = default;
+  explicit StructureParams(std::map<std::string, std::string> values, std::string context = {})
+      : values_(std::move(values)), context_(std::move(context)) {}
+  uint64_t get_uint(const std::string& key, uint64_t fallback, uint64_t lo, uint64_t hi);
+  double get_double(const std::string& key, double fallback, double lo, double hi);
+  std::string get_choice(const std::string& key, const std::string& fallback,
+                         const std::vector<std::string>& allowed);
+  bool get_bool(const std::string& key, bool fallback);
+  void finish(const std::string& structure) const;
+  const std::map<std::string, std::string>& values() const { return values_; }
+
+ private:
+  std::map<std::string, std::string> values_;
+  std::string context_;
+  mutable std::vector<std::string> read_;
+};
+
+class LdmStructure {
+ public:
+  virtual ~LdmStructure() = default;
+
+  virtual std::string name() const = 0;
+  // Sizes storage and compiles the construction shaders. Throws UserError when the
+  // configuration cannot run here (e.g. a buffer larger than the device's storage block).
+  virtual void prepare(const BuildInputs& in) = 0;
+  // One construction: every sub-pass (clear, count, scan, store, sort...) timed by `timer`.
+  virtual void build(const BuildInputs& in, GpuTimer* timer) = 0;
+  // What the last build stored and lost (reads small counters back; never timed).
+  virtual BuildStats stats() = 0;
+
+  // The query API implementation: files prepended to a pass's shader, their defines, and
+  // the bindings they read.
+  virtual std::vector<std::string> query_sources() const = 0;
+  virtual ShaderDefines query_defines() const = 0;
+  virtual void bind_for_query() const = 0;
+
+  virtual std::vector<BufferMemory> memory() const = 0;
+  // How storage was sized, for records: e.g. {"pool_policy", "counted"}.
+  virtual std::vector<std::pair<std::string, std::string>> sizing() const = 0;
+  // Worst-case depth error of the stored depths against the rasterised float depth, in
+  // scene units (0 for structures that store the float itself).
+  virtual double depth_quantum(const LdmView& view) const {
+    (void)view;
+    return 0.0;
+  }
+};
+
+std::vector<std::string> structure_names();
+// Throws UserError for an unknown name (listing the known ones) or bad parameters.
+std::unique_ptr<LdmStructure> make_structure(const std::string& name, StructureParams params);
+
+// Helpers shared by implementations.
+uint64_t checked_storage_block(const std::string& structure, const std::string& buffer,
+                               uint64_t bytes);  // throws when over the device's block size
+ShaderDefines common_structure_defines(const BuildInputs& in);
+
+}  // namespace ldm

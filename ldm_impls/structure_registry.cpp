@@ -1,0 +1,44 @@
+// The list of structures `--structure` accepts. A new structure adds one line here.
+#include <functional>
+
+#include "harness/util/error.h"
+#include "ldm_impls/ldm_structure.h"
+#include "ldm_impls/psppsll/psppsll.h"
+
+namespace ldm {
+namespace {
+
+struct Entry {
+  const char* name;
+  std::function<std::unique_ptr<LdmStructure>(StructureParams&)> make;
+};
+
+const std::vector<Entry>& registry() {
+  static const std::vector<Entry> entries = {
+      {"psppsll", [](StructureParams& p) { return std::make_unique<Psppsll>(p); }},
+  };
+  return entries;
+}
+
+}  // namespace
+
+std::vector<std::string> structure_names() {
+  std::vector<std::string> names;
+  for (const auto& e : registry()) names.emplace_back(e.name);
+  return names;
+}
+
+std::unique_ptr<LdmStructure> make_structure(const std::string& name, StructureParams params) {
+  for (const auto& e : registry()) {
+    if (name == e.name) {
+      auto structure = e.make(params);
+      params.finish(name);
+      return structure;
+    }
+  }
+  std::string known;
+  for (const auto& n : structure_names()) known += (known.empty() ? "" : ", ") + n;
+  throw UserError("--structure: unknown structure '" + name + "' (known: " + known + ")");
+}
+
+}  // namespace ldm

@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Installs every Debian package ldmbench needs to build, test and plot.
+# Idempotent: packages already present are skipped by apt; safe to run again.
+set -euo pipefail
+
+packages=(
+  # toolchain
+  cmake ninja-build g++ pkg-config git
+  # headless OpenGL 4.5: libglvnd's EGL/OpenGL plus Mesa's llvmpipe for machines without a GPU
+  libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
+  # libraries
+  libglm-dev libopenimageio-dev libembree-dev libtbb-dev
+  nlohmann-json3-dev libcli11-dev libtinyobjloader-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  # independent metric oracle (skimage) and report plots
+  python3 python3-numpy python3-scipy python3-skimage python3-matplotlib python3-pandas
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "setup: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+sudo=""
+[ "$(id -u)" -eq 0 ] || sudo="sudo"
+echo "setup: installing ${missing[*]}"
+$sudo apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"

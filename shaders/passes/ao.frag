@@ -1,0 +1,45 @@
+// Ambient occlusion with LDMs (thesis §4.4.1, Listings 5 and 6; Eq. 13):
+//   AO(x) = 2/N * sum_i V(d_i) * |cos theta_i|
+// over the N LDM views, each sampled once in the hemisphere around the normal: along
+// +forward (the next fragment) when the normal faces +forward, else along -forward (the
+// previous one). The normal offset of §4.4.2 moves x by n * sin(angle(n, w)) * k LDM pixels.
+#include "passes/ldm_trace.glsl"
+
+layout(binding = 0) uniform sampler2D gbuffer_position;
+layout(binding = 1) uniform sampler2D gbuffer_normal;
+uniform float ao_d_max;
+uniform float ao_falloff_exponent;
+uniform float ao_normal_offset_pixels;
+layout(location = 0) out float out_ao;
+
+float visibility(float distance) {
+  if (isinf(distance)) return 1.0;
+#if AO_ATTENUATED
+  return pow(min(distance / ao_d_max, 1.0), ao_falloff_exponent);  // ambient obscurance
+#else
+  return 0.0;
+#endif
+}
+
+float ao_contribution(uint view_index, vec3 x, vec3 n) {
+  const LdmView view = ldm_views[view_index];
+  const float cos_theta = dot(view.forward.xyz, n);
+  const float sin_alpha = sqrt(max(0.0, 1.0 - cos_theta * cos_theta));
+  const vec3 offset_x = x + n * (sin_alpha * ao_normal_offset_pixels * view.eye.w);
+  const LdmNeighbours hits = ldm_neighbours(view_index, offset_x);
+  return cos_theta > 0.0 ? visibility(hits.ahead) * cos_theta
+                         : visibility(hits.behind) * -cos_theta;
+}
+
+void main() {
+  const ivec2 pixel = ivec2(gl_FragCoord.xy);
+  const vec4 position = texelFetch(gbuffer_position, pixel, 0);
+  if (position.w == 0.0) {  // background
+    out_ao = 0.0;
+    return;
+  }
+  const vec3 n = texelFetch(gbuffer_normal, pixel, 0).xyz;
+  float sum = 0.0;
+  for (uint v = 0u; v < LDM_VIEW_COUNT; ++v) sum += ao_contribution(v, position.xyz, n);
+  out_ao = 2.0 / float(LDM_VIEW_COUNT) * sum;
+}

@@ -1,0 +1,13 @@
+in vec3 v_position;
+in vec3 v_normal;
+uniform vec3 camera_eye;
+layout(location = 0) out vec4 out_position;  // xyz world position, w = 1 (0: background)
+layout(location = 1) out vec4 out_normal;    // xyz unit normal facing the camera
+
+void main() {
+  vec3 n = normalize(v_normal);
+  // Surfaces are two-sided: the normal faces the viewer (the reference renderer does the same).
+  if (dot(n, camera_eye - v_position) < 0.0) n = -n;
+  out_position = vec4(v_position, 1.0);
+  out_normal = vec4(n, 0.0);
+}

@@ -1,0 +1,36 @@
+#include "test_support.h"
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <random>
+#include <sys/wait.h>
+
+namespace ldm::test {
+
+HeadlessContext& gl_context() {
+  static std::unique_ptr<HeadlessContext> context = HeadlessContext::create({});
+  return *context;
+}
+
+int run_command(const std::string& command, std::string* output) {
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  if (!pipe) return -1;
+  std::array<char, 4096> buffer;
+  std::string text;
+  size_t n;
+  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) text.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  if (output) *output = text;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+std::string make_temp_dir(const std::string& prefix) {
+  std::random_device random;
+  const auto dir = std::filesystem::temp_directory_path() /
+                   (prefix + "-" + std::to_string(random()) + std::to_string(random()));
+  std::filesystem::create_directories(dir);
+  return dir.string();
+}
+
+}  // namespace ldm::test
