@@ -37,7 +37,7 @@ RTCRayHit make_ray(glm::vec3 origin, glm::vec3 direction, float t_near, float t_
 // Collects every hit and rejects it, so that traversal goes on to the next one.
 struct AllHitsContext {
   RTCIntersectContext base;  // must come first: Embree passes a pointer to it
-  std::vector<std::pair<uint32_t, float>>* hits;
+  std::vector<RayHit>* hits;
 };
 
 void collect_hit(const RTCFilterFunctionNArguments* args) {
@@ -45,7 +45,7 @@ void collect_hit(const RTCFilterFunctionNArguments* args) {
   const RTCRay ray = rtcGetRayFromRayN(args->ray, args->N, 0);
   const RTCHit hit = rtcGetHitFromHitN(args->hit, args->N, 0);
   if (args->valid[0] == 0) return;
-  context->hits->emplace_back(hit.primID, ray.tfar);
+  context->hits->push_back(RayHit{ray.tfar, hit.primID, hit.u, hit.v});
   args->valid[0] = 0;  // reject: keep looking
 }
 
@@ -98,9 +98,9 @@ bool EmbreeScene::occluded(glm::vec3 origin, glm::vec3 direction, float t_near,
   return r.ray.tfar < 0.0f;  // Embree sets tfar = -inf on a hit
 }
 
-std::vector<float> EmbreeScene::all_hits(glm::vec3 origin, glm::vec3 direction, float t_near,
-                                         float t_far) const {
-  std::vector<std::pair<uint32_t, float>> hits;
+std::vector<RayHit> EmbreeScene::all_hit_records(glm::vec3 origin, glm::vec3 direction,
+                                                 float t_near, float t_far) const {
+  std::vector<RayHit> hits;
   AllHitsContext context;
   rtcInitIntersectContext(&context.base);
   context.base.filter = collect_hit;
@@ -108,15 +108,26 @@ std::vector<float> EmbreeScene::all_hits(glm::vec3 origin, glm::vec3 direction, 
   RTCRayHit r = make_ray(origin, direction, t_near, t_far);
   rtcIntersect1(rtc_scene_, &context.base, &r);
   // A triangle referenced by several BVH leaves may be reported more than once.
-  std::sort(hits.begin(), hits.end());
+  std::sort(hits.begin(), hits.end(),
+            [](const RayHit& a, const RayHit& b) { return a.triangle < b.triangle; });
   hits.erase(std::unique(hits.begin(), hits.end(),
-                         [](const auto& a, const auto& b) { return a.first == b.first; }),
+                         [](const RayHit& a, const RayHit& b) { return a.triangle == b.triangle; }),
              hits.end());
+  std::sort(hits.begin(), hits.end(), [](const RayHit& a, const RayHit& b) { return a.t < b.t; });
+  return hits;
+}
+
+std::vector<float> EmbreeScene::all_hits(glm::vec3 origin, glm::vec3 direction, float t_near,
+                                         float t_far) const {
   std::vector<float> t;
-  t.reserve(hits.size());
-  for (const auto& h : hits) t.push_back(h.second);
-  std::sort(t.begin(), t.end());
+  for (const RayHit& h : all_hit_records(origin, direction, t_near, t_far)) t.push_back(h.t);
   return t;
+}
+
+glm::vec3 EmbreeScene::geometric_normal(uint32_t triangle) const {
+  const glm::uvec3 tri = scene_.mesh.triangles[triangle];
+  const auto& p = scene_.mesh.positions;
+  return glm::normalize(glm::cross(p[tri.y] - p[tri.x], p[tri.z] - p[tri.x]));
 }
 
 glm::vec3 EmbreeScene::shading_normal(const RayHit& hit) const {

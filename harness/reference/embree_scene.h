@@ -28,10 +28,15 @@ class EmbreeScene {
   std::optional<RayHit> intersect(glm::vec3 origin, glm::vec3 direction, float t_near,
                                   float t_far) const;
   bool occluded(glm::vec3 origin, glm::vec3 direction, float t_near, float t_far) const;
-  // Distances of every surface the ray crosses (each triangle once), ascending.
+  // Every surface the ray crosses (each triangle once), nearest first.
+  std::vector<RayHit> all_hit_records(glm::vec3 origin, glm::vec3 direction, float t_near,
+                                      float t_far) const;
+  // Just their distances.
   std::vector<float> all_hits(glm::vec3 origin, glm::vec3 direction, float t_near,
                               float t_far) const;
 
+  // Unit normal of a triangle's plane.
+  glm::vec3 geometric_normal(uint32_t triangle) const;
   // Interpolated shading normal at a hit (not normalised to face anything).
   glm::vec3 shading_normal(const RayHit& hit) const;
   const Scene& scene() const { return scene_; }

@@ -5,6 +5,7 @@
 #include "harness/gl/bindings.h"
 #include "harness/util/error.h"
 #include "ldm_impls/common/ldm_rasterizer.h"
+#include "ldm_impls/ldm_structure.h"
 
 namespace ldm {
 
@@ -18,10 +19,8 @@ uint64_t FragmentCensus::fragments_beyond(uint32_t k) const {
 FragmentCensus take_fragment_census(const GpuScene& scene, const GpuViewSet& views) {
   const ViewSet& set = views.views();
   const uint64_t pixels = set.total_pixels();
-  if (pixels * sizeof(uint32_t) > (uint64_t(1) << 31))
-    throw UserError("N x R_LDM^2 = " + std::to_string(pixels) +
-                    " pixels is beyond what one counting buffer can address here");
-  GlBuffer counts("census_counts", pixels * sizeof(uint32_t));
+  GlBuffer counts("census_counts",
+                  checked_storage_block("the fragment census", "counts", pixels * sizeof(uint32_t)));
   counts.clear_to_zero();
   counts.bind_storage(kCensusBinding);
   const GlProgram program = build_ldm_raster_program("ldm/census.frag", {});

@@ -10,7 +10,11 @@ constexpr uint64_t kWordsPerNode = 2;  // next index, depth
 }
 
 Psppsll::Psppsll(StructureParams& params) {
-  grow_pool_ = params.get_choice("pool", "counted", {"counted", "grow"}) == "grow";
+  const std::string pool = params.get_choice("pool", "counted", {"counted", "grow", "fixed"});
+  pool_ = pool == "grow" ? Pool::Grow : pool == "fixed" ? Pool::Fixed : Pool::Counted;
+  fixed_capacity_ = params.get_uint("capacity", 0, 1, (uint64_t(1) << 31) - 1);
+  if ((pool_ == Pool::Fixed) != (fixed_capacity_ > 0))
+    throw UserError("psppsll: capacity=<nodes> goes with pool=fixed, and pool=fixed needs it");
   atomic_reads_ = params.get_bool("atomic_reads", false);
 }
 
@@ -39,7 +43,11 @@ void Psppsll::prepare(const BuildInputs& in) {
   counters_ = GlBuffer("counters", 2 * sizeof(uint32_t));
   rasterizer_ = std::make_unique<LdmRasterizer>(in.views.views().resolution);
   rebuilds_ = 0;
-  allocate(in, grow_pool_ ? heads_ : in.census.total_fragments);
+  switch (pool_) {
+    case Pool::Counted: allocate(in, in.census.total_fragments); break;
+    case Pool::Grow: allocate(in, heads_); break;
+    case Pool::Fixed: allocate(in, fixed_capacity_); break;
+  }
 }
 
 void Psppsll::construct(const BuildInputs& in, GpuTimer* timer) {
@@ -60,7 +68,7 @@ void Psppsll::construct(const BuildInputs& in, GpuTimer* timer) {
 
 void Psppsll::build(const BuildInputs& in, GpuTimer* timer) {
   construct(in, timer);
-  if (!grow_pool_) return;
+  if (pool_ != Pool::Grow) return;
   // Grow-and-rebuild: the counter tells how many nodes this build wanted.
   for (uint64_t wanted = read_node_counter(); wanted > capacity_; wanted = read_node_counter()) {
     uint64_t capacity = capacity_;
@@ -104,7 +112,8 @@ std::vector<BufferMemory> Psppsll::memory() const {
 }
 
 std::vector<std::pair<std::string, std::string>> Psppsll::sizing() const {
-  return {{"pool_policy", grow_pool_ ? "grow" : "counted"},
+  static const char* const names[] = {"counted", "grow", "fixed"};
+  return {{"pool_policy", names[int(pool_)]},
           {"pool_capacity_nodes", std::to_string(capacity_)},
           {"node_bytes", std::to_string(kWordsPerNode * sizeof(uint32_t))},
           {"atomic_reads", atomic_reads_ ? "1" : "0"}};

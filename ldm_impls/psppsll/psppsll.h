@@ -4,9 +4,13 @@
 // in one data buffer (§3.4.4). Shaders: shaders/ldm/psppsll/.
 //
 // Parameters:
-//   pool=counted|grow   counted (default): the node pool holds exactly the census's fragments.
+//   pool=counted|grow|fixed
+//                       counted (default): the node pool holds exactly the census's fragments.
 //                       grow: starts at one node per LDM pixel and doubles, rebuilding, until
 //                       a build fits (the std::vector policy of §3.4.4); rebuilds are counted.
+//                       fixed: exactly `capacity` nodes, the static memory budget of §3.3.4;
+//                       fragments beyond it are counted as lost and the record says so.
+//   capacity=<nodes>    the pool size for pool=fixed.
 //   atomic_reads=0|1    read next indices with atomicAdd(x, 0), the driver workaround of
 //                       §3.4.3 (default 0).
 #include <memory>
@@ -36,7 +40,8 @@ class Psppsll final : public LdmStructure {
   void construct(const BuildInputs& in, GpuTimer* timer);
   uint64_t read_node_counter() const;
 
-  bool grow_pool_ = false;
+  enum class Pool { Counted, Grow, Fixed } pool_ = Pool::Counted;
+  uint64_t fixed_capacity_ = 0;
   bool atomic_reads_ = false;
   uint64_t heads_ = 0;     // N * R_LDM^2
   uint64_t capacity_ = 0;  // nodes

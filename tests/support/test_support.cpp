@@ -1,5 +1,7 @@
 #include "test_support.h"
 
+#include <gtest/gtest.h>
+
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -7,6 +9,16 @@
 #include <sys/wait.h>
 
 namespace ldm::test {
+
+namespace {
+// Every test process gets its GL context before the first test, so that no test can run GL
+// calls without one (they would silently do nothing).
+class GlEnvironment : public ::testing::Environment {
+ public:
+  void SetUp() override { gl_context(); }
+};
+const auto* const registered = ::testing::AddGlobalTestEnvironment(new GlEnvironment);
+}  // namespace
 
 HeadlessContext& gl_context() {
   static std::unique_ptr<HeadlessContext> context = HeadlessContext::create({});

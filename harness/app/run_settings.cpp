@@ -1,0 +1,62 @@
+#include "harness/app/run_settings.h"
+
+#include <cctype>
+#include <cstdio>
+#include <filesystem>
+
+namespace ldm {
+
+std::string visibility_name(Visibility v) {
+  switch (v) {
+    case Visibility::Attenuated: return "attenuated";
+    case Visibility::Unattenuated: return "unattenuated";
+    default: return "scene";
+  }
+}
+
+std::string Configuration::id() const {
+  std::string scene_name = std::filesystem::path(scene).stem().string();
+  std::string id = scene_name + "-" + structure + "-" + pass + "-n" + std::to_string(views) +
+                   "-r" + std::to_string(resolution);
+  if (d_max) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "-d%g", *d_max);
+    id += buffer;
+  }
+  if (visibility == Visibility::Attenuated) id += "-att";
+  if (visibility == Visibility::Unattenuated) id += "-unatt";
+  for (const auto& [key, value] : params) id += "-" + key + "=" + value;
+  for (char& c : id)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.' || c == '='))
+      c = '_';
+  return id;
+}
+
+std::vector<Configuration> expand_configurations(const RunSettings& s) {
+  std::vector<Configuration> out;
+  const std::vector<std::optional<float>> d_values =
+      s.d_max.empty() ? std::vector<std::optional<float>>{std::nullopt}
+                      : std::vector<std::optional<float>>(s.d_max.begin(), s.d_max.end());
+  for (const auto& scene : s.scenes)
+    for (const auto& pass : s.passes)
+      for (const auto& structure : s.structures)
+        for (uint32_t n : s.views)
+          for (uint32_t r : s.resolutions)
+            for (const auto& d : d_values)
+              for (Visibility v : s.visibility) {
+                Configuration c;
+                c.scene = scene;
+                c.structure = structure;
+                c.pass = pass;
+                c.views = n;
+                c.resolution = r;
+                c.d_max = d;
+                c.visibility = v;
+                auto params = s.structure_params.find(structure);
+                if (params != s.structure_params.end()) c.params = params->second;
+                out.push_back(c);
+              }
+  return out;
+}
+
+}  // namespace ldm

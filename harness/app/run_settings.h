@@ -1,0 +1,62 @@
+#pragma once
+// What `ldmbench run` measures: the axes of a sweep (every combination is one configuration,
+// one record) and the settings shared by all of them.
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "harness/gl/egl_context.h"
+
+namespace ldm {
+
+enum class Visibility { Scene, Attenuated, Unattenuated };
+
+struct ReferenceSettings {
+  bool enabled = true;
+  uint32_t spp_per_half = 0;         // 0: automatic (doubling until the noise target is met)
+  double target_noise_mse = 1e-5;
+  uint32_t max_spp_per_half = 4096;
+  uint64_t seed = 1;
+  std::string cache_dir;             // default: results/cache/references
+};
+
+struct RunSettings {
+  // Axes.
+  std::vector<std::string> scenes = {"cornell"};
+  std::vector<std::string> structures = {"psppsll"};
+  std::vector<std::string> passes = {"ao"};
+  std::vector<uint32_t> views = {32};
+  std::vector<uint32_t> resolutions = {128};
+  std::vector<float> d_max;  // empty: the scene's own
+  std::vector<Visibility> visibility = {Visibility::Scene};
+  // structure name -> key -> value (--param psppsll:pool=grow)
+  std::map<std::string, std::map<std::string, std::string>> structure_params;
+  // Shared.
+  std::optional<float> normal_offset_pixels;  // empty: the scene's own
+  int width = 256, height = 256;
+  int frames = 5, warmup = 2;
+  bool write_images = true;
+  std::string out_dir;  // empty: results/runs/<timestamp>
+  ContextOptions context;
+  ReferenceSettings reference;
+};
+
+struct Configuration {
+  std::string scene;  // spec as given (name or path)
+  std::string structure;
+  std::string pass;
+  uint32_t views = 0;
+  uint32_t resolution = 0;
+  std::optional<float> d_max;
+  Visibility visibility = Visibility::Scene;
+  std::map<std::string, std::string> params;
+  // A short unique name for file names: cornell-psppsll-ao-n32-r128[-d1.5][-att][-k=v...]
+  std::string id() const;
+};
+
+std::vector<Configuration> expand_configurations(const RunSettings& settings);
+std::string visibility_name(Visibility v);
+
+}  // namespace ldm

@@ -1,0 +1,47 @@
+#pragma once
+// One record per measured configuration: an ordered list of named values, written as a row
+// of a tidy CSV file and as an object of a JSON file. Columns are the union of the records'
+// keys in first-seen order, so sweeps over different structures (with different sub-passes)
+// still share one table.
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <variant>
+#include <vector>
+
+namespace ldm {
+
+using RecordValue = std::variant<std::monostate, bool, int64_t, double, std::string>;
+
+class Record {
+ public:
+  void put(const std::string& key, RecordValue value);  // replaces an existing key in place
+  void set(const std::string& key, bool v) { put(key, v); }
+  void set(const std::string& key, int v) { put(key, int64_t(v)); }
+  void set(const std::string& key, long v) { put(key, int64_t(v)); }
+  void set(const std::string& key, long long v) { put(key, int64_t(v)); }
+  void set(const std::string& key, unsigned v) { put(key, int64_t(v)); }
+  void set(const std::string& key, unsigned long v) { put(key, int64_t(v)); }
+  void set(const std::string& key, unsigned long long v) { put(key, int64_t(v)); }
+  void set(const std::string& key, float v) { put(key, double(v)); }
+  void set(const std::string& key, double v) { put(key, v); }
+  void set(const std::string& key, const std::string& v) { put(key, v); }
+  void set(const std::string& key, const char* v) { put(key, std::string(v)); }
+  const RecordValue* get(const std::string& key) const;
+  const std::vector<std::pair<std::string, RecordValue>>& fields() const { return fields_; }
+
+ private:
+  std::vector<std::pair<std::string, RecordValue>> fields_;
+};
+
+// Formatting shared by the writers: doubles round-trip (%.17g trimmed), NaN and infinities as
+// nan / inf / -inf in CSV and as null in JSON (JSON has no such numbers).
+std::string format_csv_value(const RecordValue& value);
+std::string records_to_csv(const std::vector<Record>& records);
+std::string records_to_json(const std::vector<Record>& records, const Record& run_metadata);
+
+// Both files are replaced atomically: readers never see a half-written table.
+void write_records(const std::string& csv_path, const std::string& json_path,
+                   const std::vector<Record>& records, const Record& run_metadata);
+
+}  // namespace ldm

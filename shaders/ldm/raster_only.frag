@@ -1,0 +1,4 @@
+// The raster-only baseline: the LDM geometry pass with nothing stored.
+#include "ldm/ldm_fragment.glsl"
+
+void main() {}

@@ -1,0 +1,298 @@
+// The AO pass on scenes whose answer is known.
+//
+// Two levels of check:
+//  1. GPU against the LDM estimator evaluated exactly on the CPU: for the same N directions,
+//     AO_N(x) = 2/N sum_i V(d_i) |w_i . n| with d_i the exact distance to the first occluder
+//     along w_i (the LDM direction on the normal's side). The LDM adds only discretisation:
+//     an occluder's depth is read at the LDM pixel centre, up to half a pixel diagonal away
+//     from x, so for a planar occluder with normal m the distance is off by at most
+//     tan(angle(w, m)) * pixel / sqrt(2); near an occluder's edge the ray may hit or miss; when
+//     x's own surface is so oblique that its sample could be taken for the occluder, anything
+//     goes. Each direction therefore gives an interval of possible contributions and the GPU
+//     value must lie in the summed interval (derived per pixel, never tuned).
+//  2. The estimator against closed forms derived in this file, as N grows.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "harness/passes/ao_pass.h"
+#include "harness/passes/gbuffer_pass.h"
+#include "harness/scene/generators.h"
+#include "harness/views/sphere_partition.h"
+#include "support/ldm_fixture.h"
+
+namespace ldm {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// A rectangle o + a u + b v, a, b in [0, 1], as the analytic generators build them.
+struct Rect {
+  glm::dvec3 o, u, v;
+  glm::dvec3 normal() const { return glm::normalize(glm::cross(u, v)); }
+};
+
+std::vector<Rect> analytic_rects(const std::string& scene, double half, double h, double height) {
+  if (scene == "plane") return {{{-half, 0, -half}, {2 * half, 0, 0}, {0, 0, 2 * half}}};
+  if (scene == "parallel-planes")
+    return {{{-half, 0, -half}, {2 * half, 0, 0}, {0, 0, 2 * half}},
+            {{-half, h, -half}, {2 * half, 0, 0}, {0, 0, 2 * half}}};
+  // wall: floor x in [0, half], wall x = 0
+  return {{{0, 0, -half}, {half, 0, 0}, {0, 0, 2 * half}},
+          {{0, 0, -half}, {0, height, 0}, {0, 0, 2 * half}}};
+}
+
+struct Interval {
+  double lo = 0, hi = 0, exact = 0;
+};
+
+double visibility(const AoSettings& ao, double d) {
+  if (!std::isfinite(d)) return 1.0;
+  if (!ao.attenuated) return 0.0;
+  return std::pow(std::min(d / ao.d_max, 1.0), double(ao.falloff_exponent));
+}
+
+// Contribution of one LDM direction at x: exact value and the interval the LDM may produce.
+Interval direction_contribution(const std::vector<Rect>& rects, const AoSettings& ao,
+                                glm::dvec3 x, glm::dvec3 n, glm::dvec3 forward, double pixel) {
+  const double cos_theta = glm::dot(forward, n);
+  const glm::dvec3 w = cos_theta > 0 ? forward : -forward;
+  const double weight = std::abs(cos_theta);
+  const double lateral = pixel / std::sqrt(2.0);  // x to its LDM pixel centre, at most
+  // x's own sample sits off by this much in depth; beyond half the occluder distance the
+  // nearest-sample search may pick the wrong fragment.
+  const double own_error = weight > 0 ? lateral * std::sqrt(1 - weight * weight) / weight : 1e30;
+
+  double nearest = INFINITY, nearest_error = 0;  // the exact first occluder
+  double certain = INFINITY, certain_error = 0;  // the first one not near its edge
+  bool uncertain_hit = false;  // a ray within the margin of some occluder's edge
+  double uncertain_distance = INFINITY;
+  for (const Rect& r : rects) {
+    const glm::dvec3 m = r.normal();
+    const double wm = glm::dot(w, m);
+    if (std::abs(wm) < 1e-12) continue;
+    const double t = glm::dot(r.o - x, m) / wm;
+    if (t <= 1e-4) continue;  // x's own plane (t ~ 0, float noise) or behind
+    const glm::dvec3 p = x + t * w - r.o;
+    const double a = glm::dot(p, r.u) / glm::dot(r.u, r.u);
+    const double b = glm::dot(p, r.v) / glm::dot(r.v, r.v);
+    const double edge = std::min({a * glm::length(r.u), (1 - a) * glm::length(r.u),
+                                  b * glm::length(r.v), (1 - b) * glm::length(r.v)});
+    const double margin = 2 * lateral / std::abs(wm);  // pixel footprint on the occluder
+    const double depth_error = lateral * std::sqrt(1 - wm * wm) / std::abs(wm);
+    if (edge >= 0 && t < nearest) {
+      nearest = t;
+      nearest_error = depth_error;
+    }
+    if (std::abs(edge) <= margin) {
+      uncertain_hit = true;
+      uncertain_distance = std::min(uncertain_distance, t - depth_error);
+    } else if (edge > 0 && t < certain) {
+      certain = t;
+      certain_error = depth_error;
+    }
+  }
+  Interval c;
+  c.exact = visibility(ao, nearest);
+  if (own_error >= 0.5 * (certain - certain_error) ||
+      (uncertain_hit && own_error >= 0.5 * uncertain_distance)) {
+    c.lo = 0;
+    c.hi = 1;
+  } else {
+    c.lo = visibility(ao, std::isfinite(certain) ? std::max(0.0, certain - certain_error) : certain);
+    c.hi = visibility(ao, certain + certain_error);
+    if (uncertain_hit) {
+      c.lo = std::min(c.lo, visibility(ao, std::max(0.0, uncertain_distance)));
+      c.hi = 1.0;
+    }
+  }
+  c.exact *= weight;
+  c.lo *= weight;
+  c.hi *= weight;
+  return c;
+}
+
+Interval ldm_estimator(const std::vector<Rect>& rects, const AoSettings& ao, const ViewSet& views,
+                       glm::dvec3 x, glm::dvec3 n) {
+  Interval sum;
+  for (const auto& v : views.views) {
+    const Interval c = direction_contribution(rects, ao, x, n, glm::dvec3(v.forward), v.pixel_size());
+    sum.lo += c.lo;
+    sum.hi += c.hi;
+    sum.exact += c.exact;
+  }
+  const double scale = 2.0 / double(views.size());
+  return {sum.lo * scale, sum.hi * scale, sum.exact * scale};
+}
+
+struct AnalyticCase {
+  std::string scene;
+  nlohmann::json params;
+  double half = 4, h = 1, height = 4;
+};
+
+void expect_gpu_within_ldm_bounds(const AnalyticCase& ac, uint32_t n, uint32_t r) {
+  const Scene scene = generate_scene(ac.scene, ac.params, "test");
+  const test::LdmFixture f(scene, n, r);
+  auto structure = f.build("psppsll");
+  const int size = 48;
+  GBufferPass gbuffer(size, size);
+  AoPass ao(*structure, *f.inputs, size, size, scene.ao);
+  gbuffer.render(*f.gpu_scene, scene, nullptr);
+  ao.render(gbuffer, nullptr);
+  const Image image = ao.read_image();
+  const Image positions = gbuffer.read_positions();
+  const Image normals = gbuffer.read_normals();
+  const auto rects = analytic_rects(ac.scene, ac.half, ac.h, ac.height);
+
+  int covered = 0, outside = 0;
+  double width_sum = 0, error_sum = 0;
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      if (positions.at(x, y, 3) == 0.0f) continue;
+      ++covered;
+      const glm::dvec3 p(positions.at(x, y, 0), positions.at(x, y, 1), positions.at(x, y, 2));
+      const glm::dvec3 nn(normals.at(x, y, 0), normals.at(x, y, 1), normals.at(x, y, 2));
+      const Interval bound = ldm_estimator(rects, scene.ao, f.views, p, nn);
+      const double gpu = image.at(x, y);
+      const double slack = 1e-5;  // float arithmetic on the GPU
+      if (gpu < bound.lo - slack || gpu > bound.hi + slack) {
+        ++outside;
+        if (outside < 5)
+          ADD_FAILURE() << ac.scene << " pixel (" << x << "," << y << ") at (" << p.x << ","
+                        << p.y << "," << p.z << "): GPU " << gpu << " outside [" << bound.lo
+                        << ", " << bound.hi << "], exact estimator " << bound.exact;
+      }
+      width_sum += bound.hi - bound.lo;
+      error_sum += std::abs(gpu - bound.exact);
+    }
+  ASSERT_GT(covered, size * size / 2);
+  EXPECT_EQ(outside, 0);
+  // The bounds must be tight enough to mean something.
+  EXPECT_LT(width_sum / covered, 0.1) << ac.scene;
+  std::printf("%s N=%u R=%u: mean |GPU - exact estimator| %.2e, mean bound width %.2e\n",
+              ac.scene.c_str(), n, r, error_sum / covered, width_sum / covered);
+}
+
+TEST(AoAnalytic, OpenPlaneGivesTheQuadratureOfOne) {
+  // With no occluder AO_N = 2/N sum |w_i . n|: exactly what the GPU must produce.
+  expect_gpu_within_ldm_bounds({"plane", {{"half_size", 4.0}}}, 32, 64);
+}
+
+TEST(AoAnalytic, PointBetweenParallelPlanesAttenuated) {
+  expect_gpu_within_ldm_bounds({"parallel-planes", {{"h", 1.0}, {"d_max", 2.0}, {"half_size", 4.0}}},
+                               32, 96);
+}
+
+TEST(AoAnalytic, PointBetweenParallelSquaresUnattenuated) {
+  expect_gpu_within_ldm_bounds(
+      {"parallel-planes", {{"h", 1.0}, {"attenuated", false}, {"half_size", 2.0}}, 2.0, 1.0}, 32, 96);
+}
+
+TEST(AoAnalytic, PointNearAWallAttenuated) {
+  // Within about a pixel of the corner the LDM cannot resolve the wall from the floor (the
+  // pixel-centre ray passes under the wall's foot); R = 192 keeps that band narrow.
+  expect_gpu_within_ldm_bounds({"wall", {{"d_max", 1.0}, {"half_size", 4.0}, {"height", 4.0}}},
+                               32, 192);
+}
+
+// --- closed forms -------------------------------------------------------------------------
+
+// Point on a floor under an infinite parallel ceiling at height h, V = min(d/D, 1)^2, h <= D:
+// with u = cos(theta) the ceiling is at d = h/u; AO = int_0^1 2u V du
+//   = int_0^{h/D} 2u du + int_{h/D}^1 2 h^2 / (D^2 u) du = (h/D)^2 (1 + 2 ln(D/h)).
+double parallel_planes_ao(double h, double d_max) {
+  const double k = h / d_max;
+  return k * k * (1 + 2 * std::log(1 / k));
+}
+
+// Point on a floor at distance a from an infinite wall, V = min(d/D, 1)^2, kappa = a/D < 1:
+// with s = sin(theta) the wall at azimuth phi is at d = a / (s cos phi); the inner integral
+// int_0^1 2 V s ds / 2 = g(k) = k^2 (1/2 - ln k) for k = kappa / cos(phi) < 1, else 1/2; the
+// outer one uses int sec^2 = tan and int sec^2 ln cos = tan ln cos + tan - phi, giving
+//   AO = 1/2 + (3 kappa sqrt(1 - kappa^2) - 2 kappa^2 acos(kappa) + pi/2 - acos(kappa)) / pi.
+double wall_ao(double a, double d_max) {
+  const double k = a / d_max;
+  if (k >= 1) return 1.0;
+  const double phi = std::acos(k);
+  return 0.5 + (3 * k * std::sqrt(1 - k * k) - 2 * k * k * phi + kPi / 2 - phi) / kPi;
+}
+
+// Unoccluded fraction under a parallel square of half-size W at height h, centred above the
+// point: 1 - 4 F(W/h, W/h) with the point-to-parallel-rectangle form factor
+// F(A, B) = (1/2pi) [A/sqrt(1+A^2) atan(B/sqrt(1+A^2)) + B/sqrt(1+B^2) atan(A/sqrt(1+B^2))].
+double square_ao(double half, double h) {
+  const double a = half / h;
+  const double f = (a / std::sqrt(1 + a * a) * std::atan(a / std::sqrt(1 + a * a))) / kPi;
+  return 1 - 4 * f;
+}
+
+TEST(AoAnalytic, ClosedFormsAgreeWithTheirDefiningIntegrals) {
+  // Independent numeric integration (midpoint rule in u = cos theta and phi) of the same
+  // integrals, so a slip in the algebra above cannot go unnoticed.
+  const int steps = 2000;
+  auto integrate = [&](auto visible) {
+    double sum = 0;
+    for (int i = 0; i < steps; ++i)
+      for (int j = 0; j < steps; ++j) {
+        const double u = (i + 0.5) / steps, phi = 2 * kPi * (j + 0.5) / steps;
+        sum += visible(u, phi) * 2 * u;  // cosine-weighted: p(u) = 2u on [0,1], phi uniform
+      }
+    return sum / (double(steps) * steps);
+  };
+  const double h = 1.0, d = 2.5, a = 0.3, w = 1.7;
+  EXPECT_NEAR(parallel_planes_ao(h, d),
+              integrate([&](double u, double) { return std::pow(std::min(h / u / d, 1.0), 2); }),
+              1e-4);
+  EXPECT_NEAR(wall_ao(a, d), integrate([&](double u, double phi) {
+                const double s = std::sqrt(1 - u * u) * std::cos(phi);
+                return s <= 0 ? 1.0 : std::pow(std::min(a / s / d, 1.0), 2);
+              }),
+              1e-3);
+  EXPECT_NEAR(square_ao(w, h), integrate([&](double u, double phi) {
+                const double s = std::sqrt(1 - u * u), t = h / u;  // hit at distance t
+                const double px = t * s * std::cos(phi), pz = t * s * std::sin(phi);
+                return (std::abs(px) <= w && std::abs(pz) <= w) ? 0.0 : 1.0;
+              }),
+              2e-3);
+}
+
+TEST(AoAnalytic, LdmEstimatorConvergesToTheClosedForms) {
+  // The exact LDM estimator (no discretisation) over N directions approaches the integral.
+  AoSettings attenuated;
+  attenuated.attenuated = true;
+  attenuated.d_max = 2.0f;
+  AoSettings binary = attenuated;
+  binary.attenuated = false;
+  const BoundingSphere sphere{{0, 0, 0}, 1.0f};
+  const double a = 0.35;
+  struct Check {
+    const char* name;
+    std::vector<Rect> rects;
+    AoSettings ao;
+    glm::dvec3 x;
+    double expected;
+  };
+  const std::vector<Check> checks = {
+      {"plane", analytic_rects("plane", 50, 1, 1), attenuated, {0, 0, 0}, 1.0},
+      {"parallel-planes", analytic_rects("parallel-planes", 50, 1, 1), attenuated, {0, 0, 0},
+       parallel_planes_ao(1.0, 2.0)},
+      {"wall", analytic_rects("wall", 50, 1, 50), attenuated, {a, 0, 0}, wall_ao(a, 2.0)},
+      {"squares", analytic_rects("parallel-planes", 1.5, 1, 1), binary, {0, 0, 0},
+       square_ao(1.5, 1.0)}};
+  for (const auto& c : checks) {
+    double previous_error = INFINITY;
+    for (uint32_t n : {16u, 64u, 256u, 1024u}) {
+      const ViewSet views = make_view_set(sphere, n, 1);
+      const double value = ldm_estimator(c.rects, c.ao, views, c.x, {0, 1, 0}).exact;
+      const double error = std::abs(value - c.expected);
+      std::printf("%s N=%u: estimator %.5f, closed form %.5f\n", c.name, n, value, c.expected);
+      if (n >= 256) EXPECT_LT(error, previous_error + 2e-3) << c.name << " N=" << n;
+      previous_error = std::min(previous_error, error);
+    }
+    EXPECT_LT(previous_error, 0.01) << c.name;
+  }
+}
+
+}  // namespace
+}  // namespace ldm

@@ -1,0 +1,62 @@
+// The headless context: OpenGL 4.5 core, the features ldmbench relies on, working timers.
+#include <gtest/gtest.h>
+
+#include "harness/gl/gl_api.h"
+#include "harness/gl/gl_objects.h"
+#include "harness/measure/gpu_timer.h"
+#include "support/test_support.h"
+
+namespace ldm {
+namespace {
+
+TEST(Context, IsOpenGl45CoreWithDeviceStrings) {
+  const DeviceInfo& d = test::gl_context().device();
+  EXPECT_GE(d.gl_major * 10 + d.gl_minor, 45);
+  EXPECT_FALSE(d.gl_renderer.empty());
+  EXPECT_FALSE(d.gl_version.empty());
+  EXPECT_TRUE(d.egl_platform == "device" || d.egl_platform == "surfaceless") << d.egl_platform;
+  GLint profile = 0;
+  glGetIntegerv(GL_CONTEXT_PROFILE_MASK, &profile);
+  EXPECT_TRUE(profile & GL_CONTEXT_CORE_PROFILE_BIT);
+}
+
+TEST(Context, HasStorageBuffersAtomicsAndComputeLimits) {
+  const DeviceInfo& d = test::gl_context().device();
+  EXPECT_GE(d.max_ssbo_block_bytes, 16 << 20);  // GL 4.5 guarantees 2^24 bytes
+  EXPECT_GE(d.max_ssbo_bindings, 8);
+  GLint counters = 0;
+  glGetIntegerv(GL_MAX_FRAGMENT_ATOMIC_COUNTERS, &counters);
+  EXPECT_GE(counters, 2);
+  GLint groups = 0;
+  glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, 0, &groups);
+  EXPECT_GE(groups, 65535);
+}
+
+TEST(Context, TimerMeasuresElapsedGpuWork) {
+  ASSERT_TRUE(test::gl_context().device().has_timer_queries);
+  GlBuffer buffer("timed", 64u << 20);
+  GpuTimer timer;
+  timer.begin_frame();
+  timer.begin("fill");
+  for (int i = 0; i < 8; ++i) buffer.clear_to_uint(uint32_t(i));
+  timer.end();
+  timer.begin("nothing");
+  timer.end();
+  const FrameTimes times = timer.end_frame();
+  ASSERT_EQ(times.size(), 2u);
+  EXPECT_EQ(times[0].first, "fill");
+  EXPECT_GT(times[0].second, 0.0);  // 512 MiB of clears take measurable time
+  EXPECT_GE(times[1].second, 0.0);
+  EXPECT_GT(times[0].second, times[1].second);
+}
+
+TEST(Context, BufferRoundTrip) {
+  std::vector<uint32_t> data = {1, 2, 3, 0xFFFFFFFFu};
+  GlBuffer buffer("roundtrip", data.size() * 4, data.data());
+  EXPECT_EQ(buffer.download_all<uint32_t>(), data);
+  buffer.clear_to_uint(7);
+  EXPECT_EQ(buffer.download_all<uint32_t>(), std::vector<uint32_t>(4, 7));
+}
+
+}  // namespace
+}  // namespace ldm
