@@ -3,6 +3,11 @@
 
 #include "harness/util/error.h"
 #include "ldm_impls/ldm_structure.h"
+#include "ldm_impls/dfbuffer/dfbuffer.h"
+#include "ldm_impls/fixed_arrays/ppfla.h"
+#include "ldm_impls/fixed_arrays/psppfla.h"
+#include "ldm_impls/habuffer/habuffer.h"
+#include "ldm_impls/ppsll/ppsll.h"
 #include "ldm_impls/psppsll/psppsll.h"
 
 namespace ldm {
@@ -16,6 +21,11 @@ struct Entry {
 const std::vector<Entry>& registry() {
   static const std::vector<Entry> entries = {
       {"psppsll", [](StructureParams& p) { return std::make_unique<Psppsll>(p); }},
+      {"ppsll", [](StructureParams& p) { return std::make_unique<Ppsll>(p); }},
+      {"dfbuffer", [](StructureParams& p) { return std::make_unique<DfBuffer>(p); }},
+      {"habuffer", [](StructureParams& p) { return std::make_unique<HaBuffer>(p); }},
+      {"ppfla", [](StructureParams& p) { return std::make_unique<Ppfla>(p); }},
+      {"psppfla", [](StructureParams& p) { return std::make_unique<Psppfla>(p); }},
   };
   return entries;
 }

@@ -1,0 +1,158 @@
+#include "ldm_impls/dfbuffer/dfbuffer.h"
+
+#include <algorithm>
+
+#include "harness/gl/bindings.h"
+#include "ldm_impls/ppsll/compute_grid.h"
+#include "ldm_impls/ppsll/post_sort.h"
+
+namespace ldm {
+
+namespace {
+constexpr uint64_t kPixelGroupSize = 64;  // local_size_x of sort.comp and unfilled.comp
+constexpr uint32_t kBindingCounts = kStructureBinding0;  // shaders/ldm/dfbuffer/layout.glsl
+constexpr uint32_t kBindingOffsets = kStructureBinding0 + 1;
+constexpr uint32_t kBindingDepths = kStructureBinding0 + 2;
+constexpr uint32_t kBindingCheck = kStructureBinding0 + 3;  // unfilled.comp
+constexpr uint64_t kCounterWords = 4;
+constexpr uint64_t kUnfilledWord = 3;
+}  // namespace
+
+DfBuffer::DfBuffer(StructureParams& params) { requested_local_ = read_sort_local_param(params); }
+
+void DfBuffer::prepare(const BuildInputs& in) {
+  pixels_ = in.views.views().total_pixels();
+  capacity_ = in.census.total_fragments;
+  local_ = sort_local_size(requested_local_, in.census);
+  const auto words = [](uint64_t n) { return n * sizeof(uint32_t); };
+  counts_ = GlBuffer("counts", checked_storage_block("dfbuffer", "counts", words(pixels_)));
+  offsets_ = GlBuffer("offsets", checked_storage_block("dfbuffer", "offsets", words(pixels_ + 1)));
+  // A zero-sized buffer cannot be created; an empty scene still gets one (unused) slot.
+  const uint64_t depth_words = std::max<uint64_t>(1, capacity_);
+  depths_ = GlBuffer("depths", checked_storage_block("dfbuffer", "depths", words(depth_words)));
+  counters_ = GlBuffer("counters", words(kCounterWords));
+  scan_ = std::make_unique<PrefixSum>(pixels_);
+  rasterizer_ = std::make_unique<LdmRasterizer>(in.views.views().resolution);
+
+  ShaderDefines defines = common_structure_defines(in);
+  defines.set("LDM_DF_CAPACITY", std::to_string(capacity_) + "u");
+  query_defines_ = defines;
+  count_program_ = build_ldm_raster_program("ldm/dfbuffer/count.frag", defines);
+  build_program_ = build_ldm_raster_program("ldm/dfbuffer/build.frag", defines);
+  unfilled_program_ = build_compute_program("ldm/dfbuffer/unfilled.comp", defines);
+  defines.set("LDM_SORT_LOCAL", std::to_string(local_) + "u");
+  sort_program_ = build_compute_program("ldm/dfbuffer/sort.comp", defines);
+}
+
+void DfBuffer::clear(GpuTimer* timer) {
+  // The storing pass leaves every count at 0 (§3.2.10), but a build that went wrong does
+  // not, so the counts are cleared anyway. The depths are not: the storing pass writes every
+  // slot, and stats() counts any slot that it did not ("unfilled_slots").
+  ScopedSubpass timed(timer, "clear");
+  counts_.clear_to_zero();
+  counters_.clear_to_zero();
+}
+
+void DfBuffer::count(const BuildInputs& in, GpuTimer* timer) {
+  ScopedSubpass timed(timer, "count");
+  counts_.bind_storage(kBindingCounts);
+  rasterizer_->rasterize(in.scene, in.views, count_program_);
+}
+
+void DfBuffer::prefix_sum(GpuTimer* timer) {
+  ScopedSubpass timed(timer, "prefix_sum");
+  scan_->run(counts_, offsets_);
+}
+
+void DfBuffer::construct(const BuildInputs& in, GpuTimer* timer) {
+  ScopedSubpass timed(timer, "construct");
+  counts_.bind_storage(kBindingCounts);
+  offsets_.bind_storage(kBindingOffsets);
+  depths_.bind_storage(kBindingDepths);
+  counters_.bind_atomic_counter(kStructureCounterBinding);
+  rasterizer_->rasterize(in.scene, in.views, build_program_);
+}
+
+void DfBuffer::sort(GpuTimer* timer) {
+  ScopedSubpass timed(timer, "sort");
+  offsets_.bind_storage(kBindingOffsets);
+  depths_.bind_storage(kBindingDepths);
+  counters_.bind_atomic_counter(kStructureCounterBinding);
+  sort_program_.use();
+  dispatch_linear_groups(groups_for(pixels_, kPixelGroupSize));
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_ATOMIC_COUNTER_BARRIER_BIT |
+                  GL_BUFFER_UPDATE_BARRIER_BIT);
+}
+
+void DfBuffer::build(const BuildInputs& in, GpuTimer* timer) {
+  clear(timer);
+  count(in, timer);
+  prefix_sum(timer);
+  construct(in, timer);
+  sort(timer);
+}
+
+uint64_t DfBuffer::count_unfilled_slots() const {
+  const uint32_t zero = 0;
+  glClearNamedBufferSubData(counters_.id(), GL_R32UI, GLintptr(kUnfilledWord * sizeof(uint32_t)),
+                            sizeof(uint32_t), GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
+  counts_.bind_storage(kBindingCounts);
+  counters_.bind_storage(kBindingCheck);
+  unfilled_program_.use();
+  dispatch_linear_groups(groups_for(pixels_, kPixelGroupSize));
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  uint32_t unfilled = 0;
+  counters_.download(&unfilled, sizeof unfilled, kUnfilledWord * sizeof(uint32_t));
+  return unfilled;
+}
+
+BuildStats DfBuffer::stats() {
+  uint32_t scan_total = 0;
+  offsets_.download(&scan_total, sizeof scan_total, pixels_ * sizeof(uint32_t));
+  uint32_t c[kCounterWords] = {};
+  counters_.download(c, sizeof c);
+  const uint64_t lost_beyond_count = c[0], lost_beyond_capacity = c[1];
+  const uint64_t unfilled = count_unfilled_slots();
+  // The count pass saw scan_total fragments; of their slots, `unfilled` found no fragment in
+  // the storing pass and lost_beyond_capacity lay past the array. The storing pass saw the
+  // rest plus the fragments that found their pixel's range already used up.
+  BuildStats s;
+  s.fragments_rasterized = scan_total - unfilled + lost_beyond_count;
+  s.fragments_stored = scan_total - unfilled - lost_beyond_capacity;
+  s.fragments_lost = lost_beyond_count + lost_beyond_capacity;
+  s.overflow = scan_total > capacity_;
+  s.counters = {{"lists_sorted_in_place", double(c[2])},
+                {"scan_total", double(scan_total)},
+                {"storage_mismatch", scan_total != capacity_ ? 1.0 : 0.0},
+                {"unfilled_slots", double(unfilled)},
+                {"lost_beyond_count", double(lost_beyond_count)},
+                {"lost_beyond_capacity", double(lost_beyond_capacity)}};
+  stored_ = s.fragments_stored;
+  return s;
+}
+
+std::vector<std::string> DfBuffer::query_sources() const { return {"ldm/dfbuffer/query.glsl"}; }
+ShaderDefines DfBuffer::query_defines() const { return query_defines_; }
+void DfBuffer::bind_for_query() const {
+  offsets_.bind_storage(kBindingOffsets);
+  depths_.bind_storage(kBindingDepths);
+}
+
+std::vector<BufferMemory> DfBuffer::memory() const {
+  const uint64_t scratch = scan_ ? scan_->scratch_bytes() : 0;
+  return {{"counts", counts_.bytes(), counts_.bytes()},
+          {"offsets", offsets_.bytes(), offsets_.bytes()},
+          {"depths", depths_.bytes(), stored_ * sizeof(float)},
+          {"scan_block_sums", scratch, scratch},
+          {"counters", counters_.bytes(), counters_.bytes()}};
+}
+
+std::vector<std::pair<std::string, std::string>> DfBuffer::sizing() const {
+  return {{"storage_policy", "exact"},
+          {"depth_capacity", std::to_string(capacity_)},
+          {"scan_levels", std::to_string(scan_ ? scan_->levels() : 0)},
+          {"sort_local", std::to_string(local_)},
+          {"sort_local_policy", sort_local_policy(requested_local_)}};
+}
+
+}  // namespace ldm

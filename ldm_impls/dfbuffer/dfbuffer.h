@@ -1,0 +1,62 @@
+#pragma once
+// The dynamic fragment buffer (thesis §3.2.10, [Comba et al. 2012]): per-pixel variable-
+// length arrays stored back to back, exactly sized. Two geometry passes: one counts the
+// fragments of every pixel, a parallel prefix sum turns the counts into offsets, the second
+// stores every fragment at offset + (--count), and a compute pass sorts every pixel's range.
+// All views share one set of buffers (layout: shaders/ldm/dfbuffer/layout.glsl).
+//
+// Sub-passes: clear, count, prefix_sum, construct, sort.
+// Sizing: the depth array holds exactly the census's fragment total. stats() reads back the
+// scan's total and flags a build whose total differs ("storage_mismatch"); fragments that
+// find no slot are counted as lost.
+// Parameters:
+//   local=K   size of the sort's local array, 1..128 (default: the census's maximum depth
+//             complexity, capped at 128); longer ranges are sorted in place in the depth
+//             array and counted as "lists_sorted_in_place".
+#include <memory>
+
+#include "harness/gl/gl_objects.h"
+#include "ldm_impls/common/ldm_rasterizer.h"
+#include "ldm_impls/dfbuffer/prefix_sum.h"
+#include "ldm_impls/ldm_structure.h"
+
+namespace ldm {
+
+class DfBuffer final : public LdmStructure {
+ public:
+  explicit DfBuffer(StructureParams& params);
+
+  std::string name() const override { return "dfbuffer"; }
+  void prepare(const BuildInputs& in) override;
+  void build(const BuildInputs& in, GpuTimer* timer) override;
+  BuildStats stats() override;
+  std::vector<std::string> query_sources() const override;
+  ShaderDefines query_defines() const override;
+  void bind_for_query() const override;
+  std::vector<BufferMemory> memory() const override;
+  std::vector<std::pair<std::string, std::string>> sizing() const override;
+
+ private:
+  void clear(GpuTimer* timer);
+  void count(const BuildInputs& in, GpuTimer* timer);
+  void prefix_sum(GpuTimer* timer);
+  void construct(const BuildInputs& in, GpuTimer* timer);
+  void sort(GpuTimer* timer);
+  uint64_t count_unfilled_slots() const;
+
+  uint32_t requested_local_ = 0;  // 0: from the census
+  uint32_t local_ = 0;            // K of the sort pass
+  uint64_t pixels_ = 0;           // N * R_LDM^2
+  uint64_t capacity_ = 0;         // depths: the census's fragment total
+  uint64_t stored_ = 0;           // depths held after the last build (from stats())
+  ShaderDefines query_defines_;
+  GlBuffer counts_, offsets_, depths_;
+  // [0] lost: no slot left in the pixel's range, [1] lost: slot past the depth array,
+  // [2] lists sorted in place, [3] unfilled slots (written by stats()).
+  GlBuffer counters_;
+  std::unique_ptr<PrefixSum> scan_;
+  GlProgram count_program_, build_program_, sort_program_, unfilled_program_;
+  std::unique_ptr<LdmRasterizer> rasterizer_;
+};
+
+}  // namespace ldm

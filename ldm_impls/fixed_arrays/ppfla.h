@@ -1,0 +1,47 @@
+#pragma once
+// Per-pixel fixed-length arrays (thesis §3.2.6, "Z^3 revisited"): a per-pixel atomic count
+// hands each fragment the next of its pixel's k entries; a compute pass then sorts every
+// pixel's entries. Layout and k policy: fixed_array_layout.h. Shaders: shaders/ldm/fixed_arrays/.
+//
+// Parameters:
+//   k=0|n   entries per pixel; 0 (default): the census's maximum depth complexity (lossless).
+//           Fragments past k are dropped (whichever arrive last) and counted exactly.
+// Sub-passes: clear (counts to 0), construct (geometry pass), sort (insertion sort per pixel).
+#include <memory>
+
+#include "harness/gl/gl_objects.h"
+#include "ldm_impls/common/ldm_rasterizer.h"
+#include "ldm_impls/fixed_arrays/fixed_array_layout.h"
+#include "ldm_impls/ldm_structure.h"
+
+namespace ldm {
+
+class Ppfla final : public LdmStructure {
+ public:
+  explicit Ppfla(StructureParams& params);
+
+  std::string name() const override { return "ppfla"; }
+  void prepare(const BuildInputs& in) override;
+  void build(const BuildInputs& in, GpuTimer* timer) override;
+  BuildStats stats() override;
+  std::vector<std::string> query_sources() const override;
+  ShaderDefines query_defines() const override;
+  void bind_for_query() const override;
+  std::vector<BufferMemory> memory() const override;
+  std::vector<std::pair<std::string, std::string>> sizing() const override;
+
+ private:
+  void bind_storage() const;
+  void sort_every_pixel() const;
+
+  uint32_t requested_k_ = 0;
+  FixedArrayLayout layout_;
+  uint64_t census_fragments_ = 0;
+  uint64_t stored_ = 0;  // from the last stats()
+  ShaderDefines defines_;
+  GlBuffer entries_, counts_, dropped_;
+  GlProgram build_program_, sort_program_;
+  std::unique_ptr<LdmRasterizer> rasterizer_;
+};
+
+}  // namespace ldm

@@ -1,0 +1,46 @@
+#pragma once
+// Pre-sorted per-pixel fixed-length arrays (thesis §3.2.7): every entry starts at the largest
+// value; each fragment runs an insertion sort along its pixel's k entries with atomicMin,
+// carrying the displaced (larger) value on, so the arrays are sorted when the geometry pass
+// ends and no sort pass is needed. Layout and k policy: fixed_array_layout.h.
+//
+// Parameters:
+//   k=0|n   entries per pixel; 0 (default): the census's maximum depth complexity (lossless).
+//           With a smaller k each pixel keeps its k nearest fragments; the values carried past
+//           the k-th entry are dropped and counted exactly.
+// Sub-passes: clear (entries to the empty value), construct (geometry pass).
+#include <memory>
+
+#include "harness/gl/gl_objects.h"
+#include "ldm_impls/common/ldm_rasterizer.h"
+#include "ldm_impls/fixed_arrays/fixed_array_layout.h"
+#include "ldm_impls/ldm_structure.h"
+
+namespace ldm {
+
+class Psppfla final : public LdmStructure {
+ public:
+  explicit Psppfla(StructureParams& params);
+
+  std::string name() const override { return "psppfla"; }
+  void prepare(const BuildInputs& in) override;
+  void build(const BuildInputs& in, GpuTimer* timer) override;
+  BuildStats stats() override;
+  std::vector<std::string> query_sources() const override;
+  ShaderDefines query_defines() const override;
+  void bind_for_query() const override;
+  std::vector<BufferMemory> memory() const override;
+  std::vector<std::pair<std::string, std::string>> sizing() const override;
+
+ private:
+  uint32_t requested_k_ = 0;
+  FixedArrayLayout layout_;
+  uint64_t census_fragments_ = 0;
+  uint64_t stored_ = 0;  // from the last stats()
+  ShaderDefines defines_;
+  GlBuffer entries_, dropped_;
+  GlProgram build_program_;
+  std::unique_ptr<LdmRasterizer> rasterizer_;
+};
+
+}  // namespace ldm

@@ -1,0 +1,227 @@
+#include "ldm_impls/habuffer/habuffer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "harness/gl/bindings.h"
+#include "harness/util/error.h"
+
+namespace ldm {
+
+namespace {
+
+// 2^24 - 1: the largest value of the 24-bit depth field of 32-bit keys.
+constexpr double kQuantisedDepthMax = 16777215.0;
+// The offsets o_a are fixed for reproducible builds (the same |H| gives the same table).
+constexpr uint64_t kOffsetSeed = 0x4861427566666572ull;  // "HaBuffer"
+constexpr uint32_t kCounterWords = 2;                    // dropped at max age, aborted insertions
+
+bool gl_extension_present(const char* name) {
+  GLint count = 0;
+  glGetIntegerv(GL_NUM_EXTENSIONS, &count);
+  for (GLint i = 0; i < count; ++i) {
+    const char* ext = reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, GLuint(i)));
+    if (ext && std::string(ext) == name) return true;
+  }
+  return false;
+}
+
+// 64-bit atomicMax on buffer variables, and the 64-bit integer type it works on.
+bool device_has_int64_atomics() {
+  return gl_extension_present("GL_NV_shader_atomic_int64") &&
+         gl_extension_present("GL_ARB_gpu_shader_int64");
+}
+
+std::string gl_renderer() {
+  const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  return renderer ? renderer : "unknown renderer";
+}
+
+// The smallest e with 2^e * (2^24 - 1) >= every view's depth range: 32-bit keys quantise on
+// the step 2^e so that every depth in [0, depth_range] fits 24 bits and both quantising and
+// decoding are exact float operations (ha_keys.glsl).
+int quantisation_step_log2(const ViewSet& views) {
+  double range = 1e-30;
+  for (const LdmView& v : views.views) range = std::max(range, double(v.depth_range));
+  int e = int(std::ceil(std::log2(range / kQuantisedDepthMax)));
+  while (std::ldexp(kQuantisedDepthMax, e) < range) ++e;
+  while (std::ldexp(kQuantisedDepthMax, e - 1) >= range) --e;
+  return e;
+}
+
+uint64_t splitmix64(uint64_t& state) {
+  uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
+}
+
+// o_0 .. o_{count-1}, pseudo-random in [0, table_size), distinct when the table allows it (two
+// equal offsets would make two ages of one pixel share a slot).
+std::vector<uint32_t> make_offsets(uint64_t table_size, uint32_t count) {
+  uint64_t state = kOffsetSeed;
+  std::vector<uint32_t> offsets;
+  while (offsets.size() < count) {
+    const uint32_t offset = uint32_t(splitmix64(state) % table_size);
+    if (table_size < count || std::find(offsets.begin(), offsets.end(), offset) == offsets.end())
+      offsets.push_back(offset);
+  }
+  return offsets;
+}
+
+std::string format_double(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.4g", value);
+  return buffer;
+}
+
+}  // namespace
+
+HaBuffer::HaBuffer(StructureParams& params) {
+  load_factor_ = params.get_double("load_factor", 0.75, 0.01, 64.0);
+  max_age_ = uint32_t(params.get_uint("max_age", 254, 0, 254));
+  key_bits_request_ = params.get_choice("key_bits", "auto", {"auto", "32", "64"});
+}
+
+uint32_t HaBuffer::choose_key_bits() const {
+  const bool has_int64_atomics = device_has_int64_atomics();
+  if (key_bits_request_ == "64" && !has_int64_atomics)
+    throw UserError(
+        "habuffer parameter key_bits=64 needs 64-bit atomics "
+        "(GL_NV_shader_atomic_int64 and GL_ARB_gpu_shader_int64), which " +
+        gl_renderer() + " lacks; use key_bits=32 or key_bits=auto");
+  if (key_bits_request_ == "32") return 32;
+  return has_int64_atomics ? 64 : 32;
+}
+
+void HaBuffer::size_table(const BuildInputs& in) {
+  pixels_ = in.views.views().total_pixels();
+  census_fragments_ = in.census.total_fragments;
+  const double wanted = std::ceil(double(census_fragments_) / load_factor_);
+  // |H| >= N * R_LDM^2 keeps p = (h - o_a) mod |H| unique: the age equivalence property.
+  table_size_ = std::max<uint64_t>({pixels_, uint64_t(wanted), 1});
+  // h = p + o_a with p, o_a < |H| must not wrap 32 bits.
+  if (table_size_ >= (uint64_t(1) << 31))
+    throw UserError("habuffer: a table of " + std::to_string(table_size_) +
+                    " entries is beyond 32-bit hashing; raise load_factor or lower N or R_LDM");
+}
+
+void HaBuffer::upload_offsets() {
+  const std::vector<uint32_t> offsets = make_offsets(table_size_, max_age_ + 1);
+  offsets_ = GlBuffer("offsets", offsets.size() * sizeof(uint32_t), offsets.data());
+}
+
+void HaBuffer::prepare(const BuildInputs& in) {
+  key_bits_ = choose_key_bits();
+  size_table(in);
+  depth_step_log2_ = quantisation_step_log2(in.views.views());
+  const uint64_t key_bytes = key_bits_ / 8;
+  table_ = GlBuffer("table", checked_storage_block("habuffer", "table", table_size_ * key_bytes));
+  age_counts_ = GlBuffer("age_table", pixels_ * sizeof(uint32_t));
+  counters_ = GlBuffer("counters", kCounterWords * sizeof(uint32_t));
+  age_summary_ = GlBuffer("age_summary", sizeof(uint32_t));
+  upload_offsets();
+
+  defines_ = common_structure_defines(in);
+  defines_.set("HA_KEY_BITS", key_bits_);
+  defines_.set("HA_TABLE_SIZE", std::to_string(table_size_) + "u");
+  defines_.set("HA_MAX_AGE", std::to_string(max_age_) + "u");
+  defines_.set("HA_DEPTH_STEP_LOG2", depth_step_log2_);
+  // Each step ages the carried entry by one; a chain longer than 64 full age ranges would
+  // mean a faulty device (see ha_build.frag).
+  defines_.set("HA_MAX_INSERT_STEPS", std::to_string(64ull * (max_age_ + 1)) + "u");
+
+  rasterizer_ = std::make_unique<LdmRasterizer>(in.views.views().resolution);
+  build_program_ = build_ldm_raster_program("ldm/habuffer/ha_build.frag", defines_);
+  ShaderDefines reduce_defines = binding_defines();
+  reduce_defines.values.insert(reduce_defines.values.end(), defines_.values.begin(),
+                               defines_.values.end());
+  highest_age_program_ =
+      build_program({{GL_COMPUTE_SHADER, "ldm/habuffer/ha_highest_age.comp", {}}}, reduce_defines);
+}
+
+void HaBuffer::build(const BuildInputs& in, GpuTimer* timer) {
+  {
+    ScopedSubpass timed(timer, "clear");
+    table_.clear_to_zero();  // key 0: empty, below every key with an age
+    age_counts_.clear_to_zero();
+    counters_.clear_to_zero();
+  }
+  {
+    ScopedSubpass timed(timer, "construct");
+    bind_for_query();
+    age_counts_.bind_storage(kStructureBinding0 + 2);
+    counters_.bind_atomic_counter(kStructureCounterBinding);
+    rasterizer_->rasterize(in.scene, in.views, build_program_);
+  }
+}
+
+uint32_t HaBuffer::read_highest_age_count() {
+  age_summary_.clear_to_zero();
+  highest_age_program_.use();
+  age_counts_.bind_storage(kStructureBinding0 + 2);
+  age_summary_.bind_storage(kStructureBinding0 + 3);
+  const uint64_t groups = (pixels_ + 255) / 256;
+  const uint64_t gx = std::min<uint64_t>(groups, 32768), gy = (groups + gx - 1) / gx;
+  glDispatchCompute(GLuint(gx), GLuint(gy), 1);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  uint32_t highest = 0;
+  age_summary_.download(&highest, sizeof highest);
+  return highest;
+}
+
+BuildStats HaBuffer::stats() {
+  uint32_t counters[kCounterWords] = {0, 0};
+  counters_.download(counters, sizeof counters);
+  const uint64_t dropped = counters[0], aborted = counters[1];
+  const uint32_t highest_age_count = read_highest_age_count();
+  BuildStats s;
+  s.fragments_rasterized = census_fragments_;  // the census's geometry pass, same fragments
+  s.fragments_lost = std::min(census_fragments_, dropped + aborted);
+  s.fragments_stored = census_fragments_ - s.fragments_lost;
+  s.overflow = s.fragments_lost > 0;
+  s.counters = {{"max_age_used", highest_age_count ? double(highest_age_count - 1) : 0.0},
+                {"dropped_max_age", double(dropped)},
+                {"aborted_insertions", double(aborted)}};
+  stored_ = s.fragments_stored;
+  return s;
+}
+
+std::vector<std::string> HaBuffer::query_sources() const { return {"ldm/habuffer/ha_query.glsl"}; }
+ShaderDefines HaBuffer::query_defines() const { return defines_; }
+
+void HaBuffer::bind_for_query() const {
+  table_.bind_storage(kStructureBinding0);
+  offsets_.bind_storage(kStructureBinding0 + 1);
+  age_counts_.bind_storage(kStructureBinding0 + 2);
+}
+
+std::vector<BufferMemory> HaBuffer::memory() const {
+  const uint64_t key_bytes = key_bits_ / 8;
+  return {{"table", table_.bytes(), stored_ * key_bytes},
+          {"age_table", age_counts_.bytes(), age_counts_.bytes()},
+          {"offsets", offsets_.bytes(), offsets_.bytes()},
+          {"counters", counters_.bytes(), counters_.bytes()}};
+}
+
+std::vector<std::pair<std::string, std::string>> HaBuffer::sizing() const {
+  std::vector<std::pair<std::string, std::string>> s = {
+      {"table_entries", std::to_string(table_size_)},
+      {"table_policy", "max(N*R_LDM^2, ceil(census_fragments / load_factor))"},
+      {"load_factor", format_double(load_factor_)},
+      {"load_factor_actual", format_double(double(census_fragments_) / double(table_size_))},
+      {"max_age", std::to_string(max_age_)},
+      {"key_bits", std::to_string(key_bits_)},
+      {"key_bits_policy", key_bits_request_ == "auto" ? "auto" : "parameter"}};
+  if (key_bits_ == 32)
+    s.emplace_back("depth_step", format_double(std::ldexp(1.0, depth_step_log2_)));
+  return s;
+}
+
+double HaBuffer::depth_quantum(const LdmView& view) const {
+  (void)view;  // one step for all views: the largest depth range fixes it
+  return key_bits_ == 64 ? 0.0 : 0.5 * std::ldexp(1.0, depth_step_log2_);
+}
+
+}  // namespace ldm

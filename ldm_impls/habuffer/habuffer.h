@@ -1,0 +1,71 @@
+#pragma once
+// The hashed A-buffer (thesis §3.2.13; Lefebvre, Hornus and Lasram 2013): one coherent hash
+// table H for all views, keyed by the all-view pixel index p, with h(p, a) = (p + o_a) mod |H|
+// and Robin Hood collision resolution by atomicMax on age-and-depth keys, which also sorts
+// each pixel's entries by depth during construction. Shaders: shaders/ldm/habuffer/.
+//
+// Parameters:
+//   load_factor=0.75  |H| = max(N * R_LDM^2, ceil(census fragments / load_factor)). The
+//                     lower bound is the age equivalence property (§3.2.13); above it, the
+//                     table is sized from what the scene needs. Lefebvre et al. size tables
+//                     somewhat above the fragment count: Robin Hood keeps probe sequences
+//                     short up to high loads, and 0.75 (a third more slots than fragments)
+//                     trades memory for collisions the usual way. Values > 1 under-size the
+//                     table on purpose (it then drops fragments, counted).
+//   max_age=254       oldest age an entry may reach (ages 0..max_age; at most 254 since age+1
+//                     is stored in 8 bits). A pixel with c fragments needs at least ages
+//                     0..c-1, so a smaller cap drops fragments of deep pixels; queries stop at
+//                     each pixel's own highest age (the per-pixel age table), so a high cap
+//                     costs nothing. Default: the largest the key holds.
+//   key_bits=auto|32|64  auto: 64-bit keys (the exact float depth) where the device has
+//                     64-bit atomics (GL_NV_shader_atomic_int64 + GL_ARB_gpu_shader_int64),
+//                     else 32-bit keys with 24-bit quantised depth (see depth_quantum()).
+// Sub-passes: clear (table, age table, counters), construct (geometry pass).
+#include <memory>
+
+#include "harness/gl/gl_objects.h"
+#include "ldm_impls/common/ldm_rasterizer.h"
+#include "ldm_impls/ldm_structure.h"
+
+namespace ldm {
+
+class HaBuffer final : public LdmStructure {
+ public:
+  explicit HaBuffer(StructureParams& params);
+
+  std::string name() const override { return "habuffer"; }
+  void prepare(const BuildInputs& in) override;
+  void build(const BuildInputs& in, GpuTimer* timer) override;
+  BuildStats stats() override;
+  std::vector<std::string> query_sources() const override;
+  ShaderDefines query_defines() const override;
+  void bind_for_query() const override;
+  std::vector<BufferMemory> memory() const override;
+  std::vector<std::pair<std::string, std::string>> sizing() const override;
+  // 32-bit keys: half the quantisation step (the decoded depth is exact otherwise);
+  // 64-bit keys: 0 (the float itself is stored).
+  double depth_quantum(const LdmView& view) const override;
+
+ private:
+  uint32_t choose_key_bits() const;
+  void size_table(const BuildInputs& in);
+  void upload_offsets();
+  uint32_t read_highest_age_count();
+
+  double load_factor_ = 0.75;
+  uint32_t max_age_ = 254;
+  std::string key_bits_request_ = "auto";
+
+  uint32_t key_bits_ = 32;
+  uint64_t pixels_ = 0;      // N * R_LDM^2
+  uint64_t table_size_ = 0;  // |H|, entries
+  int depth_step_log2_ = 0;  // 32-bit keys: the quantisation step is 2^depth_step_log2_
+  uint64_t census_fragments_ = 0;
+  uint64_t stored_ = 0;  // from the last stats()
+  ShaderDefines defines_;
+  GlBuffer table_, offsets_, age_counts_, counters_, age_summary_;
+  GlProgram build_program_, highest_age_program_;
+  std::unique_ptr<LdmRasterizer> rasterizer_;
+};
+
+}  // namespace ldm

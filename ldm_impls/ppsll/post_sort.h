@@ -1,0 +1,29 @@
+#pragma once
+// Post-sorting, shared by PPSLL and the DF-buffer (thesis §3.2.8 "Sorting", §3.3.3): a pass
+// over every pixel copies its fragments into a shader-local array of fixed size K, sorts it
+// with insertion sort and writes the depths back in order. A pixel with more than K
+// fragments is sorted in place in storage memory instead, which §3.3.3 calls detrimental to
+// performance; the sort passes count those pixels ("lists_sorted_in_place").
+// GLSL side: shaders/ldm/ppsll/post_sort.glsl.
+#include <cstdint>
+#include <string>
+
+#include "ldm_impls/ldm_structure.h"
+
+namespace ldm {
+
+// Upper bound on K: every invocation holds K floats, so a larger K costs registers (or
+// spills) in every pixel, long or short. Longer lists take the in-place path.
+constexpr uint32_t kMaxSortLocal = 128;
+
+// The `local` parameter: K, in [1, kMaxSortLocal]; 0 when the user left it unset.
+uint32_t read_sort_local_param(StructureParams& params);
+
+// K for this scene: the requested size, or else the census's maximum depth complexity
+// (model only what the scene requires) capped at kMaxSortLocal; at least 1.
+uint32_t sort_local_size(uint32_t requested, const FragmentCensus& census);
+
+// For sizing(): "census" or "user".
+std::string sort_local_policy(uint32_t requested);
+
+}  // namespace ldm

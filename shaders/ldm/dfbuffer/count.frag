@@ -1,0 +1,7 @@
+// DF-buffer step 1, fragment counting (thesis §3.2.10): per-pixel atomic counts.
+#include "ldm/ldm_fragment.glsl"
+#include "ldm/dfbuffer/layout.glsl"
+
+layout(std430, binding = DF_COUNTS_BINDING) restrict buffer DfCounts { uint df_counts[]; };
+
+void main() { atomicAdd(df_counts[ldm_fragment_pixel()], 1u); }

@@ -1,0 +1,46 @@
+// DF-buffer step 4, sorting (thesis §3.2.10, §3.3.3): one invocation per LDM pixel of all
+// views sorts the pixel's contiguous range: through the local array when it fits, else by
+// insertion sort in place in the depth array (counted).
+layout(local_size_x = 64) in;
+
+#include "ldm/ppsll/compute_grid.glsl"
+#include "ldm/ppsll/post_sort.glsl"
+#include "ldm/dfbuffer/layout.glsl"
+
+layout(std430, binding = DF_OFFSETS_BINDING) readonly restrict buffer DfOffsets {
+  uint df_offsets[];
+};
+layout(std430, binding = DF_DEPTHS_BINDING) restrict buffer DfDepths {
+  uint df_depths[];  // float bits
+};
+layout(binding = LDM_COUNTER_BINDING, offset = 8) uniform atomic_uint lists_sorted_in_place;
+
+// Insertion sort of df_depths[first .. end) in storage memory: the slow path. Depths move
+// as bits (see post_sort.glsl).
+void sort_range_in_place(uint first, uint end) {
+  for (uint i = first + 1u; i < end; ++i) {
+    const uint bits = df_depths[i];
+    const float depth = uintBitsToFloat(bits);
+    uint j = i;
+    for (; j > first && uintBitsToFloat(df_depths[j - 1u]) > depth; --j)
+      df_depths[j] = df_depths[j - 1u];
+    df_depths[j] = bits;
+  }
+}
+
+void main() {
+  const uint pixel = linear_invocation_index();
+  if (pixel >= LDM_HEADS_TOTAL) return;
+  const uint first = df_offsets[pixel];
+  const uint end = min(df_offsets[pixel + 1u], LDM_DF_CAPACITY);
+  if (end <= first + 1u) return;  // empty or one fragment: sorted already
+  const uint count = end - first;
+  if (count > LDM_SORT_LOCAL) {
+    sort_range_in_place(first, end);
+    atomicCounterIncrement(lists_sorted_in_place);
+    return;
+  }
+  for (uint i = 0u; i < count; ++i) sort_local[i] = df_depths[first + i];
+  insertion_sort_local(count);
+  for (uint i = 0u; i < count; ++i) df_depths[first + i] = sort_local[i];
+}

@@ -1,0 +1,27 @@
+// PSPPFLA query API (see common/ldm_query_api.glsl): the pixel's entries up to the first
+// empty one (or k); sorted during construction.
+#include "common/ldm_query_api.glsl"
+#include "ldm/fixed_arrays/fixed_array.glsl"
+#include "ldm/fixed_arrays/ordered_depth.glsl"
+
+layout(std430, binding = LDM_STRUCTURE_BINDING0) readonly restrict buffer PsppflaEntries {
+  uint psppfla_entries[];
+};
+
+struct LdmCursor {
+  uint entry;    // index into psppfla_entries
+  uint end;      // one past the pixel's last entry
+  uint ordered;  // the entry's value; 0xFFFFFFFF once past the last stored depth
+};
+
+LdmCursor psppfla_cursor(uint entry, uint end) {
+  return LdmCursor(entry, end, entry < end ? psppfla_entries[entry] : 0xFFFFFFFFu);
+}
+
+LdmCursor ldm_begin(uint pixel) {
+  const uint base = fa_entry(pixel, 0u);
+  return psppfla_cursor(base, base + FA_K);
+}
+bool ldm_valid(LdmCursor c) { return c.ordered != 0xFFFFFFFFu; }
+float ldm_depth(LdmCursor c) { return depth_from_ordered_bits(c.ordered); }
+LdmCursor ldm_next(LdmCursor c) { return psppfla_cursor(c.entry + 1u, c.end); }

@@ -1,0 +1,52 @@
+// HA-buffer construction (thesis §3.2.13): one geometry pass inserting every fragment into
+// the hash table H with Robin Hood collision resolution by atomicMax on age-and-depth keys
+// (ha_keys.glsl). The carried entry starts as the fragment at age 0 and tries its slot
+// h(p, a):
+//   - atomicMax leaves the larger key there. If that is the carried one and the slot was
+//     empty, the insertion is done; if it evicted an entry, that entry (younger, or the same
+//     pixel's farther fragment) is carried on instead, its pixel recovered by age equivalence.
+//   - Otherwise (an older entry, the same pixel's nearer fragment, or an equal key) the
+//     carried entry stays the same.
+// Either way the carried entry then ages by one and tries its next slot. An entry that would
+// age past HA_MAX_AGE cannot be stored (its age no longer fits) and is dropped and counted.
+// ha_age_counts[p] (atomicMax of age + 1 over p's placements) lets queries stop at the
+// highest age pixel p reached instead of walking every age.
+#if HA_KEY_BITS == 64
+#extension GL_ARB_gpu_shader_int64 : require
+#extension GL_NV_shader_atomic_int64 : require
+#endif
+#include "ldm/ldm_fragment.glsl"
+#include "ldm/habuffer/ha_keys.glsl"
+
+layout(std430, binding = LDM_STRUCTURE_BINDING0) restrict buffer HaTable { HaKey ha_table[]; };
+layout(std430, binding = LDM_STRUCTURE_BINDING2) restrict buffer HaAgeCounts {
+  uint ha_age_counts[];  // per pixel of every view: highest age of its entries + 1
+};
+layout(binding = LDM_COUNTER_BINDING, offset = 0) uniform atomic_uint dropped_max_age;
+layout(binding = LDM_COUNTER_BINDING, offset = 4) uniform atomic_uint aborted_insertions;
+
+void main() {
+  uint pixel = ldm_fragment_pixel();
+  uint age = 0u;
+  HaKey key = ha_key(0u, ha_depth_bits(v_depth));
+  // Robin Hood chains are short; the bound only keeps a faulty device from hanging. An
+  // insertion that reaches it loses its carried entry and is counted.
+  for (uint step = 0u; step < HA_MAX_INSERT_STEPS; ++step) {
+    const uint slot = ha_slot(pixel, age);
+    const HaKey previous = atomicMax(ha_table[slot], key);
+    if (previous < key) {
+      atomicMax(ha_age_counts[pixel], age + 1u);
+      if (previous == HA_EMPTY_KEY) return;
+      key = previous;
+      age = ha_key_age(previous);
+      pixel = ha_pixel_of(slot, age);
+    }
+    if (age == HA_MAX_AGE) {
+      atomicCounterIncrement(dropped_max_age);
+      return;
+    }
+    ++age;
+    key = ha_key_aged(key, age);
+  }
+  atomicCounterIncrement(aborted_insertions);
+}
