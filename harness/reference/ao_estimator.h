@@ -1,0 +1,45 @@
+#pragma once
+// The ambient-occlusion estimator of one pixel (thesis §4.1, Eq. 5/6, estimated with Eq. 9):
+// the pixel-centre primary ray finds x and the camera-facing shading normal n exactly as the
+// G-buffer pass does; AO(x) = (1/pi) ∫ V cos dω is the mean of V over cosine-weighted
+// directions. No LDM normal offset: this is the ground truth the LDM passes are judged by.
+#include <cstdint>
+
+#include "harness/passes/camera.h"
+#include "harness/reference/embree_scene.h"
+#include "harness/reference/pcg32.h"
+#include "harness/scene/scene.h"
+
+namespace ldm {
+
+class AoEstimator {
+ public:
+  // Throws UserError on bad AO settings (d_max <= 0, falloff_exponent < 0, not finite).
+  AoEstimator(const EmbreeScene& scene, const AoSettings& ao, int width, int height);
+
+  // The mean of `spp` visibility samples at pixel (x, y); 0 where the primary ray misses
+  // (the GPU writes 0 for background).
+  float pixel_mean(int x, int y, uint32_t spp, Pcg32& rng) const;
+
+  // Secondary rays start this far from x along the camera-facing geometric normal.
+  float ray_offset() const { return ray_offset_; }
+
+ private:
+  struct SurfacePoint {
+    glm::vec3 position, shading_normal, offset_origin;
+  };
+  bool primary_hit(int x, int y, SurfacePoint* point) const;
+  double visibility_sum(const SurfacePoint& point, uint32_t count, Pcg32& rng) const;
+  // V of `count` (at most one batch) rays from `origin`.
+  void trace_visibility(glm::vec3 origin, const glm::vec3* directions, uint32_t count,
+                        float* visibility) const;
+  float attenuated_visibility(float hit_distance) const;
+
+  const EmbreeScene& scene_;
+  AoSettings ao_;
+  int width_, height_;
+  CameraFrame camera_;
+  float ray_offset_;
+};
+
+}  // namespace ldm

@@ -1,0 +1,116 @@
+#include "harness/reference/ao_reference.h"
+
+#include "harness/reference/ao_estimator.h"
+#include "harness/reference/embree_scene.h"
+#include "harness/reference/pixel_renderer.h"
+#include "harness/util/error.h"
+#include "harness/util/hash.h"
+
+namespace ldm {
+namespace {
+
+// Larger images are a typo, not a reference anyone can wait for.
+constexpr int kMaxImageSide = 16384;
+
+void validate(const AoReferenceRequest& request) {
+  if (request.width <= 0 || request.width > kMaxImageSide)
+    throw UserError("AO reference: width must lie in [1, " + std::to_string(kMaxImageSide) +
+                    "] (got " + std::to_string(request.width) + ")");
+  if (request.height <= 0 || request.height > kMaxImageSide)
+    throw UserError("AO reference: height must lie in [1, " + std::to_string(kMaxImageSide) +
+                    "] (got " + std::to_string(request.height) + ")");
+  if (request.threads < 0) throw UserError("AO reference: threads must be >= 0");
+}
+
+SppRule spp_rule(const AoReferenceRequest& request) {
+  SppRule rule;
+  rule.spp_per_half = request.spp_per_half;
+  rule.target_noise_mse = request.target_noise_mse;
+  rule.max_spp_per_half = request.max_spp_per_half;
+  return rule;
+}
+
+AoSettings settings_used(const Scene& scene, const AoReferenceRequest& request) {
+  return request.ao.value_or(scene.ao);
+}
+
+Image render_half_with(const EmbreeScene& embree, const AoSettings& ao, int width, int height,
+                       uint32_t spp, uint64_t seed, uint32_t pass, int threads, bool progress) {
+  const AoEstimator estimator(embree, ao, width, height);
+  PixelRenderSettings settings;
+  settings.width = width;
+  settings.height = height;
+  settings.spp = spp;
+  settings.seed = seed;
+  settings.pass = pass;
+  settings.threads = threads;
+  settings.progress = progress;
+  settings.label = "AO reference (seed " + std::to_string(seed) + ", pass " +
+                   std::to_string(pass) + ", " + std::to_string(spp) + " spp)";
+  return render_pixels(settings, 1,
+                       [&estimator](int x, int y, uint32_t n, Pcg32& rng, float* mean) {
+                         *mean = estimator.pixel_mean(x, y, n, rng);
+                       });
+}
+
+}  // namespace
+
+Image render_ao_half(const Scene& scene, const AoSettings& ao, int width, int height,
+                     uint32_t spp, uint64_t seed, uint32_t pass, int threads, bool progress) {
+  scene.validate();
+  const EmbreeScene embree(scene);
+  return render_half_with(embree, ao, width, height, spp, seed, pass, threads, progress);
+}
+
+ReferenceResult render_ao_reference(const Scene& scene, const AoReferenceRequest& request) {
+  validate(request);
+  const SppRule rule = spp_rule(request);
+  validate_spp_rule(rule);
+  scene.validate();
+  const AoSettings ao = settings_used(scene, request);
+  const EmbreeScene embree(scene);  // one BVH for every pass of both halves
+  ReferenceResult result = render_reference_pair(
+      [&](uint64_t seed, uint32_t spp, uint32_t pass) {
+        return render_half_with(embree, ao, request.width, request.height, spp, seed, pass,
+                                request.threads, request.progress);
+      },
+      rule, request.seed);
+  result.cache_key = reference_cache_key(ao_reference_inputs(scene, request));
+  return result;
+}
+
+nlohmann::json ao_reference_inputs(const Scene& scene, const AoReferenceRequest& request) {
+  const AoSettings ao = settings_used(scene, request);
+  nlohmann::json spp;
+  if (request.spp_per_half > 0)
+    spp = {{"per_half", request.spp_per_half}};
+  else
+    spp = {{"auto_target_noise_mse", request.target_noise_mse},
+           {"auto_max_per_half", request.max_spp_per_half},
+           {"auto_start_per_half", SppRule{}.start_spp_per_half}};
+  return {{"pass", "ao"},
+          {"renderer_version", kAoReferenceVersion},
+          {"scene", scene.name},
+          {"scene_content_hash", hex64(scene.content_hash())},
+          {"width", request.width},
+          {"height", request.height},
+          {"ao",
+           {{"attenuated", ao.attenuated},
+            {"d_max", ao.d_max},
+            {"falloff_exponent", ao.falloff_exponent}}},
+          {"spp", spp},
+          {"seed", request.seed}};
+}
+
+ReferenceResult cached_ao_reference(const Scene& scene, const AoReferenceRequest& request,
+                                    const std::string& cache_dir) {
+  validate(request);
+  validate_spp_rule(spp_rule(request));
+  const nlohmann::json inputs = ao_reference_inputs(scene, request);
+  if (auto cached = load_cached_reference(cache_dir, inputs)) return *cached;
+  ReferenceResult result = render_ao_reference(scene, request);
+  store_cached_reference(cache_dir, inputs, result);
+  return result;
+}
+
+}  // namespace ldm

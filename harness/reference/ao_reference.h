@@ -1,0 +1,46 @@
+#pragma once
+// The path-traced ambient-occlusion reference (thesis §4.1-4.2, Eq. 5/6 estimated with the
+// cosine-weighted Eq. 9) for a scene's camera: what the GPU AO pass should converge to.
+// See ao_estimator.h for the per-pixel estimator and reference_image.h for the two-half
+// noise estimate and the automatic spp rule.
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "harness/reference/reference_cache.h"
+#include "harness/reference/reference_image.h"
+#include "harness/scene/scene.h"
+
+namespace ldm {
+
+// Bump whenever a change to the AO reference alters its images: cached entries of older
+// versions then stop matching.
+inline constexpr int kAoReferenceVersion = 1;
+
+struct AoReferenceRequest {
+  int width = 0, height = 0;
+  std::optional<AoSettings> ao;  // overrides scene.ao (normal_offset_pixels is not used)
+  uint32_t spp_per_half = 0;     // 0: automatic (reference_image.h)
+  double target_noise_mse = 1e-5;  // PSNR >= 50 dB for [0, 1] images
+  uint32_t max_spp_per_half = 4096;
+  uint64_t seed = 1;   // the halves use seed and seed + 1
+  int threads = 0;     // 0: all cores; does not change the image
+  bool progress = true;
+};
+
+// One half image: `spp` samples per pixel with seed `seed`, independent pass `pass`.
+Image render_ao_half(const Scene& scene, const AoSettings& ao, int width, int height,
+                     uint32_t spp, uint64_t seed, uint32_t pass = 0, int threads = 0,
+                     bool progress = false);
+
+// Throws UserError naming the request field at fault.
+ReferenceResult render_ao_reference(const Scene& scene, const AoReferenceRequest& request);
+// As render_ao_reference, through the disk cache (reference_cache.h).
+ReferenceResult cached_ao_reference(const Scene& scene, const AoReferenceRequest& request,
+                                    const std::string& cache_dir = kDefaultReferenceCacheDir);
+// Everything that determines the reference image, as stored in the cache sidecar.
+nlohmann::json ao_reference_inputs(const Scene& scene, const AoReferenceRequest& request);
+
+}  // namespace ldm

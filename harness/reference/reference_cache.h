@@ -1,0 +1,31 @@
+#pragma once
+// A disk cache of reference images. An entry is keyed by a JSON object of everything that
+// affects the image (scene content hash, pass, size, settings, spp rule, seed, renderer
+// version); the key is the 64-bit FNV-1a hash of that object's canonical text. In the cache
+// directory an entry is
+//   <key>.exr, <key>.a.exr, <key>.b.exr   the reference and its two independent halves
+//   <key>.json                            the sidecar: inputs, spp, noise, time, checksums
+// The sidecar is written last (atomically, like the images), so it marks a complete entry.
+// An entry is used only if its sidecar parses, its inputs equal the request's exactly and
+// every image matches its recorded shape and pixel checksum; anything else is a miss.
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "harness/reference/reference_image.h"
+
+namespace ldm {
+
+inline constexpr const char* kDefaultReferenceCacheDir = "results/cache/references";
+
+std::string reference_cache_key(const nlohmann::json& inputs);
+
+// The cached result (from_cache = true) or nothing; never throws on a bad entry.
+std::optional<ReferenceResult> load_cached_reference(const std::string& cache_dir,
+                                                     const nlohmann::json& inputs);
+// Throws UserError naming the path if the directory or a file cannot be written.
+void store_cached_reference(const std::string& cache_dir, const nlohmann::json& inputs,
+                            const ReferenceResult& result);
+
+}  // namespace ldm

@@ -1,0 +1,245 @@
+// The AO reference against closed forms (derived in the comments, each formula also checked
+// by an independent numerical quadrature), on the analytic built-in scenes.
+//
+// Tolerances come from the sample count: V lies in [0, 1], so Var(V) <= E[V](1 - E[V]) and a
+// pixel mean of n samples has standard error <= sqrt(AO (1 - AO) / n). Each pixel must lie
+// within 5 of those of the closed form, and the mean deviation over all pixels within 5
+// standard errors of the mean (this catches biases far below the per-pixel noise).
+#include <cmath>
+#include <functional>
+#include <numbers>
+#include <optional>
+
+#include <gtest/gtest.h>
+
+#include "harness/passes/camera.h"
+#include "harness/reference/ao_estimator.h"
+#include "harness/reference/ao_reference.h"
+#include "harness/reference/embree_scene.h"
+#include "harness/scene/generators.h"
+
+namespace ldm {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr int kSize = 64;
+constexpr uint32_t kSppPerHalf = 512;
+
+// ---- closed forms ---------------------------------------------------------------------------
+
+// Floor point under an infinite parallel ceiling at height h, V = min(d/d_max, 1)^p.
+// With u = cos(theta) (pdf 2u for cosine-weighted directions) the ceiling is at d = h/u, so
+// V = 1 for u < c = h/d_max and V = (c/u)^p above:
+//   AO = c^2 + ∫_c^1 2u (c/u)^p du = c^2 + 2 c^p (1 - c^(2-p)) / (2 - p)   (p != 2)
+//                                  = c^2 (1 + 2 ln(1/c))                   (p = 2).
+double parallel_planes_ao(double h, double d_max, double p) {
+  const double c = h / d_max;
+  if (c >= 1.0) return 1.0;
+  if (p == 2.0) return c * c * (1.0 + 2.0 * std::log(1.0 / c));
+  return c * c + 2.0 * std::pow(c, p) * (1.0 - std::pow(c, 2.0 - p)) / (2.0 - p);
+}
+
+// Floor point at distance a from an infinite vertical wall, V = min(d/d_max, 1)^2, κ = a/d_max.
+// With s = sin(theta) and the azimuth φ measured from the direction to the wall, the pdf is
+// s ds dφ / π and the wall is hit at d = a / (s cos φ) (cos φ > 0). For k = κ / cos φ < 1 the
+// inner integral is ∫_0^k s ds + ∫_k^1 s k²/s² ds = k² (1/2 - ln k), else 1/2. Integrating
+// over φ with ∫ sec² = tan and ∫ sec² ln cos = tan ln cos + tan - φ, φ0 = arccos κ:
+//   AO = 1/2 + (1/π) [3κ sqrt(1 - κ²) - 2κ² arccos κ + π/2 - arccos κ]   (κ < 1), else 1.
+double wall_ao(double a, double d_max) {
+  const double k = a / d_max;
+  if (k >= 1.0) return 1.0;
+  return 0.5 + (3.0 * k * std::sqrt(1.0 - k * k) - 2.0 * k * k * std::acos(k) + kPi / 2.0 -
+                std::acos(k)) /
+                   kPi;
+}
+
+// Form factor from a differential area to a parallel rectangle a x b at height h with one
+// corner straight above it, A = a/h, B = b/h: the fraction of cosine-weighted rays that hit it.
+double corner_form_factor(double A, double B) {
+  const double sa = std::sqrt(1.0 + A * A), sb = std::sqrt(1.0 + B * B);
+  return (A / sa * std::atan(B / sa) + B / sb * std::atan(A / sb)) / (2.0 * kPi);
+}
+
+// Unattenuated AO under a square ceiling of half-size W at height h, floor point (px, pz):
+// the square is four rectangles, each with a corner above the point.
+double square_ceiling_ao(double px, double pz, double W, double h) {
+  double occluded = 0.0;
+  for (double sx : {-1.0, 1.0})
+    for (double sz : {-1.0, 1.0})
+      occluded += corner_form_factor((W + sx * px) / h, (W + sz * pz) / h);
+  return 1.0 - occluded;
+}
+
+// ---- the closed forms against quadrature ----------------------------------------------------
+
+TEST(AoClosedForms, ParallelPlanesMatchQuadrature) {
+  for (double p : {1.0, 2.0, 3.0})
+    for (double c : {0.1, 0.5, 0.9}) {
+      const int n = 1000000;  // midpoint rule over u in (0, 1)
+      double sum = 0.0;
+      for (int i = 0; i < n; ++i) {
+        const double u = (i + 0.5) / n;
+        sum += 2.0 * u * std::pow(std::min(c / u, 1.0), p) / n;
+      }
+      EXPECT_NEAR(parallel_planes_ao(c, 1.0, p), sum, 1e-6) << "p " << p << " c " << c;
+    }
+}
+
+TEST(AoClosedForms, WallMatchesQuadrature) {
+  for (double k : {0.05, 0.3, 0.7, 0.95}) {
+    const int ns = 2000, nphi = 4000;  // midpoint rule over s in (0, 1), φ in (-π, π)
+    double sum = 0.0;
+    for (int j = 0; j < nphi; ++j) {
+      const double c = std::cos(-kPi + (j + 0.5) * 2.0 * kPi / nphi);
+      for (int i = 0; i < ns; ++i) {
+        const double s = (i + 0.5) / ns;
+        const double v = c <= 0.0 ? 1.0 : std::pow(std::min(k / (s * c), 1.0), 2.0);
+        sum += s * v;
+      }
+    }
+    sum *= (1.0 / ns) * (2.0 * kPi / nphi) / kPi;
+    EXPECT_NEAR(wall_ao(k, 1.0), sum, 1e-4) << "kappa " << k;
+  }
+}
+
+TEST(AoClosedForms, SquareCeilingMatchesQuadrature) {
+  // Rays at azimuth φ leave the square's shadow at the horizontal distance r(φ) from the
+  // point to the square's edge, i.e. for sin²θ > r²/(r² + h²); the occluded fraction is
+  // (1/2π) ∫ r²/(r² + h²) dφ (the pdf of s = sin θ being 2s ds).
+  const double W = 1.5, h = 1.0;
+  for (auto [px, pz] : {std::pair{0.0, 0.0}, std::pair{0.4, -0.3}, std::pair{-1.2, 1.4}}) {
+    const int n = 200000;
+    double occluded = 0.0;
+    for (int j = 0; j < n; ++j) {
+      const double phi = (j + 0.5) * 2.0 * kPi / n;
+      const double dx = std::cos(phi), dz = std::sin(phi);
+      const double rx = dx > 0 ? (W - px) / dx : dx < 0 ? (W + px) / -dx : INFINITY;
+      const double rz = dz > 0 ? (W - pz) / dz : dz < 0 ? (W + pz) / -dz : INFINITY;
+      const double r = std::min(rx, rz);
+      occluded += r * r / (r * r + h * h) / n;
+    }
+    EXPECT_NEAR(square_ceiling_ao(px, pz, W, h), 1.0 - occluded, 1e-6);
+  }
+}
+
+// ---- the renderer against the closed forms --------------------------------------------------
+
+// Where pixel (x, y)'s primary ray meets the floor y = 0 (computed here, not by the renderer).
+glm::dvec3 floor_point(const Scene& scene, int x, int y) {
+  const CameraFrame camera = camera_frame(scene.camera, kSize, kSize);
+  const glm::dvec3 d(camera.ray_direction(x, y, kSize, kSize));
+  const glm::dvec3 eye(camera.eye);
+  return eye + d * (-eye.y / d.y);
+}
+
+float ray_offset(const Scene& scene) {
+  const EmbreeScene embree(scene);
+  return AoEstimator(embree, scene.ao, kSize, kSize).ray_offset();
+}
+
+ReferenceResult render(const Scene& scene) {
+  AoReferenceRequest request;
+  request.width = request.height = kSize;
+  request.spp_per_half = kSppPerHalf;
+  request.threads = 2;
+  request.progress = false;
+  return render_ao_reference(scene, request);
+}
+
+// `expected(x, y)` is the exact AO of a pixel, or nothing to skip it.
+void expect_matches(const Image& image, uint32_t samples,
+                    const std::function<std::optional<double>(int, int)>& expected) {
+  double deviation_sum = 0.0, variance_sum = 0.0;
+  int checked = 0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      const auto e = expected(x, y);
+      if (!e) continue;
+      ++checked;
+      const double value = image.at(x, y);
+      const double variance = std::max(0.0, *e * (1.0 - *e)) / samples;
+      if (variance == 0.0) {  // every sample is exactly e: so is the mean
+        EXPECT_EQ(value, *e) << "pixel " << x << ", " << y;
+        continue;
+      }
+      // 1e-6: float rounding of the stored mean.
+      EXPECT_NEAR(value, *e, 5.0 * std::sqrt(variance) + 1e-6) << "pixel " << x << ", " << y;
+      deviation_sum += value - *e;
+      variance_sum += variance;
+    }
+  EXPECT_GE(checked, image.width * image.height * 9 / 10) << "too few pixels checked";
+  if (variance_sum > 0.0) {
+    EXPECT_LE(std::abs(deviation_sum), 5.0 * std::sqrt(variance_sum))
+        << "mean deviation " << deviation_sum / checked;
+  }
+}
+
+TEST(AoReference, OpenPlaneIsFullyVisible) {
+  for (bool attenuated : {true, false}) {
+    Scene scene = generate_scene("plane", nlohmann::json::object(), "test");
+    scene.ao.attenuated = attenuated;
+    const ReferenceResult r = render(scene);
+    expect_matches(r.image, r.spp_total, [](int, int) { return 1.0; });
+  }
+}
+
+TEST(AoReference, BackgroundIsZero) {
+  Scene scene = generate_scene("plane", nlohmann::json::object(), "test");
+  scene.camera.target = scene.camera.eye + glm::vec3(0, 1, 0);  // looking away from the plane
+  const ReferenceResult r = render(scene);
+  expect_matches(r.image, r.spp_total, [](int, int) { return 0.0; });
+}
+
+TEST(AoReference, ParallelPlanesMatchClosedForm) {
+  // half_size 4 >= sqrt(d_max² - h²) (1.73) + the camera's footprint (0.52): every ray that
+  // could reach d_max hits the ceiling, as under an infinite one.
+  for (float falloff : {2.0f, 1.0f}) {
+    Scene scene = generate_scene("parallel-planes", {{"h", 1.0}, {"d_max", 2.0}}, "test");
+    scene.ao.falloff_exponent = falloff;
+    // Secondary rays start ray_offset above the floor: the ceiling is that much closer.
+    const double h = 1.0 - ray_offset(scene);
+    const double ao = parallel_planes_ao(h, 2.0, falloff);
+    const ReferenceResult r = render(scene);
+    expect_matches(r.image, r.spp_total, [ao](int, int) { return ao; });
+  }
+}
+
+TEST(AoReference, NormalFacesTheCameraAsInTheGBuffer) {
+  // Seen from below, the floor's normal is flipped towards the camera: the hemisphere opens
+  // downwards, away from the ceiling, and every ray escapes. Sampled around the unflipped
+  // normal the pixels would show the parallel-planes value (about 0.6).
+  Scene scene = generate_scene("parallel-planes", {{"h", 1.0}, {"d_max", 2.0}}, "test");
+  scene.camera.eye = {0.0f, -0.5f, 0.0f};
+  scene.camera.target = {0.0f, 0.0f, 0.0f};
+  const ReferenceResult r = render(scene);
+  expect_matches(r.image, r.spp_total, [](int, int) { return 1.0; });
+}
+
+TEST(AoReference, WallMatchesClosedForm) {
+  // The camera sees the floor strip 0.04 < x < 1.16 next to the wall x = 0; rays within
+  // d_max = 1 stay far inside the wall's 4 x 8 extent, so it acts as an infinite one.
+  const Scene scene = generate_scene("wall", {{"d_max", 1.0}}, "test");
+  const ReferenceResult r = render(scene);
+  int near_wall = 0;
+  expect_matches(r.image, r.spp_total, [&](int x, int y) {
+    const double a = floor_point(scene, x, y).x;  // the distance to the wall
+    near_wall += a < 0.5;
+    return wall_ao(a, 1.0);
+  });
+  EXPECT_GT(near_wall, kSize * kSize / 4);  // the interesting part is in view
+}
+
+TEST(AoReference, SquareCeilingMatchesFormFactor) {
+  const double W = 1.5;
+  const Scene scene = generate_scene(
+      "parallel-planes", {{"h", 1.0}, {"half_size", W}, {"attenuated", false}}, "test");
+  const double h = 1.0 - ray_offset(scene);
+  const ReferenceResult r = render(scene);
+  expect_matches(r.image, r.spp_total, [&](int x, int y) {
+    const glm::dvec3 p = floor_point(scene, x, y);
+    return square_ceiling_ao(p.x, p.z, W, h);
+  });
+}
+
+}  // namespace
+}  // namespace ldm
