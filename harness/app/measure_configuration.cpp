@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <numeric>
 
+#include "harness/app/accuracy.h"
+#include "harness/app/ldm_setup.h"
 #include "harness/image/image.h"
 #include "harness/measure/timing_stats.h"
 #include "harness/passes/ao_pass.h"
@@ -146,41 +148,42 @@ Record measure_configuration(const Scene& scene, const Configuration& config,
   r.set("falloff_exponent", ao.falloff_exponent);
   r.set("normal_offset_pixels", ao.normal_offset_pixels);
 
-  // AO reads positions (every pass) and normals (the G-buffer); nothing else is uploaded.
+  // AO reads positions (every pass) and normals (the G-buffer); nothing else is uploaded,
+  // and the structures store depth alone.
   AttributeSet attributes;
   attributes.normals = true;
-  const GpuScene gpu_scene(scene, attributes);
-  const ViewSet views = make_view_set(scene.bounding_sphere(), config.views, config.resolution);
-  const GpuViewSet gpu_views(views);
-  const FragmentCensus census = take_fragment_census(gpu_scene, gpu_views);
-  const FragmentPayload payload;  // AO needs depth only
-  const BuildInputs in{gpu_scene, gpu_views, census, payload};
+  const LdmSetup setup(scene, attributes, config.views, config.resolution, FragmentPayload{});
+  const FragmentCensus& census = setup.census;
+  const BuildInputs& in = *setup.inputs;
   r.set("scene_attributes", attributes.describe());
-  r.set("scene_gpu_bytes", gpu_scene.bytes());
-  r.set("payload", payload.describe());
+  r.set("scene_gpu_bytes", setup.gpu_scene->bytes());
+  r.set("payload", in.payload.describe());
   r.set("fragments", census.total_fragments);
   r.set("max_depth_complexity", census.max_depth_complexity);
   r.set("mean_depth_complexity", census.mean_depth_complexity());
   r.set("nonempty_pixel_fraction",
         census.total_pixels ? double(census.nonempty_pixels) / double(census.total_pixels) : 0.0);
 
-  auto structure = make_structure(config.structure,
-                                  StructureParams(config.params, "--param " + config.structure));
-  structure->prepare(in);
+  auto structure = setup.prepare(config.structure, config.params);
   const RasterBaseline baseline(config.resolution);
   GBufferPass gbuffer(settings.width, settings.height);
   AoPass ao_pass(*structure, in, settings.width, settings.height, ao);
   const LdmInspector inspector(*structure, in);
 
-  GpuTimer timer;
+  const TimerSource timer_source =
+      settings.timer == "auto"           ? default_timer_source(device.gl_renderer)
+      : settings.timer == "gl_timestamp" ? TimerSource::GpuTimestamps
+                                         : TimerSource::FencedWallClock;
+  r.set("timer", timer_source_name(timer_source));
+  GpuTimer timer(timer_source);
   TimingSeries series;
   BuildHealth health(census);
   BuildStats last_stats;
   for (int frame = 0; frame < settings.warmup + settings.frames; ++frame) {
     timer.begin_frame();
-    baseline.render(gpu_scene, gpu_views, &timer);
+    baseline.render(*setup.gpu_scene, *setup.gpu_views, &timer);
     structure->build(in, &timer);
-    gbuffer.render(gpu_scene, scene, &timer);
+    gbuffer.render(*setup.gpu_scene, scene, &timer);
     ao_pass.render(gbuffer, &timer);
     FrameTimes times = timer.end_frame();
     last_stats = structure->stats();
@@ -204,7 +207,7 @@ Record measure_configuration(const Scene& scene, const Configuration& config,
   r.set("overflow", health.overflow());
   r.set("checksum_changes", health.checksum_changes());
   r.set("lists_checksum", hex64(health.first_checksum()));
-  for (const auto& [name, value] : last_stats.counters) r.set("count_" + name, value);
+  for (const auto& [name, value] : last_stats.counters) r.set("counter_" + name, value);
   for (const auto& [key, value] : structure->sizing()) r.set("sizing_" + key, value);
 
   const auto summaries = series.summarize();
@@ -227,14 +230,17 @@ Record measure_configuration(const Scene& scene, const Configuration& config,
   r.set("bytes_used", used);
 
   const Image image = ao_pass.read_image();
+  const std::string stem = config.id() + "-ao";
   if (settings.write_images) {
-    const std::string base = config.id() + "-ao";
-    write_exr((std::filesystem::path(paths.images_dir) / (base + ".exr")).string(), image);
-    write_png((std::filesystem::path(paths.images_dir) / (base + ".png")).string(), image);
+    write_exr((std::filesystem::path(paths.images_dir) / (stem + ".exr")).string(), image);
+    write_png((std::filesystem::path(paths.images_dir) / (stem + ".png")).string(), image);
     const auto relative = std::filesystem::relative(paths.images_dir, paths.out_dir);
-    r.set("image_exr", (relative / (base + ".exr")).string());
-    r.set("image_png", (relative / (base + ".png")).string());
+    r.set("image_exr", (relative / (stem + ".exr")).string());
+    r.set("image_png", (relative / (stem + ".png")).string());
   }
+  if (settings.reference.enabled)
+    add_ao_accuracy(r, scene, ao, image, settings.reference,
+                    {paths.out_dir, paths.images_dir, stem, settings.write_images});
   return r;
 }
 

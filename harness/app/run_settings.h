@@ -40,6 +40,7 @@ struct RunSettings {
   bool write_images = true;
   std::string out_dir;  // empty: results/runs/<timestamp>
   ContextOptions context;
+  std::string timer = "auto";  // auto | gl_timestamp | fenced_wall_clock
   ReferenceSettings reference;
 };
 

@@ -84,7 +84,10 @@ std::string records_to_csv(const std::vector<Record>& records) {
     for (const auto& [key, value] : r.fields())
       if (std::find(columns.begin(), columns.end(), key) == columns.end()) columns.push_back(key);
   std::string out;
-  for (size_t i = 0; i < columns.size(); ++i) out += (i ? "," : "") + csv_quote(columns[i]);
+  for (size_t i = 0; i < columns.size(); ++i) {
+    if (i) out += ',';
+    out += csv_quote(columns[i]);
+  }
   out += "\n";
   for (const auto& r : records) {
     for (size_t i = 0; i < columns.size(); ++i) {

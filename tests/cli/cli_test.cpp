@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
 
 #include "support/test_support.h"
@@ -45,8 +46,10 @@ void expect_rejected(const std::string& args, const std::string& culprit) {
 
 TEST(Cli, MainJobWritesRecordsAndImages) {
   const fs::path out = fs::path(test::make_temp_dir("ldm-cli")) / "run";
+  const std::string cache = test::make_temp_dir("ldm-cache");
   const Outcome o = ldmbench("run --scene cornell --structure psppsll --pass ao -N 4 -R 32 "
-                             "--width 48 --height 40 --frames 2 --warmup 1 --out " + out.string());
+                             "--width 48 --height 40 --frames 2 --warmup 1 --reference-spp 64 "
+                             "--cache-dir " + cache + " --out " + out.string());
   ASSERT_EQ(o.status, 0) << o.output;
   EXPECT_NE(o.output.find("records: "), std::string::npos);
   const auto json = nlohmann::json::parse(read_text(out / "records.json"));
@@ -78,6 +81,26 @@ TEST(Cli, MainJobWritesRecordsAndImages) {
   EXPECT_TRUE(fs::is_regular_file(exr)) << exr;
   EXPECT_TRUE(fs::is_regular_file(png)) << png;
   EXPECT_TRUE(fs::path(r["image_exr"].get<std::string>()).is_relative());
+  // Accuracy against the reference, with the reference's own noise floor beside it.
+  for (const char* key : {"mse", "nrmse", "psnr", "mssim", "ref_noise_mse", "ref_noise_mssim",
+                          "ref_render_seconds", "mse_over_noise"})
+    EXPECT_TRUE(r.contains(key) && r[key].is_number()) << key;
+  EXPECT_EQ(r["ref_spp"], 128);  // 64 per half
+  EXPECT_GT(r["mse"].get<double>(), 0.0);
+  EXPECT_GT(r["mssim"].get<double>(), 0.0);
+  EXPECT_LE(r["mssim"].get<double>(), 1.0);
+  EXPECT_FALSE(r["ref_from_cache"].get<bool>());
+  for (const char* key : {"reference_exr", "ssim_map_png", "diff_png"})
+    EXPECT_TRUE(fs::is_regular_file(out / r[key].get<std::string>())) << key;
+  // A second run takes the reference from the cache and measures the same error.
+  const fs::path again = fs::path(test::make_temp_dir("ldm-cli")) / "again";
+  ASSERT_EQ(ldmbench("run --scene cornell -N 4 -R 32 --width 48 --height 40 --frames 1 "
+                     "--warmup 0 --reference-spp 64 --cache-dir " + cache + " --out " +
+                     again.string()).status, 0);
+  const auto r2 = nlohmann::json::parse(read_text(again / "records.json"))["records"][0];
+  EXPECT_TRUE(r2["ref_from_cache"].get<bool>());
+  EXPECT_EQ(r2["ref_cache_key"], r["ref_cache_key"]);
+  EXPECT_DOUBLE_EQ(r2["mse"].get<double>(), r["mse"].get<double>());
   // The CSV has the same row.
   const std::string csv = read_text(out / "records.csv");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 2);
@@ -93,7 +116,7 @@ TEST(Cli, SweepRecordsAFailedConfigurationAndGoesOn) {
   const fs::path out = fs::path(test::make_temp_dir("ldm-cli")) / "sweep";
   const Outcome o = ldmbench("run --scene cornell -N " + std::to_string(n) + " -R " +
                              std::to_string(too_big) + ",16 --width 32 --height 32 --frames 1 "
-                             "--warmup 0 --out " + out.string());
+                             "--warmup 0 --no-reference --out " + out.string());
   EXPECT_EQ(o.status, 3) << o.output;
   const auto json = nlohmann::json::parse(read_text(out / "records.json"));
   ASSERT_EQ(json["records"].size(), 2u);
@@ -107,7 +130,7 @@ TEST(Cli, LossyConfigurationIsFlaggedNotPassedOff) {
   const fs::path out = fs::path(test::make_temp_dir("ldm-cli")) / "lossy";
   const Outcome o = ldmbench("run --scene cornell -N 4 -R 32 --width 32 --height 32 --frames 1 "
                              "--warmup 0 --param psppsll:pool=fixed --param psppsll:capacity=1000 "
-                             "--out " + out.string());
+                             "--no-reference --out " + out.string());
   EXPECT_EQ(o.status, 0) << o.output;
   const auto r = nlohmann::json::parse(read_text(out / "records.json"))["records"][0];
   EXPECT_EQ(r["status"], "lossy");
@@ -134,6 +157,68 @@ TEST(Cli, BadInputIsRejectedBeforeAnythingIsWritten) {
   expect_rejected("--scene cornell --visibility sometimes", "--visibility");
   expect_rejected("--scene nosuchscene", "nosuchscene");
 }
+
+TEST(Cli, ReferenceAndCompareImages) {
+  const std::string dir = test::make_temp_dir("ldm-cli");
+  const std::string ref = (fs::path(dir) / "ref.exr").string();
+  const Outcome rendered = ldmbench("reference --scene cornell --width 32 --height 24 --spp 32 "
+                                    "--no-cache --out " + ref);
+  ASSERT_EQ(rendered.status, 0) << rendered.output;
+  EXPECT_NE(rendered.output.find("spp: 64"), std::string::npos) << rendered.output;
+  EXPECT_TRUE(fs::is_regular_file(fs::path(dir) / "ref.png"));
+  // An image against itself: MSE 0, infinite PSNR, MSSIM exactly 1.
+  const Outcome same = ldmbench("compare-images --json " + ref + " " + ref);
+  ASSERT_EQ(same.status, 0) << same.output;
+  const auto j = nlohmann::json::parse(same.output);
+  EXPECT_EQ(j["mse"].get<double>(), 0.0);
+  EXPECT_TRUE(j["psnr"].is_null());  // +infinity has no JSON number
+  EXPECT_EQ(j["mssim"].get<double>(), 1.0);
+  // Against an independent render with another seed: a small, positive error.
+  const std::string other = (fs::path(dir) / "other.exr").string();
+  ASSERT_EQ(ldmbench("reference --scene cornell --width 32 --height 24 --spp 32 --seed 9 "
+                     "--no-cache --out " + other).status, 0);
+  const auto k = nlohmann::json::parse(ldmbench("compare-images --json " + ref + " " + other).output);
+  EXPECT_GT(k["mse"].get<double>(), 0.0);
+  EXPECT_LT(k["mse"].get<double>(), 0.01);
+  // Bad input: a missing file, mismatched sizes.
+  const Outcome missing = ldmbench("compare-images " + ref + " " + dir + "/nothere.exr");
+  EXPECT_EQ(missing.status, 2);
+  EXPECT_NE(missing.output.find("nothere.exr"), std::string::npos);
+  const std::string small = (fs::path(dir) / "small.exr").string();
+  ASSERT_EQ(ldmbench("reference --scene cornell --width 16 --height 16 --spp 4 --no-cache --out " +
+                     small).status, 0);
+  const Outcome mismatch = ldmbench("compare-images " + ref + " " + small);
+  EXPECT_EQ(mismatch.status, 2);
+  EXPECT_NE(mismatch.output.find("32x24"), std::string::npos) << mismatch.output;
+  const Outcome bad_out = ldmbench("reference --scene cornell --out " + dir + "/x.png");
+  EXPECT_EQ(bad_out.status, 2);
+}
+
+#ifdef LDM_GBENCH_PATH
+// The Google Benchmark binary runs every structure and writes JSON that compare.py reads.
+TEST(Gbench, TimesBuildAndAoTraceOfEveryStructure) {
+  const std::string json = (fs::path(test::make_temp_dir("ldm-gbench")) / "out.json").string();
+  std::string output;
+  const int status = test::run_command(
+      std::string(LDM_GBENCH_PATH) + " --ldm_scenes=cornell --ldm_views=4 --ldm_r=32 "
+      "--ldm_width=32 --ldm_height=32 --benchmark_min_time=0.01 --benchmark_out_format=json "
+      "--benchmark_out=" + json, &output);
+  ASSERT_EQ(status, 0) << output;
+  const auto j = nlohmann::json::parse(read_text(json));
+  EXPECT_FALSE(j["context"]["gl_renderer"].get<std::string>().empty());
+  std::set<std::string> names;
+  for (const auto& b : j["benchmarks"]) {
+    EXPECT_FALSE(b.contains("error_occurred") && b["error_occurred"].get<bool>()) << b["name"];
+    EXPECT_GT(b["real_time"].get<double>(), 0.0) << b["name"];
+    EXPECT_GT(b["fragments"].get<double>(), 0.0) << b["name"];
+    names.insert(b["name"].get<std::string>());
+  }
+  EXPECT_EQ(names.size(), 2 * 6u);  // Build and AoTrace for each structure
+  EXPECT_TRUE(names.count("Build/cornell/dfbuffer/N:4/R:32/manual_time"));
+  const Outcome bad = {test::run_command(std::string(LDM_GBENCH_PATH) + " --ldm_views=0", &output), output};
+  EXPECT_EQ(bad.status, 2);
+}
+#endif
 
 TEST(Cli, HelpDocumentsEveryRunOption) {
   const Outcome o = ldmbench("run --help");

@@ -1,0 +1,32 @@
+#pragma once
+// What every measurement of a structure builds on: the scene on the GPU (only the attributes
+// the passes read), its LDM views and their fragment census. Owned together because the
+// build inputs refer to all of them. Used by `ldmbench run`, the Google Benchmark binary and
+// the tests.
+#include <map>
+#include <memory>
+#include <string>
+
+#include "ldm_impls/ldm_structure.h"
+
+namespace ldm {
+
+struct LdmSetup {
+  Scene scene;
+  std::unique_ptr<GpuScene> gpu_scene;
+  ViewSet views;
+  std::unique_ptr<GpuViewSet> gpu_views;
+  FragmentCensus census;
+  std::unique_ptr<BuildInputs> inputs;
+
+  LdmSetup(Scene scene, AttributeSet attributes, uint32_t view_count, uint32_t resolution,
+           FragmentPayload payload = {});
+  LdmSetup(const LdmSetup&) = delete;
+  LdmSetup& operator=(const LdmSetup&) = delete;
+
+  // A structure with its storage sized for this setup (prepare() done, nothing built yet).
+  std::unique_ptr<LdmStructure> prepare(const std::string& structure,
+                                        std::map<std::string, std::string> params = {}) const;
+};
+
+}  // namespace ldm

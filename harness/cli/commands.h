@@ -1,0 +1,17 @@
+#pragma once
+// The subcommands of the ldmbench CLI, each registering its options and returning a runner.
+#include <CLI/CLI.hpp>
+
+#include <functional>
+#include <string>
+
+namespace ldm::cli {
+
+using Runner = std::function<int()>;  // returns the process exit status
+
+Runner add_run_command(CLI::App& app, const std::string& command_line);
+Runner add_reference_command(CLI::App& app);
+Runner add_compare_command(CLI::App& app);
+Runner add_listing_commands(CLI::App& app);  // scenes, structures, info
+
+}  // namespace ldm::cli

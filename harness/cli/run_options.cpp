@@ -1,0 +1,143 @@
+// `ldmbench run`: the options of a sweep.
+#include <iostream>
+#include <memory>
+
+#include "harness/app/run_command.h"
+#include "harness/cli/commands.h"
+#include "harness/util/error.h"
+#include "ldm_impls/ldm_structure.h"
+
+namespace ldm::cli {
+namespace {
+
+// "structure:key=value" -> settings.structure_params[structure][key] = value
+void parse_structure_param(const std::string& text, RunSettings& settings) {
+  const auto colon = text.find(':');
+  const auto equals = text.find('=', colon == std::string::npos ? 0 : colon);
+  if (colon == std::string::npos || equals == std::string::npos || colon == 0 ||
+      equals == colon + 1)
+    throw UserError("--param: expected STRUCTURE:KEY=VALUE (e.g. psppsll:pool=grow), got '" +
+                    text + "'");
+  settings.structure_params[text.substr(0, colon)][text.substr(colon + 1, equals - colon - 1)] =
+      text.substr(equals + 1);
+}
+
+Visibility parse_visibility(const std::string& text) {
+  if (text == "attenuated") return Visibility::Attenuated;
+  if (text == "unattenuated") return Visibility::Unattenuated;
+  return Visibility::Scene;
+}
+
+struct RunOptions {
+  RunSettings settings;
+  std::vector<std::string> params, visibility;
+  std::string platform = "auto";
+  float normal_offset = -1.0f;
+};
+
+}  // namespace
+
+Runner add_run_command(CLI::App& app, const std::string& command_line) {
+  auto o = std::make_shared<RunOptions>();
+  RunSettings& s = o->settings;
+  auto* run = app.add_subcommand(
+      "run", "Measure every combination of the given axes (comma lists); write records.csv, "
+             "records.json and images");
+  run->add_option("--scene", s.scenes,
+                  "Built-in scene name (see `ldmbench scenes`) or scene file path")
+      ->delimiter(',')
+      ->capture_default_str();
+  run->add_option("--structure", s.structures,
+                  "LDM structure(s): psppsll, ppsll, dfbuffer, habuffer, ppfla, psppfla, or all")
+      ->delimiter(',')
+      ->capture_default_str();
+  run->add_option("--pass", s.passes, "Pass(es) run on each structure: ao")
+      ->delimiter(',')
+      ->capture_default_str();
+  run->add_option("-N,--views", s.views,
+                  "Number of LDM views N (regions of the hemisphere partition)")
+      ->delimiter(',')
+      ->check(CLI::Range(1u, 4096u))
+      ->capture_default_str();
+  run->add_option("-R,--r-ldm", s.resolutions, "LDM resolution R_LDM (R x R pixels per view)")
+      ->delimiter(',')
+      ->check(CLI::Range(1u, 8192u))
+      ->capture_default_str();
+  run->add_option("--width", s.width, "Output image width in pixels")
+      ->check(CLI::Range(16, 16384))
+      ->capture_default_str();
+  run->add_option("--height", s.height, "Output image height in pixels")
+      ->check(CLI::Range(16, 16384))
+      ->capture_default_str();
+  run->add_option("--d-max", s.d_max,
+                  "AO attenuation distance d_max in scene units (default: the scene's)")
+      ->delimiter(',')
+      ->check(CLI::PositiveNumber);
+  run->add_option("--visibility", o->visibility,
+                  "AO visibility: attenuated (min(d/d_max,1)^2), unattenuated, or scene (the "
+                  "scene's own choice)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"scene", "attenuated", "unattenuated"}));
+  run->add_option("--normal-offset", o->normal_offset,
+                  "Normal offset of thesis §4.4.2 in LDM pixels (default: the scene's; 0 = off)")
+      ->check(CLI::Range(0.0f, 1000.0f));
+  run->add_option("--frames", s.frames, "Measured frames per configuration (median reported)")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  run->add_option("--warmup", s.warmup, "Warm-up frames discarded before measuring")
+      ->check(CLI::Range(0, 100000))
+      ->capture_default_str();
+  run->add_option("--param", o->params,
+                  "Structure parameter STRUCTURE:KEY=VALUE, repeatable (e.g. psppsll:pool=grow, "
+                  "ppfla:k=4, habuffer:load_factor=0.5)");
+  run->add_option("--out", s.out_dir,
+                  "Output folder for records.csv, records.json and images/ (default: "
+                  "results/runs/<timestamp>)");
+  run->add_flag("!--no-images", s.write_images, "Do not write images");
+  run->add_flag("!--no-reference", s.reference.enabled,
+                "Skip the path-traced reference and the image metrics");
+  run->add_option("--reference-spp", s.reference.spp_per_half,
+                  "Reference samples per pixel per half (0: double until the noise target)")
+      ->check(CLI::Range(0u, 1u << 20))
+      ->capture_default_str();
+  run->add_option("--reference-noise", s.reference.target_noise_mse,
+                  "Noise target of the automatic spp rule: the reference's expected MSE")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  run->add_option("--reference-max-spp", s.reference.max_spp_per_half,
+                  "Cap of the automatic spp rule (samples per pixel per half)")
+      ->check(CLI::Range(1u, 1u << 20))
+      ->capture_default_str();
+  run->add_option("--reference-seed", s.reference.seed, "Seed of the reference (halves: s, s+1)")
+      ->capture_default_str();
+  run->add_option("--cache-dir", s.reference.cache_dir,
+                  "Reference cache folder (default: results/cache/references)");
+  run->add_option("--egl-platform", o->platform,
+                  "EGL platform: auto (NVIDIA device if present, else Mesa surfaceless), device, "
+                  "surfaceless")
+      ->check(CLI::IsMember({"auto", "device", "surfaceless"}))
+      ->capture_default_str();
+  run->add_option("--timer", s.timer,
+                  "Sub-pass timing: gl_timestamp (GPU timer queries), fenced_wall_clock "
+                  "(glFinish around each sub-pass), or auto (wall clock on software "
+                  "rasterisers such as llvmpipe, whose timestamps miss most of the work)")
+      ->check(CLI::IsMember({"auto", "gl_timestamp", "fenced_wall_clock"}))
+      ->capture_default_str();
+  run->add_flag("--gl-debug", s.context.debug_output, "Print OpenGL debug messages");
+
+  return [o, command_line]() {
+    RunSettings& settings = o->settings;
+    for (const auto& p : o->params) parse_structure_param(p, settings);
+    if (!o->visibility.empty()) {
+      settings.visibility.clear();
+      for (const auto& v : o->visibility) settings.visibility.push_back(parse_visibility(v));
+    }
+    if (o->normal_offset >= 0.0f) settings.normal_offset_pixels = o->normal_offset;
+    settings.context.platform = parse_egl_platform(o->platform);
+    if (settings.structures.size() == 1 && settings.structures[0] == "all")
+      settings.structures = structure_names();
+    return run_benchmark(settings, command_line, std::cout);
+  };
+}
+
+}  // namespace ldm::cli
