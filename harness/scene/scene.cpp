@@ -45,11 +45,11 @@ uint64_t Scene::content_hash() const {
   }
   h.add(camera);
   h.add(light);
-  // Field by field: AoSettings has padding after its bool.
+  // Field by field: AoSettings has padding after its bool. The normal offset is left out:
+  // it belongs to the LDM pass, and no reference image depends on it.
   h.add(uint8_t(ao.attenuated));
   h.add(ao.d_max);
   h.add(ao.falloff_exponent);
-  h.add(ao.normal_offset_pixels);
   return h.value();
 }
 

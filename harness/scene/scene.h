@@ -77,8 +77,8 @@ struct Scene {
   Bounds bounds() const;
   // Centre of the bounds and the largest vertex distance from it: every vertex lies inside.
   BoundingSphere bounding_sphere() const;
-  // A 64-bit FNV-1a hash of everything that affects an image (geometry, materials, camera,
-  // light, AO settings), for reference caching.
+  // A 64-bit FNV-1a hash of everything that affects a reference image (geometry, materials,
+  // camera, light, AO visibility and d_max; not the LDM-only normal offset), for caching.
   uint64_t content_hash() const;
   // Throws UserError (naming the scene) on empty geometry, NaN coordinates, bad indices.
   void validate() const;

@@ -3,6 +3,7 @@
 #include <numeric>
 
 #include "harness/gl/bindings.h"
+#include "ldm_impls/common/compute_grid.h"
 
 namespace ldm {
 namespace {
@@ -32,9 +33,7 @@ void LdmInspector::dispatch(const GlProgram& program, uint64_t first, uint64_t c
   program.set("inspect_pixel_count", unsigned(count));
   structure_.bind_for_query();
   views_.bind();
-  const uint64_t groups = (count + 63) / 64;
-  const uint64_t gx = std::min<uint64_t>(groups, 32768), gy = (groups + gx - 1) / gx;
-  glDispatchCompute(GLuint(gx), GLuint(gy), 1);
+  dispatch_linear_groups(groups_for(count, 64));
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
 }
 

@@ -3,8 +3,8 @@
 #include <algorithm>
 
 #include "harness/gl/bindings.h"
-#include "ldm_impls/ppsll/compute_grid.h"
-#include "ldm_impls/ppsll/post_sort.h"
+#include "ldm_impls/common/compute_grid.h"
+#include "ldm_impls/common/post_sort.h"
 
 namespace ldm {
 

@@ -2,7 +2,7 @@
 
 #include "harness/gl/bindings.h"
 #include "harness/util/error.h"
-#include "ldm_impls/ppsll/compute_grid.h"
+#include "ldm_impls/common/compute_grid.h"
 
 namespace ldm {
 

@@ -2,8 +2,8 @@
 
 #include "harness/gl/bindings.h"
 #include "harness/util/error.h"
-#include "ldm_impls/ppsll/compute_grid.h"
-#include "ldm_impls/ppsll/post_sort.h"
+#include "ldm_impls/common/compute_grid.h"
+#include "ldm_impls/common/post_sort.h"
 
 namespace ldm {
 

@@ -6,6 +6,7 @@
 layout(local_size_x = 64) in;
 
 #include "common/ldm_query_api.glsl"
+#include "ldm/common/compute_grid.glsl"
 
 layout(std430, binding = LDM_VALIDATION_BINDING) restrict buffer Inspect {
   uint inspect_totals[8];  // 0 nodes, 1 unsorted pixels, 2 over-long pixels, 3-4 checksums
@@ -24,7 +25,7 @@ uint mix_hash(uint h, uint v) {
 }
 
 void main() {
-  const uint local = gl_GlobalInvocationID.y * (gl_NumWorkGroups.x * 64u) + gl_GlobalInvocationID.x;
+  const uint local = linear_invocation_index();
   if (local >= inspect_pixel_count) return;
   const uint pixel = inspect_first_pixel + local;
   uint length = 0u;

@@ -4,7 +4,9 @@
 // i.e. to the first occluder along -forward and along +forward.
 #include "common/ldm_query_api.glsl"
 
-const float LDM_NO_HIT = uintBitsToFloat(0x7f800000u);  // +infinity: nothing in that direction
+// +infinity: nothing in that direction. A define, not a const: uintBitsToFloat is not a
+// constant expression for every GLSL compiler (glslang rejects it).
+#define LDM_NO_HIT uintBitsToFloat(0x7f800000u)
 
 struct LdmNeighbours {
   float behind;  // distance to the nearest fragment before x's own (smaller depth)

@@ -2,7 +2,7 @@
 // value of block g gains the scanned sum of the blocks before it, scan_block_offsets[g].
 layout(local_size_x = SCAN_GROUP_SIZE) in;
 
-#include "ldm/ppsll/compute_grid.glsl"
+#include "ldm/common/compute_grid.glsl"
 
 const uint SCAN_BLOCK = SCAN_GROUP_SIZE * SCAN_PER_INVOCATION;
 

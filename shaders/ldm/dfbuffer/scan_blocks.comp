@@ -11,7 +11,7 @@
 // of its values before it writes any, and touches no other block's.
 layout(local_size_x = SCAN_GROUP_SIZE) in;
 
-#include "ldm/ppsll/compute_grid.glsl"
+#include "ldm/common/compute_grid.glsl"
 
 const uint SCAN_BLOCK = SCAN_GROUP_SIZE * SCAN_PER_INVOCATION;
 

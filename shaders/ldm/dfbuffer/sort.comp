@@ -3,8 +3,8 @@
 // insertion sort in place in the depth array (counted).
 layout(local_size_x = 64) in;
 
-#include "ldm/ppsll/compute_grid.glsl"
-#include "ldm/ppsll/post_sort.glsl"
+#include "ldm/common/compute_grid.glsl"
+#include "ldm/common/post_sort.glsl"
 #include "ldm/dfbuffer/layout.glsl"
 
 layout(std430, binding = DF_OFFSETS_BINDING) readonly restrict buffer DfOffsets {

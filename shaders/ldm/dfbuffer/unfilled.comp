@@ -4,7 +4,7 @@
 // are stale; their number goes to df_unfilled_slots.
 layout(local_size_x = 64) in;
 
-#include "ldm/ppsll/compute_grid.glsl"
+#include "ldm/common/compute_grid.glsl"
 #include "ldm/dfbuffer/layout.glsl"
 
 layout(std430, binding = DF_COUNTS_BINDING) readonly restrict buffer DfCounts {

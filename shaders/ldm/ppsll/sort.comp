@@ -5,9 +5,9 @@
 // insertion-sorted in place through its nodes and counted.
 layout(local_size_x = 64) in;
 
-#include "ldm/ppsll/compute_grid.glsl"
+#include "ldm/common/compute_grid.glsl"
 #include "ldm/ppsll/nodes.glsl"
-#include "ldm/ppsll/post_sort.glsl"
+#include "ldm/common/post_sort.glsl"
 
 layout(std430, binding = LDM_STRUCTURE_BINDING0) restrict buffer PpsllData {
   uint data[];

@@ -4,7 +4,7 @@
 // with insertion sort and writes the depths back in order. A pixel with more than K
 // fragments is sorted in place in storage memory instead, which §3.3.3 calls detrimental to
 // performance; the sort passes count those pixels ("lists_sorted_in_place").
-// GLSL side: shaders/ldm/ppsll/post_sort.glsl.
+// GLSL side: shaders/ldm/common/post_sort.glsl.
 #include <cstdint>
 #include <string>
 

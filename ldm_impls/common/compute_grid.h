@@ -2,10 +2,10 @@
 // One-dimensional work over a two-dimensional grid of compute workgroups. A pass over every
 // LDM pixel (N * R_LDM^2, up to 32 M within a 128 MiB storage block) needs more workgroups
 // than the 65535 that GL guarantees along x, so the groups are laid out in rows of at most
-// kMaxGroupsPerRow. Shaders recover the linear index with shaders/ldm/ppsll/compute_grid.glsl
+// kMaxGroupsPerRow. Shaders recover the linear index with shaders/ldm/common/compute_grid.glsl
 // and must ignore the groups of the last row that lie past the end.
 //
-// Shared by the PPSLL sort and the DF-buffer's scan and sort (candidates for common/).
+// Shared by the PPSLL sort, the DF-buffer's scan and sort, and the inspector.
 #include <cstdint>
 #include <string>
 

@@ -1,4 +1,4 @@
-// The local half of post-sorting (thesis §3.2.8 "Sorting", §3.3.3; ldm_impls/ppsll/post_sort.h):
+// The local half of post-sorting (thesis §3.2.8 "Sorting", §3.3.3; ldm_impls/common/post_sort.h):
 // a shader-local array of LDM_SORT_LOCAL depths, sorted with insertion sort, which beats
 // the asymptotically better sorts on the short lists of a pixel [Knowles et al. 2012].
 // Depths are held and moved as their float bits, so that what is written back is bit for

@@ -1,5 +1,5 @@
 // Linear indices over the two-dimensional workgroup grid of dispatch_linear_groups()
-// (ldm_impls/ppsll/compute_grid.h): rows of gl_NumWorkGroups.x groups.
+// (ldm_impls/common/compute_grid.h): rows of gl_NumWorkGroups.x groups.
 #ifndef LDM_COMPUTE_GRID_GLSL
 #define LDM_COMPUTE_GRID_GLSL
 

@@ -1,4 +1,4 @@
-#include "ldm_impls/ppsll/post_sort.h"
+#include "ldm_impls/common/post_sort.h"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "ldm_impls/ppsll/compute_grid.h"
+#include "ldm_impls/common/compute_grid.h"
 
 #include <algorithm>
 
