@@ -4,7 +4,7 @@
 // sort pass (sort.comp) orders them. A node past LDM_NODE_CAPACITY is not written: the host
 // compares the counter with the capacity and records the overflow.
 #include "ldm/ldm_fragment.glsl"
-#include "ldm/ppsll/nodes.glsl"
+#include "ldm/common/list_nodes.glsl"
 
 layout(std430, binding = LDM_STRUCTURE_BINDING0) coherent restrict buffer PpsllData {
   uint data[];
@@ -17,8 +17,8 @@ void main() {
   const uint node = atomicCounterIncrement(node_counter) + 1u;
   if (node > LDM_NODE_CAPACITY) return;
   // Step (b): the node is this invocation's alone, so plain writes suffice.
-  data[ppsll_depth_slot(node)] = floatBitsToUint(v_depth);
+  data[list_depth_slot(node)] = floatBitsToUint(v_depth);
   // Steps (c) and (d): become the head; the old head is the new node's successor. Nothing
   // walks the lists during this pass, so the brief window before `next` is set is harmless.
-  data[ppsll_next_slot(node)] = atomicExchange(data[pixel], node);
+  data[list_next_slot(node)] = atomicExchange(data[pixel], node);
 }

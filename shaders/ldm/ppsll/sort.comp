@@ -6,7 +6,7 @@
 layout(local_size_x = 64) in;
 
 #include "ldm/common/compute_grid.glsl"
-#include "ldm/ppsll/nodes.glsl"
+#include "ldm/common/list_nodes.glsl"
 #include "ldm/common/post_sort.glsl"
 
 layout(std430, binding = LDM_STRUCTURE_BINDING0) restrict buffer PpsllData {
@@ -14,8 +14,8 @@ layout(std430, binding = LDM_STRUCTURE_BINDING0) restrict buffer PpsllData {
 };
 layout(binding = LDM_COUNTER_BINDING, offset = 4) uniform atomic_uint lists_sorted_in_place;
 
-uint next_node(uint node) { return data[ppsll_next_slot(node)]; }
-uint depth_bits(uint node) { return data[ppsll_depth_slot(node)]; }
+uint next_node(uint node) { return data[list_next_slot(node)]; }
+uint depth_bits(uint node) { return data[list_depth_slot(node)]; }
 float node_depth(uint node) { return uintBitsToFloat(depth_bits(node)); }
 
 // Insertion sort on the list itself: the nodes before `node` are sorted; its depth is
@@ -30,10 +30,10 @@ void sort_list_in_place(uint head) {
     while (at != node && node_depth(at) <= depth) at = next_node(at);
     for (; at != node; at = next_node(at)) {
       const uint displaced = depth_bits(at);
-      data[ppsll_depth_slot(at)] = carried;
+      data[list_depth_slot(at)] = carried;
       carried = displaced;
     }
-    data[ppsll_depth_slot(node)] = carried;
+    data[list_depth_slot(node)] = carried;
   }
 }
 
@@ -54,5 +54,5 @@ void main() {
   insertion_sort_local(count);
   count = 0u;
   for (node = head; node != 0u; node = next_node(node))
-    data[ppsll_depth_slot(node)] = sort_local[count++];
+    data[list_depth_slot(node)] = sort_local[count++];
 }

@@ -1,12 +1,10 @@
 // PSPPSLL construction (thesis §3.4.2, Listing 3): every fragment allocates a node with the
 // atomic counter and inserts it into its pixel's list in ascending depth, lock-free, by
-// atomicCompSwap on the predecessor's next index. All views share one data buffer:
-//   data[0 .. LDM_HEADS_TOTAL)            head index of every pixel of every view (0 = empty)
-//   data[LDM_HEADS_TOTAL + 2 (n - 1) + 0] next index of node n (n >= 1; 0 ends the list)
-//   data[LDM_HEADS_TOTAL + 2 (n - 1) + 1] depth of node n (float bits)
-// A node past LDM_NODE_CAPACITY is not written: the host compares the counter with the
-// capacity and records the overflow. An insertion that does not finish within
+// atomicCompSwap on the predecessor's next index. All views share one data buffer
+// (ldm/common/list_nodes.glsl). A node past LDM_NODE_CAPACITY is not written: the host
+// compares the counter with the capacity and records the overflow. An insertion that does not finish within
 // LDM_MAX_INSERT_STEPS steps (impossible on a conforming device) is counted as lost.
+#include "ldm/common/list_nodes.glsl"
 #include "ldm/ldm_fragment.glsl"
 
 layout(std430, binding = LDM_STRUCTURE_BINDING0) coherent restrict buffer PsppsllData {
@@ -14,8 +12,6 @@ layout(std430, binding = LDM_STRUCTURE_BINDING0) coherent restrict buffer Psppsl
 };
 layout(binding = LDM_COUNTER_BINDING, offset = 0) uniform atomic_uint node_counter;
 layout(binding = LDM_COUNTER_BINDING, offset = 4) uniform atomic_uint lost_counter;
-
-uint next_slot(uint node) { return LDM_HEADS_TOTAL + 2u * (node - 1u); }
 
 // The thesis's driver workaround (§3.4.3): read next indices with a no-op atomic.
 #if LDM_ATOMIC_READS
@@ -29,13 +25,13 @@ void main() {
   const uint node = atomicCounterIncrement(node_counter) + 1u;
   if (node > LDM_NODE_CAPACITY) return;
   const float depth = v_depth;
-  const uint node_slot = next_slot(node);
-  data[node_slot + 1u] = floatBitsToUint(depth);
+  const uint node_slot = list_next_slot(node);
+  data[list_depth_slot(node)] = floatBitsToUint(depth);
 
   uint previous_slot = pixel;  // the head index acts as the "next" field of a virtual node 0
   uint current = READ_NEXT(previous_slot);
   for (uint step = 0u; step < LDM_MAX_INSERT_STEPS; ++step) {
-    if (current == 0u || depth < uintBitsToFloat(data[next_slot(current) + 1u])) {
+    if (current == 0u || depth < uintBitsToFloat(data[list_depth_slot(current)])) {
       // Complete the new node before it becomes visible to other invocations.
       data[node_slot] = current;
       memoryBarrierBuffer();
@@ -43,7 +39,7 @@ void main() {
       if (seen == current) return;
       current = seen;  // another invocation inserted here first: continue from its node
     } else {
-      previous_slot = next_slot(current);
+      previous_slot = list_next_slot(current);
       current = READ_NEXT(previous_slot);
     }
   }
