@@ -138,3 +138,24 @@ TEST(SceneFile, ErrorsNameTheFileAndLineOrKey) {
 
 }  // namespace
 }  // namespace ldm
+
+namespace ldm {
+namespace {
+
+// The example scene files in scenes/ stay loadable as the format evolves.
+TEST(SceneFile, ShippedExamplesLoad) {
+  const std::filesystem::path dir = std::filesystem::path(LDM_TEST_SOURCE_DIR) / ".." / "scenes";
+  int loaded = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    if (entry.path().extension() != ".json") continue;
+    const Scene scene = load_scene(entry.path().string());
+    EXPECT_GT(scene.mesh.triangle_count(), 0u) << entry.path();
+    ++loaded;
+  }
+  EXPECT_GE(loaded, 3);
+  const Scene knot = load_scene((dir / "knot_in_box.json").string());
+  EXPECT_EQ(knot.mesh.triangle_count(), 10u + 2u * 160u * 10u);  // box walls + the tube
+}
+
+}  // namespace
+}  // namespace ldm
