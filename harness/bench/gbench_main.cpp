@@ -177,7 +177,7 @@ int main(int argc, char** argv) {
   }
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;
-  const auto context = HeadlessContext::create({});
+  const auto context = HeadlessContext::create(default_context_options());
   g_context = context.get();
   benchmark::AddCustomContext("gl_renderer", context->device().gl_renderer);
   benchmark::AddCustomContext("gl_version", context->device().gl_version);

@@ -19,7 +19,7 @@ Runner add_listing_commands(CLI::App& app) {
     } else if (structures->parsed()) {
       for (const auto& name : structure_names()) std::cout << name << "\n";
     } else if (info->parsed()) {
-      auto context = HeadlessContext::create({});
+      auto context = HeadlessContext::create(default_context_options());
       const DeviceInfo& d = context->device();
       std::cout << "renderer: " << d.gl_renderer << "\nvendor: " << d.gl_vendor
                 << "\nversion: " << d.gl_version << "\nglsl: " << d.glsl_version

@@ -11,8 +11,17 @@ enum class EglPlatform { Auto, Device, Surfaceless };
 
 struct ContextOptions {
   EglPlatform platform = EglPlatform::Auto;
-  bool debug_output = false;  // GL_KHR_debug messages to stderr; errors become exceptions
+  bool debug_output = false;  // GL_KHR_debug messages (errors, warnings) to stderr
 };
+
+// Debug builds turn GL debug output on; release builds leave it to --gl-debug.
+inline ContextOptions default_context_options() {
+  ContextOptions options;
+#ifndef NDEBUG
+  options.debug_output = true;
+#endif
+  return options;
+}
 
 // What the context runs on; copied into every record.
 struct DeviceInfo {

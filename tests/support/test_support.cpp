@@ -21,7 +21,7 @@ const auto* const registered = ::testing::AddGlobalTestEnvironment(new GlEnviron
 }  // namespace
 
 HeadlessContext& gl_context() {
-  static std::unique_ptr<HeadlessContext> context = HeadlessContext::create({});
+  static std::unique_ptr<HeadlessContext> context = HeadlessContext::create(default_context_options());
   return *context;
 }
 
