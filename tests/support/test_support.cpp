@@ -6,16 +6,27 @@
 #include <cstdio>
 #include <filesystem>
 #include <random>
+#include <vector>
 #include <sys/wait.h>
 
 namespace ldm::test {
 
 namespace {
+
+std::vector<std::filesystem::path>& temp_dirs() {
+  static std::vector<std::filesystem::path> dirs;
+  return dirs;
+}
+
 // Every test process gets its GL context before the first test, so that no test can run GL
-// calls without one (they would silently do nothing).
+// calls without one (they would silently do nothing), and leaves no temporary folders.
 class GlEnvironment : public ::testing::Environment {
  public:
   void SetUp() override { gl_context(); }
+  void TearDown() override {
+    std::error_code ignored;
+    for (const auto& dir : temp_dirs()) std::filesystem::remove_all(dir, ignored);
+  }
 };
 const auto* const registered = ::testing::AddGlobalTestEnvironment(new GlEnvironment);
 }  // namespace
@@ -42,6 +53,7 @@ std::string make_temp_dir(const std::string& prefix) {
   const auto dir = std::filesystem::temp_directory_path() /
                    (prefix + "-" + std::to_string(random()) + std::to_string(random()));
   std::filesystem::create_directories(dir);
+  temp_dirs().push_back(dir);
   return dir.string();
 }
 

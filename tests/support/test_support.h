@@ -13,7 +13,7 @@ HeadlessContext& gl_context();
 // Runs a shell command; returns its exit status and captures stdout+stderr into *output.
 int run_command(const std::string& command, std::string* output);
 
-// A fresh empty directory under the system temp dir, removed by the caller if wanted.
+// A fresh empty directory under the system temp dir, removed when the test process ends.
 std::string make_temp_dir(const std::string& prefix);
 
 }  // namespace ldm::test
