@@ -4,4 +4,7 @@
 
 layout(std430, binding = LDM_CENSUS_BINDING) restrict buffer Census { uint census_counts[]; };
 
-void main() { atomicAdd(census_counts[ldm_fragment_pixel()], 1u); }
+void main() {
+  LDM_SKIP_HELPER_INVOCATIONS;
+  atomicAdd(census_counts[ldm_fragment_pixel()], 1u);
+}

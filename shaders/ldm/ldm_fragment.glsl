@@ -10,3 +10,10 @@ uint ldm_fragment_pixel() {
   const uvec2 texel = uvec2(gl_FragCoord.xy);
   return view.dims.z + texel.y * view.dims.x + texel.x;
 }
+
+// Helper invocations (which a rasteriser may run for whole 2x2 quads at triangle edges) must
+// not take part: their stores and atomics have no effect and return undefined values, so an
+// insertion loop in one would only spin to its step bound. Every LDM fragment shader that
+// writes storage starts its main() with this.
+#define LDM_SKIP_HELPER_INVOCATIONS \
+  if (gl_HelperInvocation) return

@@ -18,6 +18,7 @@ layout(binding = LDM_COUNTER_BINDING, offset = 0) uniform atomic_uint lost_beyon
 layout(binding = LDM_COUNTER_BINDING, offset = 4) uniform atomic_uint lost_beyond_capacity;
 
 void main() {
+  LDM_SKIP_HELPER_INVOCATIONS;
   const uint pixel = ldm_fragment_pixel();
   const uint first = df_offsets[pixel];
   const uint length = df_offsets[pixel + 1u] - first;

@@ -4,4 +4,7 @@
 
 layout(std430, binding = DF_COUNTS_BINDING) restrict buffer DfCounts { uint df_counts[]; };
 
-void main() { atomicAdd(df_counts[ldm_fragment_pixel()], 1u); }
+void main() {
+  LDM_SKIP_HELPER_INVOCATIONS;
+  atomicAdd(df_counts[ldm_fragment_pixel()], 1u);
+}

@@ -15,6 +15,7 @@ layout(std430, binding = LDM_STRUCTURE_BINDING1) restrict buffer PpflaCounts {
 layout(binding = LDM_COUNTER_BINDING, offset = 0) uniform atomic_uint dropped_fragments;
 
 void main() {
+  LDM_SKIP_HELPER_INVOCATIONS;
   const uint pixel = ldm_fragment_pixel();
   const uint slot = atomicAdd(ppfla_counts[pixel], 1u);
   if (slot < FA_K)

@@ -17,6 +17,7 @@ layout(std430, binding = LDM_STRUCTURE_BINDING0) restrict buffer PsppflaEntries 
 layout(binding = LDM_COUNTER_BINDING, offset = 0) uniform atomic_uint dropped_fragments;
 
 void main() {
+  LDM_SKIP_HELPER_INVOCATIONS;
   const uint base = fa_entry(ldm_fragment_pixel(), 0u);
   uint carried = ordered_depth_bits(v_depth);
   for (uint i = 0u; i < FA_K; ++i) {

@@ -26,6 +26,7 @@ layout(binding = LDM_COUNTER_BINDING, offset = 0) uniform atomic_uint dropped_ma
 layout(binding = LDM_COUNTER_BINDING, offset = 4) uniform atomic_uint aborted_insertions;
 
 void main() {
+  LDM_SKIP_HELPER_INVOCATIONS;
   uint pixel = ldm_fragment_pixel();
   uint age = 0u;
   HaKey key = ha_key(0u, ha_depth_bits(v_depth));

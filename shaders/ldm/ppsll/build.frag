@@ -12,6 +12,7 @@ layout(std430, binding = LDM_STRUCTURE_BINDING0) coherent restrict buffer PpsllD
 layout(binding = LDM_COUNTER_BINDING, offset = 0) uniform atomic_uint node_counter;
 
 void main() {
+  LDM_SKIP_HELPER_INVOCATIONS;
   const uint pixel = ldm_fragment_pixel();
   // Step (a): a unique node; index 0 is reserved for "end of list".
   const uint node = atomicCounterIncrement(node_counter) + 1u;

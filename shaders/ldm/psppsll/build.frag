@@ -21,6 +21,7 @@ layout(binding = LDM_COUNTER_BINDING, offset = 4) uniform atomic_uint lost_count
 #endif
 
 void main() {
+  LDM_SKIP_HELPER_INVOCATIONS;
   const uint pixel = ldm_fragment_pixel();
   const uint node = atomicCounterIncrement(node_counter) + 1u;
   if (node > LDM_NODE_CAPACITY) return;
