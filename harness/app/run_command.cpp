@@ -59,7 +59,9 @@ int run_benchmark(const RunSettings& settings, const std::string& command_line, 
                                      timestamp("%Y%m%d-%H%M%S")).string()
                                   : settings.out_dir;
   const MeasurementPaths paths{out_dir, (std::filesystem::path(out_dir) / "images").string()};
-  std::filesystem::create_directories(paths.images_dir);
+  std::error_code error;
+  std::filesystem::create_directories(paths.images_dir, error);
+  if (error) throw UserError("--out: cannot create '" + paths.images_dir + "': " + error.message());
   const std::string csv_path = (std::filesystem::path(out_dir) / "records.csv").string();
   const std::string json_path = (std::filesystem::path(out_dir) / "records.json").string();
 
