@@ -22,11 +22,14 @@ struct Outcome {
   std::string output;
 };
 
-Outcome ldmbench(const std::string& args) {
+Outcome ldmbench_with_env(const std::string& environment, const std::string& args) {
   Outcome o;
-  o.status = test::run_command(std::string(LDM_BINARY_PATH) + " " + args, &o.output);
+  o.status = test::run_command(environment + " " + std::string(LDM_BINARY_PATH) + " " + args,
+                               &o.output);
   return o;
 }
+
+Outcome ldmbench(const std::string& args) { return ldmbench_with_env("", args); }
 
 std::string read_text(const fs::path& path) {
   std::ifstream in(path);
@@ -219,6 +222,20 @@ TEST(Gbench, TimesBuildAndAoTraceOfEveryStructure) {
   EXPECT_EQ(bad.status, 2);
 }
 #endif
+
+// A device without OpenGL 4.5 gets an error saying what it found. Mesa can be made to offer
+// less than it supports; other drivers ignore the override, so there is nothing to test.
+TEST(Cli, DeviceWithoutGl45IsRefusedWithWhatWasFound) {
+  if (test::gl_context().device().gl_version.find("Mesa") == std::string::npos)
+    GTEST_SKIP() << "MESA_GL_VERSION_OVERRIDE only applies to Mesa";
+  const fs::path out = fs::path(test::make_temp_dir("ldm-cli")) / "old";
+  const Outcome o = ldmbench_with_env("MESA_GL_VERSION_OVERRIDE=3.3",
+                                      "run -N 2 -R 8 --no-reference --out " + out.string());
+  EXPECT_EQ(o.status, 2) << o.output;
+  EXPECT_NE(o.output.find("needs an OpenGL 4.5 core context"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("OpenGL 3.3"), std::string::npos) << o.output;
+  EXPECT_FALSE(fs::exists(out));
+}
 
 TEST(Cli, HelpDocumentsEveryRunOption) {
   const Outcome o = ldmbench("run --help");
