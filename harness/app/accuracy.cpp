@@ -11,6 +11,12 @@
 namespace ldm {
 namespace {
 
+void append_status_detail(Record& r, const std::string& text) {
+  const RecordValue* detail = r.get("status_detail");
+  const std::string before = detail ? std::get<std::string>(*detail) : "";
+  r.set("status_detail", before.empty() ? text : before + "; " + text);
+}
+
 void write_heat_map(const Image& image, double max_value, const AccuracyOutputs& out,
                     const std::string& suffix) {
   const auto path = std::filesystem::path(out.images_dir) / (out.image_stem + suffix + ".png");
@@ -40,6 +46,11 @@ void add_ao_accuracy(Record& r, const Scene& scene, const AoSettings& ao, const 
   r.set("ref_render_seconds", reference.render_seconds);
   r.set("ref_from_cache", reference.from_cache);
   r.set("ref_cache_key", reference.cache_key);
+  if (!reference.noise_target_met) {
+    // Not an invalid measurement, but its error floor is higher than asked: say so where a
+    // reader of the record looks first.
+    append_status_detail(r, "reference noise target not met at the spp cap (see ref_noise_mse)");
+  }
 
   ImageComparison metrics;
   try {
@@ -47,9 +58,7 @@ void add_ao_accuracy(Record& r, const Scene& scene, const AoSettings& ao, const 
   } catch (const UserError& e) {
     r.set("metrics_error", e.what());
     r.set("status", "invalid");
-    const RecordValue* detail = r.get("status_detail");
-    const std::string before = detail ? std::get<std::string>(*detail) : "";
-    r.set("status_detail", (before.empty() ? "" : before + "; ") + "image not measured: " + e.what());
+    append_status_detail(r, std::string("image not measured: ") + e.what());
     return;
   }
   r.set("mse", metrics.mse);
