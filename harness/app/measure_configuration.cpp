@@ -12,6 +12,7 @@
 #include "harness/passes/gbuffer_pass.h"
 #include "harness/passes/raster_baseline.h"
 #include "harness/util/error.h"
+#include "harness/util/version.h"
 #include "harness/util/hash.h"
 #include "ldm_impls/common/ldm_inspector.h"
 
@@ -129,8 +130,8 @@ void describe_configuration(Record& r, const Configuration& config, const RunSet
   r.set("gl_version", device.gl_version);
   r.set("egl_platform", device.egl_platform);
   r.set("int64_atomics", device.has_int64_atomics);
-  r.set("ldmbench_version", LDM_VERSION);
-  r.set("git_commit", LDM_GIT_COMMIT);
+  r.set("ldmbench_version", ldmbench_version());
+  r.set("git_commit", git_commit());
 }
 
 Record measure_configuration(const Scene& scene, const Configuration& config,

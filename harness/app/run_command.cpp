@@ -14,6 +14,7 @@
 #include "harness/records/record.h"
 #include "harness/scene/scene_loader.h"
 #include "harness/util/error.h"
+#include "harness/util/version.h"
 #include "ldm_impls/ldm_structure.h"
 
 namespace ldm {
@@ -71,8 +72,8 @@ int run_benchmark(const RunSettings& settings, const std::string& command_line, 
   run.set("device", device.gl_renderer);
   run.set("gl_version", device.gl_version);
   run.set("egl_platform", device.egl_platform);
-  run.set("git_commit", LDM_GIT_COMMIT);
-  run.set("ldmbench_version", LDM_VERSION);
+  run.set("git_commit", git_commit());
+  run.set("ldmbench_version", ldmbench_version());
 
   const auto configurations = expand_configurations(settings);
   std::vector<Record> records;
