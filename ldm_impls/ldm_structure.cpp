@@ -69,10 +69,10 @@ bool StructureParams::get_bool(const std::string& key, bool fallback) {
   return v == "1" || v == "true";
 }
 
-void StructureParams::finish(const std::string& structure) const {
+void StructureParams::finish(const std::string& owner) const {
   for (const auto& [key, value] : values_)
     if (std::find(read_.begin(), read_.end(), key) == read_.end())
-      throw UserError("structure " + structure + " has no parameter '" + key + "'");
+      throw UserError(owner + " has no parameter '" + key + "'");
 }
 
 uint64_t checked_storage_block(const std::string& structure, const std::string& buffer,

@@ -59,8 +59,9 @@ struct BuildStats {
   std::vector<std::pair<std::string, double>> counters;
 };
 
-// key=value parameters of a structure (--structure-param psppsll:pool=grow). Getters check
-// ranges and remember which keys were read; finish() rejects the rest, so a typo is an error.
+// key=value parameters of a structure (--param psppsll:pool=grow) or of a pass
+// (harness/passes/pass.h). Getters check ranges and remember which keys were read; finish()
+// rejects the rest, so a typo is an error.
 class StructureParams {
  public:
   StructureParams() = default;
@@ -71,7 +72,10 @@ class StructureParams {
   std::string get_choice(const std::string& key, const std::string& fallback,
                          const std::vector<std::string>& allowed);
   bool get_bool(const std::string& key, bool fallback);
-  void finish(const std::string& structure) const;
+  // Whether `key` was given (a key with no default value, e.g. an override of the scene's).
+  bool has(const std::string& key) const { return values_.count(key) > 0; }
+  // `owner` names whose parameters these are in the message, e.g. "structure psppsll".
+  void finish(const std::string& owner) const;
   const std::map<std::string, std::string>& values() const { return values_; }
 
  private:

@@ -42,7 +42,7 @@ std::unique_ptr<LdmStructure> make_structure(const std::string& name, StructureP
   for (const auto& e : registry()) {
     if (name == e.name) {
       auto structure = e.make(params);
-      params.finish(name);
+      params.finish("structure " + name);
       return structure;
     }
   }

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "harness/app/measure_configuration.h"
+#include "harness/passes/pass.h"
 #include "harness/records/record.h"
 #include "harness/scene/scene_loader.h"
 #include "harness/util/error.h"
@@ -31,16 +32,16 @@ std::string timestamp(const char* format) {
 
 // Everything the user can get wrong is checked here, before any GPU work or file output.
 void validate_axes(const RunSettings& s) {
-  for (const auto& config : expand_configurations(s))
+  for (const auto& config : expand_configurations(s)) {
     make_structure(config.structure, StructureParams(config.params, "--param " + config.structure));
+    make_pass(config.pass, StructureParams(config.pass_params, "--pass " + config.pass));
+  }
   for (const auto& [structure, params] : s.structure_params) {
     (void)params;
     if (std::find(s.structures.begin(), s.structures.end(), structure) == s.structures.end())
       throw UserError("--param " + structure + ":...: structure '" + structure +
                       "' is not among --structure");
   }
-  for (const auto& pass : s.passes)
-    if (pass != "ao") throw UserError("--pass: unknown pass '" + pass + "' (known: ao)");
 }
 
 }  // namespace

@@ -32,6 +32,17 @@ std::string Configuration::id() const {
   return id;
 }
 
+namespace {
+
+// Round-trips a float through text (the pass reads it back with strtod).
+std::string float_text(float value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.9g", double(value));
+  return buffer;
+}
+
+}  // namespace
+
 std::vector<Configuration> expand_configurations(const RunSettings& s) {
   std::vector<Configuration> out;
   const std::vector<std::optional<float>> d_values =
@@ -54,6 +65,10 @@ std::vector<Configuration> expand_configurations(const RunSettings& s) {
                 c.visibility = v;
                 auto params = s.structure_params.find(structure);
                 if (params != s.structure_params.end()) c.params = params->second;
+                if (d) c.pass_params["d_max"] = float_text(*d);
+                if (v != Visibility::Scene) c.pass_params["visibility"] = visibility_name(v);
+                if (s.normal_offset_pixels)
+                  c.pass_params["normal_offset_pixels"] = float_text(*s.normal_offset_pixels);
                 out.push_back(c);
               }
   return out;

@@ -8,19 +8,11 @@
 #include <vector>
 
 #include "harness/gl/egl_context.h"
+#include "harness/reference/reference_settings.h"
 
 namespace ldm {
 
 enum class Visibility { Scene, Attenuated, Unattenuated };
-
-struct ReferenceSettings {
-  bool enabled = true;
-  uint32_t spp_per_half = 0;         // 0: automatic (doubling until the noise target is met)
-  double target_noise_mse = 1e-5;
-  uint32_t max_spp_per_half = 4096;
-  uint64_t seed = 1;
-  std::string cache_dir;             // default: results/cache/references
-};
 
 struct RunSettings {
   // Axes.
@@ -53,6 +45,9 @@ struct Configuration {
   std::optional<float> d_max;
   Visibility visibility = Visibility::Scene;
   std::map<std::string, std::string> params;
+  // The pass's parameters (harness/passes/pass.h): the AO axes of the command line
+  // (--d-max, --visibility, --normal-offset) as key=value, checked by the pass itself.
+  std::map<std::string, std::string> pass_params;
   // A short unique name for file names: cornell-psppsll-ao-n32-r128[-d1.5][-att][-k=v...]
   std::string id() const;
 };

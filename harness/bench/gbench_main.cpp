@@ -1,14 +1,17 @@
-// Google Benchmark front end: construction and AO-trace time of every structure, per
-// (scene, structure, N, R_LDM), in Google Benchmark's formats so that its compare.py tool
-// works on the JSON (--benchmark_out=FILE --benchmark_out_format=json).
+// Google Benchmark front end: construction time of every structure and the time of each
+// sub-pass of every pass, per (scene, structure, pass, N, R_LDM), in Google Benchmark's
+// formats so that its compare.py tool works on the JSON (--benchmark_out=FILE
+// --benchmark_out_format=json). Each benchmark runs the frames of `ldmbench run` through
+// the same measure() (harness/app/measurement.h), one frame per iteration.
 //
 // Each iteration is timed with ldmbench's own timer (GL timestamps on GPUs, a fenced wall
 // clock on software rasterisers; see harness/measure/gpu_timer.h) and reported as manual
 // time. Axes come from these flags, given before or among Google Benchmark's own:
-//   --ldm_scenes=cornell,atrium  --ldm_structures=all  --ldm_views=32  --ldm_r=128
-//   --ldm_width=256 --ldm_height=256
-// A build that loses fragments or fails its integrity check is reported as an error, not
-// as a time.
+//   --ldm_scenes=cornell,atrium  --ldm_structures=all  --ldm_passes=all  --ldm_views=32
+//   --ldm_r=128  --ldm_width=256 --ldm_height=256
+// A configuration whose builds BuildHealth judges invalid (exactly those `ldmbench run`
+// records as "invalid") is reported as an error, not as a time; a lossy one is timed, with
+// its fragments_lost counter.
 #include <benchmark/benchmark.h>
 
 #include <cstring>
@@ -17,13 +20,11 @@
 #include <memory>
 #include <sstream>
 
-#include "harness/app/ldm_setup.h"
+#include "harness/app/measurement.h"
 #include "harness/gl/egl_context.h"
-#include "harness/passes/ao_pass.h"
-#include "harness/passes/gbuffer_pass.h"
+#include "harness/passes/pass.h"
 #include "harness/scene/scene_loader.h"
 #include "harness/util/error.h"
-#include "ldm_impls/common/ldm_inspector.h"
 
 namespace {
 
@@ -32,6 +33,7 @@ using namespace ldm;
 struct Axes {
   std::vector<std::string> scenes = {"cornell", "atrium"};
   std::vector<std::string> structures = structure_names();
+  std::vector<std::string> passes = pass_names();
   std::vector<uint32_t> views = {32};
   std::vector<uint32_t> resolutions = {128};
   int width = 256, height = 256;
@@ -71,6 +73,8 @@ Axes parse_axes(int* argc, char** argv) {
     if (const char* v = value("--ldm_scenes")) axes.scenes = split(v);
     else if (const char* v = value("--ldm_structures"))
       axes.structures = std::string(v) == "all" ? structure_names() : split(v);
+    else if (const char* v = value("--ldm_passes"))
+      axes.passes = std::string(v) == "all" ? pass_names() : split(v);
     else if (const char* v = value("--ldm_views")) axes.views = split_numbers("--ldm_views", v);
     else if (const char* v = value("--ldm_r")) axes.resolutions = split_numbers("--ldm_r", v);
     else if (const char* v = value("--ldm_width")) axes.width = int(split_numbers("--ldm_width", v).at(0));
@@ -84,80 +88,43 @@ Axes parse_axes(int* argc, char** argv) {
 
 HeadlessContext* g_context = nullptr;
 
-// Setups are shared by the benchmarks of one (scene, N, R): the census runs once.
-const LdmSetup& setup_for(const std::string& scene, uint32_t views, uint32_t resolution) {
-  static std::map<std::string, std::unique_ptr<LdmSetup>> cache;
-  const std::string key = scene + "/" + std::to_string(views) + "/" + std::to_string(resolution);
-  auto& slot = cache[key];
-  if (!slot) {
-    AttributeSet attributes;
-    attributes.normals = true;
-    slot = std::make_unique<LdmSetup>(load_scene(scene), attributes, views, resolution);
-  }
-  return *slot;
-}
-
-void report_common(benchmark::State& state, const LdmSetup& setup, const LdmStructure& s) {
-  uint64_t allocated = 0;
-  for (const auto& m : s.memory()) allocated += m.allocated;
-  state.counters["fragments"] = double(setup.census.total_fragments);
-  state.counters["bytes_allocated"] = double(allocated);
-  state.SetLabel(g_context->device().gl_renderer);
-}
-
-// True when the last build stored every fragment and reads back intact.
-bool build_is_sound(benchmark::State& state, const LdmSetup& setup, LdmStructure& s) {
-  const BuildStats stats = s.stats();
-  const LdmIntegrity integrity = LdmInspector(s, *setup.inputs).check();
-  if (stats.fragments_lost > 0 || integrity.fragments != setup.census.total_fragments ||
-      integrity.unsorted_pixels > 0) {
-    state.SkipWithError("build lost fragments or failed its integrity check");
-    return false;
-  }
-  return true;
-}
-
-void run_build(benchmark::State& state, std::string scene, std::string structure, uint32_t views,
-               uint32_t resolution) {
+// One benchmark times one sub-pass sum of the frame `ldmbench run` measures (raster
+// baseline, structure build, pass), through the same measure(): "build" (the structure's
+// sub-passes) or one of the pass's own. Every build is judged by the same BuildHealth, so a
+// configuration `ldmbench run` marks invalid is an error here, never a time.
+void run_measurement(benchmark::State& state, const Scene* scene, std::string structure,
+                     std::string pass, std::string timed, uint32_t views, uint32_t resolution,
+                     int width, int height) {
   try {
-    const LdmSetup& setup = setup_for(scene, views, resolution);
-    auto s = setup.prepare(structure);
-    GpuTimer timer(default_timer_source(g_context->device().gl_renderer));
-    for (auto _ : state) {
-      timer.begin_frame();
-      s->build(*setup.inputs, &timer);
-      double ms = 0;
-      for (const auto& [name, t] : timer.end_frame()) ms += t;
-      state.SetIterationTime(ms * 1e-3);
+    MeasurementRequest request;
+    request.structure = structure;
+    request.pass = pass;
+    request.views = views;
+    request.resolution = resolution;
+    request.width = width;
+    request.height = height;
+    request.warmup = 1;
+    request.timer = default_timer_source(g_context->device().gl_renderer);
+    request.keep_running = [&state] { return state.KeepRunning(); };
+    request.on_frame = [&state, &timed](const FrameTimes& times) {
+      for (const auto& [name, ms] : times)
+        if (name == timed) state.SetIterationTime(ms * 1e-3);
+    };
+    const Measurement m = measure(*scene, request);
+    if (m.status == BuildStatus::Invalid) {
+      state.SkipWithError(("invalid build: " + m.status_detail).c_str());
+      return;
     }
-    if (!build_is_sound(state, setup, *s)) return;
-    report_common(state, setup, *s);
-    state.counters["fragments_per_second"] = benchmark::Counter(
-        double(setup.census.total_fragments), benchmark::Counter::kIsIterationInvariantRate);
-  } catch (const std::exception& e) {
-    state.SkipWithError(e.what());
-  }
-}
-
-void run_ao_trace(benchmark::State& state, std::string scene, std::string structure,
-                  uint32_t views, uint32_t resolution, int width, int height) {
-  try {
-    const LdmSetup& setup = setup_for(scene, views, resolution);
-    auto s = setup.prepare(structure);
-    s->build(*setup.inputs, nullptr);
-    if (!build_is_sound(state, setup, *s)) return;
-    GBufferPass gbuffer(width, height);
-    gbuffer.render(*setup.gpu_scene, setup.scene, nullptr);
-    AoPass ao(*s, *setup.inputs, width, height, setup.scene.ao);
-    GpuTimer timer(default_timer_source(g_context->device().gl_renderer));
-    for (auto _ : state) {
-      timer.begin_frame();
-      ao.render(gbuffer, &timer);
-      state.SetIterationTime(timer.end_frame().at(0).second * 1e-3);
-    }
-    report_common(state, setup, *s);
-    state.counters["pixels_per_second"] =
-        benchmark::Counter(double(width) * height, benchmark::Counter::kIsIterationInvariantRate);
+    state.counters["fragments"] = double(m.census.fragments);
+    state.counters["fragments_lost"] = double(m.last_build.fragments_lost);
+    state.counters["bytes_allocated"] = double(m.bytes_allocated());
+    if (timed == "build")
+      state.counters["fragments_per_second"] = benchmark::Counter(
+          double(m.census.fragments), benchmark::Counter::kIsIterationInvariantRate);
+    else
+      state.counters["pixels_per_second"] = benchmark::Counter(
+          double(width) * height, benchmark::Counter::kIsIterationInvariantRate);
+    state.SetLabel(g_context->device().gl_renderer);
   } catch (const std::exception& e) {
     state.SkipWithError(e.what());
   }
@@ -167,10 +134,12 @@ void run_ao_trace(benchmark::State& state, std::string scene, std::string struct
 
 int main(int argc, char** argv) {
   Axes axes;
+  std::map<std::string, Scene> scenes;
   try {
     axes = parse_axes(&argc, argv);
     for (const auto& s : axes.structures) make_structure(s, StructureParams());
-    for (const auto& scene : axes.scenes) load_scene(scene);
+    for (const auto& p : axes.passes) make_pass(p, StructureParams());
+    for (const auto& scene : axes.scenes) scenes.emplace(scene, load_scene(scene));
   } catch (const UserError& e) {
     std::cerr << "ldmbench_gbench: error: " << e.what() << "\n";
     return 2;
@@ -184,18 +153,22 @@ int main(int argc, char** argv) {
   benchmark::AddCustomContext("timer", timer_source_name(default_timer_source(context->device().gl_renderer)));
   for (const auto& scene : axes.scenes)
     for (const auto& structure : axes.structures)
-      for (uint32_t n : axes.views)
-        for (uint32_t r : axes.resolutions) {
-          const std::string suffix = "/" + scene + "/" + structure + "/N:" + std::to_string(n) +
-                                     "/R:" + std::to_string(r);
-          benchmark::RegisterBenchmark(("Build" + suffix).c_str(), run_build, scene, structure, n, r)
-              ->UseManualTime()
-              ->Unit(benchmark::kMillisecond);
-          benchmark::RegisterBenchmark(("AoTrace" + suffix).c_str(), run_ao_trace, scene, structure,
-                                       n, r, axes.width, axes.height)
-              ->UseManualTime()
-              ->Unit(benchmark::kMillisecond);
-        }
+      for (const auto& pass : axes.passes)
+        for (uint32_t n : axes.views)
+          for (uint32_t r : axes.resolutions) {
+            const std::string suffix = "/" + scene + "/" + structure + "/N:" + std::to_string(n) +
+                                       "/R:" + std::to_string(r);
+            // "build" and each sub-pass the pass declares, e.g. Build/..., ao:gbuffer/...
+            std::vector<std::pair<std::string, std::string>> timed = {{"Build", "build"}};
+            for (const auto& s : make_pass(pass, StructureParams())->subpasses())
+              timed.emplace_back(pass + ":" + s.name, s.name);
+            for (const auto& [label, subpass] : timed)
+              benchmark::RegisterBenchmark((label + suffix).c_str(), run_measurement,
+                                           &scenes.at(scene), structure, pass, subpass, n, r,
+                                           axes.width, axes.height)
+                  ->UseManualTime()
+                  ->Unit(benchmark::kMillisecond);
+          }
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   return 0;

@@ -13,6 +13,13 @@ double median_of(std::vector<double> values) {
   return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
+const TimingSummary* find_summary(const std::vector<TimingSummary>& summaries,
+                                  const std::string& subpass) {
+  for (const auto& s : summaries)
+    if (s.subpass == subpass) return &s;
+  return nullptr;
+}
+
 void TimingSeries::add_frame(const FrameTimes& frame) {
   ++frames_;
   for (const auto& [name, ms] : frame) {

@@ -15,6 +15,10 @@ struct TimingSummary {
 
 double median_of(std::vector<double> values);
 
+// The summary of `subpass`, or null when it was not timed.
+const TimingSummary* find_summary(const std::vector<TimingSummary>& summaries,
+                                  const std::string& subpass);
+
 // Collects the per-frame sub-pass times of the measured frames (warm-up frames are simply
 // never added) and summarises each sub-pass, in first-seen order.
 class TimingSeries {

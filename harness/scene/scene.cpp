@@ -76,4 +76,11 @@ void Scene::validate() const {
     throw UserError(where + ": camera.eye and camera.target coincide");
 }
 
+AoSettings apply_ao_overrides(AoSettings ao, const AoOverrides& overrides) {
+  if (overrides.d_max) ao.d_max = *overrides.d_max;
+  if (overrides.attenuated) ao.attenuated = *overrides.attenuated;
+  if (overrides.normal_offset_pixels) ao.normal_offset_pixels = *overrides.normal_offset_pixels;
+  return ao;
+}
+
 }  // namespace ldm

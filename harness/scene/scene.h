@@ -2,6 +2,7 @@
 // The scene: one triangle soup with per-triangle materials, a camera, a spot light and the
 // ambient-occlusion settings. Everything a pass or a reference renderer reads comes from here.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,15 @@ struct AoSettings {
   // Expressed in pixels (not scene units) so that it scales with R_LDM.
   float normal_offset_pixels = 1.0f;
 };
+
+// What a run or a reference asks to change in the scene's AO settings; unset fields keep
+// the scene's own.
+struct AoOverrides {
+  std::optional<float> d_max;
+  std::optional<bool> attenuated;
+  std::optional<float> normal_offset_pixels;
+};
+AoSettings apply_ao_overrides(AoSettings scene_ao, const AoOverrides& overrides);
 
 struct BoundingSphere {
   glm::vec3 centre{0.0f};

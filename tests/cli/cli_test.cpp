@@ -199,7 +199,7 @@ TEST(Cli, ReferenceAndCompareImages) {
 
 #ifdef LDM_GBENCH_PATH
 // The Google Benchmark binary runs every structure and writes JSON that compare.py reads.
-TEST(Gbench, TimesBuildAndAoTraceOfEveryStructure) {
+TEST(Gbench, TimesBuildAndEveryPassSubpassOfEveryStructure) {
   const std::string json = (fs::path(test::make_temp_dir("ldm-gbench")) / "out.json").string();
   std::string output;
   const int status = test::run_command(
@@ -216,8 +216,9 @@ TEST(Gbench, TimesBuildAndAoTraceOfEveryStructure) {
     EXPECT_GT(b["fragments"].get<double>(), 0.0) << b["name"];
     names.insert(b["name"].get<std::string>());
   }
-  EXPECT_EQ(names.size(), 2 * 6u);  // Build and AoTrace for each structure
+  EXPECT_EQ(names.size(), 3 * 6u);  // Build, ao:gbuffer and ao:ao for each structure
   EXPECT_TRUE(names.count("Build/cornell/dfbuffer/N:4/R:32/manual_time"));
+  EXPECT_TRUE(names.count("ao:ao/cornell/psppsll/N:4/R:32/manual_time"));
   const Outcome bad = {test::run_command(std::string(LDM_GBENCH_PATH) + " --ldm_views=0", &output), output};
   EXPECT_EQ(bad.status, 2);
 }

@@ -1,0 +1,139 @@
+#include "harness/app/measurement.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "harness/app/ldm_setup.h"
+#include "harness/metrics/image_checks.h"
+#include "harness/passes/raster_baseline.h"
+#include "harness/util/error.h"
+#include "harness/util/hash.h"
+#include "ldm_impls/common/ldm_inspector.h"
+
+namespace ldm {
+namespace {
+
+// The raster baseline is timed beside the build but belongs to neither the build nor the
+// frame: it is the yardstick the build is compared with (build_vs_raster).
+constexpr const char* kRasterBaseline = "raster_baseline";
+
+CensusSummary summarize_census(const FragmentCensus& census) {
+  CensusSummary s;
+  s.fragments = census.total_fragments;
+  s.max_depth_complexity = census.max_depth_complexity;
+  s.mean_depth_complexity = census.mean_depth_complexity();
+  s.nonempty_pixel_fraction =
+      census.total_pixels ? double(census.nonempty_pixels) / double(census.total_pixels) : 0.0;
+  return s;
+}
+
+// Adds the sums "build" (the structure's sub-passes: all but the baseline and the pass's
+// own) and "frame" (all but the baseline) to one frame's times.
+void add_frame_sums(FrameTimes& times, const std::vector<std::string>& pass_subpasses) {
+  double build_ms = 0, frame_ms = 0;
+  for (const auto& [name, ms] : times) {
+    if (name == kRasterBaseline) continue;
+    frame_ms += ms;
+    if (std::find(pass_subpasses.begin(), pass_subpasses.end(), name) == pass_subpasses.end())
+      build_ms += ms;
+  }
+  times.emplace_back("build", build_ms);
+  times.emplace_back("frame", frame_ms);
+}
+
+}  // namespace
+
+std::vector<TimingSummary> Measurement::summaries() const {
+  TimingSeries series;
+  for (const auto& frame : frames) series.add_frame(frame);
+  return series.summarize();
+}
+
+uint64_t Measurement::bytes_allocated() const {
+  uint64_t total = 0;
+  for (const auto& m : memory) total += m.allocated;
+  return total;
+}
+
+uint64_t Measurement::bytes_used() const {
+  uint64_t total = 0;
+  for (const auto& m : memory) total += m.used;
+  return total;
+}
+
+Measurement measure(const Scene& scene, const MeasurementRequest& request) {
+  auto pass = make_pass(request.pass, StructureParams(request.pass_params, "--pass " + request.pass));
+  const PassRequirements needs = pass->requirements();
+  if (!needs.needs_structure)
+    throw UserError("--pass " + request.pass +
+                    ": passes without an LDM structure are not measured yet");
+
+  Measurement m;
+  m.scene_name = scene.name;
+  m.scene_hash = hex64(scene.content_hash());
+  m.triangles = scene.mesh.triangle_count();
+  m.structure = request.structure;
+  m.pass = request.pass;
+  m.pass_settings = pass->describe(scene);
+  for (const auto& s : pass->subpasses()) m.pass_subpasses.push_back(s.name);
+
+  // Only what the pass reads is uploaded, and the structure stores only its payload.
+  const LdmSetup setup(scene, needs.scene_attributes, request.views, request.resolution,
+                       needs.payload);
+  const FragmentCensus& census = setup.census;
+  const BuildInputs& in = *setup.inputs;
+  m.scene_attributes = needs.scene_attributes.describe();
+  m.scene_gpu_bytes = setup.gpu_scene->bytes();
+  m.payload = in.payload.describe();
+  m.census = summarize_census(census);
+
+  auto structure = setup.prepare(request.structure, request.structure_params);
+  const RasterBaseline baseline(request.resolution);
+  pass->prepare({setup.scene, *setup.gpu_scene, &in, structure.get(), request.width,
+                 request.height});
+  const LdmInspector inspector(*structure, in);
+
+  m.timer = request.timer;
+  GpuTimer timer(request.timer);
+  BuildHealth health(census);
+  auto keep_running = [&, measured = 0]() mutable {
+    if (request.keep_running) return request.keep_running();
+    return measured++ < request.frames;
+  };
+  for (int frame = 0;; ++frame) {
+    const bool warmup = frame < request.warmup;
+    if (!warmup && !keep_running()) break;
+    timer.begin_frame();
+    baseline.render(*setup.gpu_scene, *setup.gpu_views, &timer);
+    structure->build(in, &timer);
+    pass->render(&timer);
+    FrameTimes times = timer.end_frame();
+    // Untimed: what the build stored, read back through the query API.
+    m.last_build = structure->stats();
+    health.observe(m.last_build, inspector.check());
+    if (warmup) continue;  // judged, but not measured
+    add_frame_sums(times, m.pass_subpasses);
+    if (request.on_frame) request.on_frame(times);
+    m.frames.push_back(std::move(times));
+  }
+
+  m.images = pass->images();
+  if (m.images.empty()) throw std::logic_error("pass " + request.pass + " produced no image");
+  for (const auto& image : m.images) {
+    try {
+      require_finite(image.image, image.name + " image");
+    } catch (const UserError& e) {
+      health.report_problem(std::string("image not measured: ") + e.what());
+    }
+  }
+  m.status = health.status();
+  m.status_detail = health.detail();
+  m.overflow = health.overflow();
+  m.checksum_changes = health.checksum_changes();
+  m.lists_checksum = health.first_checksum();
+  m.sizing = structure->sizing();
+  m.memory = structure->memory();
+  return m;
+}
+
+}  // namespace ldm

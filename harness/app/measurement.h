@@ -1,0 +1,86 @@
+#pragma once
+// One measurement of a (scene, structure, pass, N, R_LDM) configuration, as a value: what
+// `ldmbench run` turns into a record, what `ldmbench_gbench` reports, and what the tests
+// inspect. All three call measure(), so they build, time and judge alike.
+//
+// measure() uploads what the pass requires, takes the fragment census, prepares the
+// structure and the pass, then runs frames: raster baseline │ structure build │ pass, each
+// sub-pass timed, and after every frame (untimed) the inspector's read-back judged by
+// BuildHealth (ldm_impls/common/build_health.h). Warm-up frames are judged but not kept.
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "harness/measure/gpu_timer.h"
+#include "harness/measure/timing_stats.h"
+#include "harness/passes/pass.h"
+#include "harness/scene/scene.h"
+#include "ldm_impls/common/build_health.h"
+#include "ldm_impls/ldm_structure.h"
+
+namespace ldm {
+
+struct MeasurementRequest {
+  std::string structure;
+  std::map<std::string, std::string> structure_params;
+  std::string pass = "ao";
+  std::map<std::string, std::string> pass_params;
+  uint32_t views = 32, resolution = 128;
+  int width = 256, height = 256;
+  int warmup = 2, frames = 5;
+  TimerSource timer = TimerSource::FencedWallClock;
+  // Decides before each measured frame whether to run it; unset: exactly `frames` frames.
+  // Google Benchmark passes its own loop (State::KeepRunning) here.
+  std::function<bool()> keep_running;
+  // Called with every measured frame's times (sub-passes plus "build" and "frame").
+  std::function<void(const FrameTimes&)> on_frame;
+};
+
+// The fragment census in the few numbers a record keeps.
+struct CensusSummary {
+  uint64_t fragments = 0;
+  uint32_t max_depth_complexity = 0;
+  double mean_depth_complexity = 0;
+  double nonempty_pixel_fraction = 0;
+};
+
+struct Measurement {
+  // What was measured.
+  std::string scene_name, scene_hash;
+  uint64_t triangles = 0;
+  std::string structure, pass;
+  std::vector<std::pair<std::string, RecordValue>> pass_settings;  // Pass::describe()
+  std::string scene_attributes, payload;
+  uint64_t scene_gpu_bytes = 0;
+  CensusSummary census;
+  TimerSource timer = TimerSource::FencedWallClock;
+
+  // The verdict on every build (warm-up included) and on the images.
+  BuildStatus status = BuildStatus::Ok;
+  std::string status_detail;
+  BuildStats last_build;  // stats() of the last build
+  bool overflow = false;
+  uint64_t checksum_changes = 0, lists_checksum = 0;
+  std::vector<std::pair<std::string, std::string>> sizing;
+  std::vector<BufferMemory> memory;
+
+  // Every measured frame, in order: each sub-pass's milliseconds, then "build" (the
+  // structure's sub-passes) and "frame" (everything but the raster baseline).
+  std::vector<FrameTimes> frames;
+  std::vector<std::string> pass_subpasses;  // the pass's own, as declared
+
+  std::vector<PassImage> images;
+
+  std::vector<TimingSummary> summaries() const;  // per sub-pass, first-seen order
+  uint64_t bytes_allocated() const;
+  uint64_t bytes_used() const;
+};
+
+// Throws UserError (bad parameters, a configuration the device cannot hold) or GpuError; a
+// build that is merely wrong is not an exception but an "invalid" status.
+Measurement measure(const Scene& scene, const MeasurementRequest& request);
+
+}  // namespace ldm

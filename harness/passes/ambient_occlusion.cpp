@@ -1,0 +1,76 @@
+#include "harness/passes/ambient_occlusion.h"
+
+#include "harness/reference/ao_reference.h"
+#include "harness/reference/reference_settings.h"
+#include "harness/util/error.h"
+
+namespace ldm {
+
+AmbientOcclusion::AmbientOcclusion(StructureParams& params) {
+  // An absent key keeps the scene's value.
+  if (params.has("d_max")) overrides_.d_max = float(params.get_double("d_max", 0.0, 1e-30, 1e30));
+  const std::string visibility =
+      params.get_choice("visibility", "scene", {"scene", "attenuated", "unattenuated"});
+  if (visibility != "scene") overrides_.attenuated = visibility == "attenuated";
+  if (params.has("normal_offset_pixels"))
+    overrides_.normal_offset_pixels =
+        float(params.get_double("normal_offset_pixels", 0.0, 0.0, 1000.0));
+}
+
+AoSettings AmbientOcclusion::settings_for(const Scene& scene) const {
+  return apply_ao_overrides(scene.ao, overrides_);
+}
+
+PassRequirements AmbientOcclusion::requirements() const {
+  // AO reads positions (every pass) and normals (the G-buffer); the structures store depth
+  // alone.
+  PassRequirements r;
+  r.scene_attributes.normals = true;
+  return r;
+}
+
+std::vector<TimedSubpass> AmbientOcclusion::subpasses() const {
+  return {{"gbuffer", "G-buffer: world positions and camera-facing normals from the camera"},
+          {"ao", "AO trace through the structure's query API (thesis §4.4)"}};
+}
+
+std::vector<std::pair<std::string, RecordValue>> AmbientOcclusion::describe(
+    const Scene& scene) const {
+  const AoSettings ao = settings_for(scene);
+  return {{"visibility", std::string(ao.attenuated ? "attenuated" : "unattenuated")},
+          {"d_max", double(ao.d_max)},
+          {"falloff_exponent", double(ao.falloff_exponent)},
+          {"normal_offset_pixels", double(ao.normal_offset_pixels)}};
+}
+
+void AmbientOcclusion::prepare(const PassInputs& in) {
+  if (!in.ldm || !in.structure) throw UserError("the ao pass needs an LDM structure");
+  scene_ = &in.scene;
+  gpu_scene_ = &in.gpu_scene;
+  gbuffer_ = std::make_unique<GBufferPass>(in.width, in.height);
+  ao_ = std::make_unique<AoPass>(*in.structure, *in.ldm, in.width, in.height,
+                                 settings_for(in.scene));
+}
+
+void AmbientOcclusion::render(GpuTimer* timer) {
+  gbuffer_->render(*gpu_scene_, *scene_, timer);
+  ao_->render(*gbuffer_, timer);
+}
+
+std::vector<PassImage> AmbientOcclusion::images() const { return {{"ao", ao_->read_image()}}; }
+
+ReferenceResult AmbientOcclusion::reference(const Scene& scene, int width, int height,
+                                            const ReferenceSettings& settings) const {
+  AoReferenceRequest request;
+  request.width = width;
+  request.height = height;
+  request.ao = settings_for(scene);
+  request.spp_per_half = settings.spp_per_half;
+  request.target_noise_mse = settings.target_noise_mse;
+  request.max_spp_per_half = settings.max_spp_per_half;
+  request.seed = settings.seed;
+  return cached_ao_reference(
+      scene, request, settings.cache_dir.empty() ? kDefaultReferenceCacheDir : settings.cache_dir);
+}
+
+}  // namespace ldm

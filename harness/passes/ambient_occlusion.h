@@ -1,0 +1,43 @@
+#pragma once
+// Ambient occlusion (thesis §4.4) as a measured pass: the G-buffer from the scene's camera,
+// then the AO trace through the structure's query API (AoPass), scored against the Embree
+// AO reference (harness/reference/ao_reference.h).
+//
+// Parameters (each overrides the scene's "ao" settings):
+//   d_max                  attenuation distance, scene units (> 0)
+//   visibility             scene | attenuated | unattenuated
+//   normal_offset_pixels   the §4.4.2 normal offset in LDM pixels (0 = off)
+#include <memory>
+
+#include "harness/passes/ao_pass.h"
+#include "harness/passes/gbuffer_pass.h"
+#include "harness/passes/pass.h"
+
+namespace ldm {
+
+class AmbientOcclusion : public Pass {
+ public:
+  explicit AmbientOcclusion(StructureParams& params);
+
+  std::string name() const override { return "ao"; }
+  PassRequirements requirements() const override;
+  std::vector<TimedSubpass> subpasses() const override;
+  std::vector<std::pair<std::string, RecordValue>> describe(const Scene& scene) const override;
+  void prepare(const PassInputs& in) override;
+  void render(GpuTimer* timer) override;
+  std::vector<PassImage> images() const override;
+  ReferenceResult reference(const Scene& scene, int width, int height,
+                            const ReferenceSettings& settings) const override;
+
+  // The scene's AO settings with this pass's parameters applied.
+  AoSettings settings_for(const Scene& scene) const;
+
+ private:
+  AoOverrides overrides_;
+  const Scene* scene_ = nullptr;
+  const GpuScene* gpu_scene_ = nullptr;
+  std::unique_ptr<GBufferPass> gbuffer_;
+  std::unique_ptr<AoPass> ao_;
+};
+
+}  // namespace ldm

@@ -1,0 +1,92 @@
+#pragma once
+// The interface every measured pass implements, as ldm_impls/ldm_structure.h is for the
+// structures: ambient occlusion is the first; indirect light and the screen-space or
+// ray-traced peers plug in the same way.
+//
+// A pass declares what it needs (scene attributes to upload, per-fragment payload for the
+// structures to store, whether it reads an LDM structure at all), reads its parameters in
+// its constructor through StructureParams' checked getters (so unknown keys and
+// out-of-range values are errors before any GPU work), names the sub-passes it times, gives
+// its output images, and renders (or fetches from the disk cache) the converged reference
+// its first image estimates.
+//
+// Adding a pass touches its own files (harness/passes/<name>*, shaders/passes/, its
+// reference renderer under harness/reference/) and one line in
+// harness/passes/pass_registry.cpp.
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "harness/image/image.h"
+#include "harness/measure/gpu_timer.h"
+#include "harness/records/record.h"
+#include "harness/reference/reference_image.h"
+#include "harness/scene/gpu_scene.h"
+#include "harness/scene/scene.h"
+#include "ldm_impls/ldm_structure.h"
+
+namespace ldm {
+
+struct ReferenceSettings;
+
+// What the measurement must provide before the pass can run.
+struct PassRequirements {
+  AttributeSet scene_attributes;  // uploaded besides positions
+  FragmentPayload payload;        // stored by the structure per fragment besides depth
+  bool needs_structure = true;    // false: the pass reads no LDM (a screen-space peer)
+};
+
+// A sub-pass the pass times with ScopedSubpass; the frame loop attributes every other
+// sub-pass of a frame to the structure's build (or to the raster baseline).
+struct TimedSubpass {
+  std::string name;         // as given to ScopedSubpass; the record's <name>_ms_* columns
+  std::string description;  // one line, for `ldmbench columns`
+};
+
+// One output image; `name` becomes the file stem's suffix: <config_id>-<name>.exr.
+struct PassImage {
+  std::string name;
+  Image image;
+};
+
+// What prepare() is given. `ldm` and `structure` are null when the pass needs no structure.
+struct PassInputs {
+  const Scene& scene;
+  const GpuScene& gpu_scene;
+  const BuildInputs* ldm = nullptr;
+  const LdmStructure* structure = nullptr;
+  int width = 0, height = 0;
+};
+
+class Pass {
+ public:
+  virtual ~Pass() = default;
+
+  virtual std::string name() const = 0;
+  virtual PassRequirements requirements() const = 0;
+  virtual std::vector<TimedSubpass> subpasses() const = 0;
+  // The pass's effective settings for this scene (its parameters over the scene's
+  // defaults), as record fields, e.g. {"d_max", 1.5}.
+  virtual std::vector<std::pair<std::string, RecordValue>> describe(const Scene& scene) const = 0;
+
+  // Compiles shaders and allocates targets. Throws UserError when it cannot run here.
+  virtual void prepare(const PassInputs& in) = 0;
+  // One frame of the pass, every sub-pass timed by `timer` (which may be null).
+  virtual void render(GpuTimer* timer) = 0;
+  // The images of the last render(); the first is the one scored against the reference.
+  virtual std::vector<PassImage> images() const = 0;
+
+  // The converged image the first output estimates, width x height, for this scene and the
+  // pass's settings: from the cache under settings.cache_dir when an entry matches, else
+  // rendered (and stored). Needs no GL context.
+  virtual ReferenceResult reference(const Scene& scene, int width, int height,
+                                    const ReferenceSettings& settings) const = 0;
+};
+
+std::vector<std::string> pass_names();
+// Throws UserError for an unknown name (listing the known ones) or bad parameters; `params`
+// should carry a context such as "--pass ao" for its messages.
+std::unique_ptr<Pass> make_pass(const std::string& name, StructureParams params);
+
+}  // namespace ldm

@@ -1,0 +1,32 @@
+#include "harness/records/output_folder.h"
+
+#include <filesystem>
+
+namespace ldm {
+
+OutputFolder::OutputFolder(std::string records_dir, std::string images_dir)
+    : records_dir_(std::move(records_dir)), images_dir_(std::move(images_dir)) {}
+
+std::string OutputFolder::file(const std::string& file_name) const {
+  return (std::filesystem::path(images_dir_) / file_name).string();
+}
+
+std::string OutputFolder::record_path(const std::string& file_name) const {
+  return (std::filesystem::relative(images_dir_, records_dir_) / file_name).string();
+}
+
+bool OutputFolder::contains(const std::string& file_name) const {
+  return std::filesystem::exists(file(file_name));
+}
+
+std::string OutputFolder::write_exr(const std::string& file_name, const Image& image) const {
+  ldm::write_exr(file(file_name), image);
+  return record_path(file_name);
+}
+
+std::string OutputFolder::write_png(const std::string& file_name, const Image& image) const {
+  ldm::write_png(file(file_name), image);
+  return record_path(file_name);
+}
+
+}  // namespace ldm

@@ -1,0 +1,49 @@
+#pragma once
+// The integrity policy every consumer applies to a structure's builds (`ldmbench run`,
+// `ldmbench_gbench`, the tests): one verdict from the build statistics and the inspector's
+// read-back, so no two binaries can disagree on whether a build is sound.
+//
+//   invalid  a build disagreed with the census, stored fragments that the query API cannot
+//            reach, returned unsorted or overlong lists, or changed its lists between
+//            identical builds without losing fragments; or the pass's image was not finite
+//   lossy    the structure's configured capacity dropped fragments, counted exactly
+//   ok       otherwise
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "ldm_impls/common/fragment_census.h"
+#include "ldm_impls/common/ldm_inspector.h"
+#include "ldm_impls/ldm_structure.h"
+
+namespace ldm {
+
+enum class BuildStatus { Ok, Lossy, Invalid };
+const char* build_status_name(BuildStatus status);  // "ok", "lossy", "invalid"
+
+// Watches every build of one configuration (warm-up builds included: a fault is a fault).
+class BuildHealth {
+ public:
+  explicit BuildHealth(const FragmentCensus& census) : census_(census) {}
+
+  void observe(const BuildStats& stats, const LdmIntegrity& integrity);
+  // A fault found outside the build (e.g. a NaN in the pass's image): the result is invalid.
+  void report_problem(const std::string& problem);
+
+  BuildStatus status() const;
+  // The problems, "; "-separated, or for a lossy build how many fragments it lost.
+  std::string detail() const;
+  uint64_t builds() const { return builds_; }
+  uint64_t checksum_changes() const { return checksum_changes_; }
+  uint64_t first_checksum() const { return first_checksum_; }
+  bool overflow() const { return overflow_; }
+  const std::vector<std::string>& problems() const { return problems_; }
+
+ private:
+  const FragmentCensus& census_;
+  uint64_t builds_ = 0, max_lost_ = 0, checksum_changes_ = 0, first_checksum_ = 0;
+  bool overflow_ = false;
+  std::vector<std::string> problems_;
+};
+
+}  // namespace ldm

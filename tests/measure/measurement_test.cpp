@@ -1,0 +1,167 @@
+// The one measurement path (harness/app/measurement.h) and the integrity policy every
+// consumer shares (ldm_impls/common/build_health.h), and the pass registry.
+#include <gtest/gtest.h>
+
+#include <map>
+
+#include "harness/app/measurement.h"
+#include "harness/passes/pass.h"
+#include "harness/scene/scene_loader.h"
+#include "harness/util/error.h"
+#include "support/test_support.h"
+
+namespace ldm {
+namespace {
+
+FragmentCensus census_of(uint64_t fragments, uint32_t max_depth) {
+  FragmentCensus c;
+  c.total_fragments = fragments;
+  c.max_depth_complexity = max_depth;
+  return c;
+}
+
+BuildStats stats(uint64_t rasterized, uint64_t stored) {
+  BuildStats s;
+  s.fragments_rasterized = rasterized;
+  s.fragments_stored = stored;
+  s.fragments_lost = rasterized - stored;
+  return s;
+}
+
+LdmIntegrity integrity(uint64_t fragments, uint64_t checksum) {
+  LdmIntegrity i;
+  i.fragments = fragments;
+  i.checksum = checksum;
+  return i;
+}
+
+TEST(BuildHealth, SoundBuildsAreOk) {
+  const FragmentCensus census = census_of(100, 4);
+  BuildHealth health(census);
+  for (int i = 0; i < 3; ++i) health.observe(stats(100, 100), integrity(100, 7));
+  EXPECT_EQ(health.status(), BuildStatus::Ok);
+  EXPECT_EQ(health.detail(), "");
+  EXPECT_EQ(health.builds(), 3u);
+  EXPECT_EQ(health.first_checksum(), 7u);
+}
+
+TEST(BuildHealth, CountedLossIsLossyAndMayChangeTheChecksum) {
+  const FragmentCensus census = census_of(100, 4);
+  BuildHealth health(census);
+  health.observe(stats(100, 60), integrity(60, 1));
+  health.observe(stats(100, 60), integrity(60, 2));
+  EXPECT_EQ(health.status(), BuildStatus::Lossy);
+  EXPECT_EQ(health.checksum_changes(), 1u);
+  EXPECT_NE(health.detail().find("40 fragments lost"), std::string::npos) << health.detail();
+}
+
+TEST(BuildHealth, EveryKindOfSilentFaultIsInvalid) {
+  const FragmentCensus census = census_of(100, 4);
+  auto verdict = [&](const BuildStats& s, const LdmIntegrity& first, const LdmIntegrity& second) {
+    BuildHealth health(census);
+    health.observe(s, first);
+    health.observe(s, second);
+    return std::make_pair(health.status(), health.detail());
+  };
+  // The build saw fewer fragments than the census counted.
+  EXPECT_EQ(verdict(stats(90, 90), integrity(90, 1), integrity(90, 1)).first, BuildStatus::Invalid);
+  // Stored fragments the query API cannot reach.
+  EXPECT_EQ(verdict(stats(100, 100), integrity(99, 1), integrity(99, 1)).first,
+            BuildStatus::Invalid);
+  // Lists changed between identical lossless builds.
+  const auto changed = verdict(stats(100, 100), integrity(100, 1), integrity(100, 2));
+  EXPECT_EQ(changed.first, BuildStatus::Invalid);
+  EXPECT_NE(changed.second.find("changed between identical builds"), std::string::npos);
+  LdmIntegrity unsorted = integrity(100, 1);
+  unsorted.unsorted_pixels = 3;
+  EXPECT_EQ(verdict(stats(100, 100), unsorted, unsorted).second, "3 pixels with unsorted depths");
+  LdmIntegrity overlong = integrity(100, 1);
+  overlong.overlong_pixels = 2;
+  EXPECT_EQ(verdict(stats(100, 100), overlong, overlong).first, BuildStatus::Invalid);
+  // A fault found outside the build (the image) is invalid too, and reported once.
+  BuildHealth health(census);
+  health.observe(stats(100, 100), integrity(100, 1));
+  health.report_problem("image not measured");
+  health.report_problem("image not measured");
+  EXPECT_EQ(health.status(), BuildStatus::Invalid);
+  EXPECT_EQ(health.detail(), "image not measured");
+}
+
+TEST(PassRegistry, AoIsRegisteredAndParametersAreChecked) {
+  EXPECT_EQ(pass_names(), std::vector<std::string>{"ao"});
+  try {
+    make_pass("indirect", StructureParams());
+    FAIL() << "an unknown pass was accepted";
+  } catch (const UserError& e) {
+    EXPECT_NE(std::string(e.what()).find("known: ao"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(make_pass("ao", StructureParams({{"dmax", "1"}}, "--pass ao")), UserError);
+  EXPECT_THROW(make_pass("ao", StructureParams({{"d_max", "-1"}}, "--pass ao")), UserError);
+  EXPECT_THROW(make_pass("ao", StructureParams({{"visibility", "half"}}, "--pass ao")), UserError);
+  // Parameters override the scene's settings; absent ones keep them.
+  const Scene scene = load_scene("cornell");
+  const std::map<std::string, std::string> values = {{"d_max", "0.25"}, {"visibility", "unattenuated"}};
+  const auto pass = make_pass("ao", StructureParams(values));
+  bool saw_d_max = false;
+  for (const auto& [key, value] : pass->describe(scene)) {
+    if (key == "d_max") saw_d_max = std::get<double>(value) == 0.25;
+    if (key == "visibility") EXPECT_EQ(std::get<std::string>(value), "unattenuated");
+    if (key == "normal_offset_pixels")
+      EXPECT_EQ(std::get<double>(value), double(scene.ao.normal_offset_pixels));
+  }
+  EXPECT_TRUE(saw_d_max);
+  EXPECT_TRUE(pass->requirements().needs_structure);
+  EXPECT_TRUE(pass->requirements().scene_attributes.normals);
+}
+
+TEST(Measurement, KeepsEveryFrameAndSplitsBuildFromThePass) {
+  test::gl_context();
+  MeasurementRequest request;
+  request.structure = "dfbuffer";
+  request.views = 4;
+  request.resolution = 32;
+  request.width = request.height = 32;
+  request.warmup = 1;
+  request.frames = 3;
+  int seen = 0;
+  request.on_frame = [&](const FrameTimes&) { ++seen; };
+  const Measurement m = measure(load_scene("cornell"), request);
+  EXPECT_EQ(m.status, BuildStatus::Ok) << m.status_detail;
+  EXPECT_GT(m.census.fragments, 0u);
+  EXPECT_EQ(m.last_build.fragments_stored, m.census.fragments);
+  ASSERT_EQ(m.frames.size(), 3u);
+  EXPECT_EQ(seen, 3);
+  EXPECT_EQ(m.pass_subpasses, (std::vector<std::string>{"gbuffer", "ao"}));
+  for (const FrameTimes& frame : m.frames) {
+    std::map<std::string, double> t(frame.begin(), frame.end());
+    for (const char* name : {"raster_baseline", "clear", "count", "prefix_sum", "construct",
+                             "sort", "gbuffer", "ao", "build", "frame"})
+      EXPECT_TRUE(t.count(name)) << name;
+    EXPECT_DOUBLE_EQ(t["build"], t["clear"] + t["count"] + t["prefix_sum"] + t["construct"] + t["sort"]);
+    EXPECT_DOUBLE_EQ(t["frame"], t["build"] + t["gbuffer"] + t["ao"]);
+  }
+  EXPECT_EQ(m.summaries().front().samples, 3u);
+  ASSERT_EQ(m.images.size(), 1u);
+  EXPECT_EQ(m.images[0].name, "ao");
+  EXPECT_EQ(m.images[0].image.width, 32);
+  EXPECT_GT(m.bytes_allocated(), 0u);
+  EXPECT_EQ(m.scene_attributes, "position+normal");
+}
+
+TEST(Measurement, AnExternalLoopDecidesHowManyFramesRun) {
+  test::gl_context();
+  MeasurementRequest request;
+  request.structure = "psppsll";
+  request.views = 2;
+  request.resolution = 16;
+  request.width = request.height = 16;
+  request.warmup = 0;
+  request.frames = 100;  // ignored: the loop below decides, as Google Benchmark's does
+  int left = 2;
+  request.keep_running = [&] { return left-- > 0; };
+  const Measurement m = measure(load_scene("cornell"), request);
+  EXPECT_EQ(m.frames.size(), 2u);
+}
+
+}  // namespace
+}  // namespace ldm
