@@ -21,6 +21,7 @@
 #include "harness/scene/gpu_scene.h"
 #include "harness/views/view_set.h"
 #include "ldm_impls/common/fragment_census.h"
+#include "ldm_impls/common/fragment_source.h"
 
 namespace ldm {
 
@@ -37,6 +38,10 @@ struct BuildInputs {
   const GpuViewSet& views;
   const FragmentCensus& census;
   FragmentPayload payload;
+  // Compiles and runs the geometry-pass fragment shaders: the scene rasterised into the views
+  // (RasterFragmentSource), or a synthetic fragment list in the contention tests. A
+  // structure's fragment shaders go through it and nothing else.
+  const FragmentSource& fragments;
 };
 
 struct BufferMemory {

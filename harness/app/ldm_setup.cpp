@@ -8,8 +8,10 @@ LdmSetup::LdmSetup(Scene s, AttributeSet attributes, uint32_t view_count, uint32
   gpu_scene = std::make_unique<GpuScene>(scene, attributes);
   views = make_view_set(scene.bounding_sphere(), view_count, resolution);
   gpu_views = std::make_unique<GpuViewSet>(views);
-  census = take_fragment_census(*gpu_scene, *gpu_views);
-  inputs = std::make_unique<BuildInputs>(BuildInputs{*gpu_scene, *gpu_views, census, payload});
+  raster = std::make_unique<RasterFragmentSource>(*gpu_scene, *gpu_views);
+  census = take_fragment_census(*raster, views);
+  inputs = std::make_unique<BuildInputs>(
+      BuildInputs{*gpu_scene, *gpu_views, census, payload, *raster});
 }
 
 std::unique_ptr<LdmStructure> LdmSetup::prepare(const std::string& structure,

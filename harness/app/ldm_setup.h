@@ -7,6 +7,7 @@
 #include <memory>
 #include <string>
 
+#include "ldm_impls/common/ldm_rasterizer.h"
 #include "ldm_impls/ldm_structure.h"
 
 namespace ldm {
@@ -17,6 +18,7 @@ struct LdmSetup {
   ViewSet views;
   std::unique_ptr<GpuViewSet> gpu_views;
   FragmentCensus census;
+  std::unique_ptr<RasterFragmentSource> raster;  // the scene rasterised into the views
   std::unique_ptr<BuildInputs> inputs;
 
   LdmSetup(Scene scene, AttributeSet attributes, uint32_t view_count, uint32_t resolution,

@@ -45,6 +45,12 @@ void GpuScene::draw() const {
   glDrawElements(GL_TRIANGLES, GLsizei(triangle_count_ * 3), GL_UNSIGNED_INT, nullptr);
 }
 
+void GpuScene::draw_instanced(uint32_t instances) const {
+  glBindVertexArray(vao_.id());
+  glDrawElementsInstanced(GL_TRIANGLES, GLsizei(triangle_count_ * 3), GL_UNSIGNED_INT, nullptr,
+                          GLsizei(instances));
+}
+
 std::vector<const GlBuffer*> GpuScene::buffers() const {
   std::vector<const GlBuffer*> out;
   for (const GlBuffer* b : {&positions_, &normals_, &indices_, &triangle_materials_, &albedo_})

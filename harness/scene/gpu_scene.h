@@ -27,6 +27,8 @@ class GpuScene {
   GpuScene(const Scene& scene, AttributeSet attributes);
   // Draws every triangle with the bound program (positions at location 0, normals at 1).
   void draw() const;
+  // Draws every triangle `instances` times in one call (gl_InstanceID 0 .. instances - 1).
+  void draw_instanced(uint32_t instances) const;
   const AttributeSet& attributes() const { return attributes_; }
   uint64_t triangle_count() const { return triangle_count_; }
   uint64_t bytes() const;  // all geometry buffers

@@ -17,14 +17,16 @@ uint64_t FragmentCensus::fragments_beyond(uint32_t k) const {
 }
 
 FragmentCensus take_fragment_census(const GpuScene& scene, const GpuViewSet& views) {
-  const ViewSet& set = views.views();
+  return take_fragment_census(RasterFragmentSource(scene, views), views.views());
+}
+
+FragmentCensus take_fragment_census(const FragmentSource& source, const ViewSet& set) {
   const uint64_t pixels = set.total_pixels();
   GlBuffer counts("census_counts",
                   checked_storage_block("the fragment census", "counts", pixels * sizeof(uint32_t)));
   counts.clear_to_zero();
   counts.bind_storage(kCensusBinding);
-  const GlProgram program = build_ldm_raster_program("ldm/census.frag", {});
-  LdmRasterizer(set.resolution).rasterize(scene, views, program);
+  source.run(source.build_program("ldm/census.frag", {}));
 
   FragmentCensus census;
   census.counts = counts.download_all<uint32_t>();

@@ -8,6 +8,7 @@
 
 #include "harness/scene/gpu_scene.h"
 #include "harness/views/view_set.h"
+#include "ldm_impls/common/fragment_source.h"
 
 namespace ldm {
 
@@ -26,6 +27,9 @@ struct FragmentCensus {
   uint64_t fragments_beyond(uint32_t k) const;
 };
 
+// Counts the fragments of `source` (shaders/ldm/census.frag) over the pixels of `views`.
+FragmentCensus take_fragment_census(const FragmentSource& source, const ViewSet& views);
+// The census of `scene` rasterised into `views`.
 FragmentCensus take_fragment_census(const GpuScene& scene, const GpuViewSet& views);
 
 }  // namespace ldm

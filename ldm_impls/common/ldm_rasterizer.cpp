@@ -19,11 +19,9 @@ void LdmRasterizer::rasterize(const GpuScene& scene, const GpuViewSet& views,
   glDisable(GL_MULTISAMPLE);
   views.bind();
   program.use();
-  const GLint view_uniform = program.uniform("ldm_view_index");
-  for (uint32_t v = 0; v < views.views().size(); ++v) {
-    glProgramUniform1ui(program.id(), view_uniform, v);
-    scene.draw();
-  }
+  // One draw call for all views: per-view draws and uniform updates would dominate the pass
+  // on a GPU for a scene of a few dozen triangles.
+  scene.draw_instanced(views.views().size());
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_ATOMIC_COUNTER_BARRIER_BIT |
                   GL_BUFFER_UPDATE_BARRIER_BIT);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -35,6 +33,18 @@ GlProgram build_ldm_raster_program(const std::string& fragment_file, const Shade
   return build_program({{GL_VERTEX_SHADER, "ldm/ldm_raster.vert", {}},
                         {GL_FRAGMENT_SHADER, fragment_file, {}}},
                        all);
+}
+
+RasterFragmentSource::RasterFragmentSource(const GpuScene& scene, const GpuViewSet& views)
+    : scene_(scene), views_(views), rasterizer_(views.views().resolution) {}
+
+GlProgram RasterFragmentSource::build_program(const std::string& fragment_file,
+                                              const ShaderDefines& defines) const {
+  return build_ldm_raster_program(fragment_file, defines);
+}
+
+void RasterFragmentSource::run(const GlProgram& program) const {
+  rasterizer_.rasterize(scene_, views_, program);
 }
 
 }  // namespace ldm

@@ -5,16 +5,18 @@
 #include "harness/gl/shader_program.h"
 #include "harness/scene/gpu_scene.h"
 #include "harness/views/view_set.h"
+#include "ldm_impls/common/fragment_source.h"
 
 namespace ldm {
 
-// The geometry pass every structure's construction shares: the scene drawn once per LDM view
-// into an R_LDM x R_LDM framebuffer with no attachments, front and back faces, no depth test
-// (every fragment reaches the fragment shader, which writes to storage buffers).
+// The geometry pass every structure's construction shares: the scene drawn into every LDM
+// view, all views in one instanced draw call (instance i is view i; the views share the
+// R_LDM x R_LDM viewport), into a framebuffer with no attachments, front and back faces, no
+// depth test (every fragment reaches the fragment shader, which writes to storage buffers).
 class LdmRasterizer {
  public:
   explicit LdmRasterizer(uint32_t resolution);
-  // `program` must use shaders/ldm/ldm_raster.vert (uniform ldm_view_index). Ends with a
+  // `program` must use shaders/ldm/ldm_raster.vert (build_ldm_raster_program). Ends with a
   // storage/atomic-counter barrier so later passes see every write.
   void rasterize(const GpuScene& scene, const GpuViewSet& views, const GlProgram& program) const;
 
@@ -25,5 +27,20 @@ class LdmRasterizer {
 
 // A program of ldm_raster.vert with the given fragment shader.
 GlProgram build_ldm_raster_program(const std::string& fragment_file, const ShaderDefines& defines);
+
+// The fragments of `scene` in every view of `views`: the source ldmbench measures. Both must
+// outlive it.
+class RasterFragmentSource : public FragmentSource {
+ public:
+  RasterFragmentSource(const GpuScene& scene, const GpuViewSet& views);
+  GlProgram build_program(const std::string& fragment_file,
+                          const ShaderDefines& defines) const override;
+  void run(const GlProgram& program) const override;
+
+ private:
+  const GpuScene& scene_;
+  const GpuViewSet& views_;
+  LdmRasterizer rasterizer_;
+};
 
 }  // namespace ldm

@@ -24,17 +24,16 @@ void ListNodePool::prepare(const BuildInputs& in, const std::string& build_shade
   defines_.values.insert(defines_.values.end(), extra_defines.values.begin(),
                          extra_defines.values.end());
   counters_ = GlBuffer("counters", 2 * sizeof(uint32_t));
-  rasterizer_ = std::make_unique<LdmRasterizer>(in.views.views().resolution);
   rebuilds_ = 0;
   stored_ = 0;
   switch (policy_) {
-    case Policy::Counted: allocate(in.census.total_fragments); break;
-    case Policy::Grow: allocate(heads_); break;
-    case Policy::Fixed: allocate(fixed_capacity_); break;
+    case Policy::Counted: allocate(in, in.census.total_fragments); break;
+    case Policy::Grow: allocate(in, heads_); break;
+    case Policy::Fixed: allocate(in, fixed_capacity_); break;
   }
 }
 
-void ListNodePool::allocate(uint64_t capacity) {
+void ListNodePool::allocate(const BuildInputs& in, uint64_t capacity) {
   capacity_ = std::max<uint64_t>(1, capacity);
   const uint64_t words = heads_ + kWordsPerNode * capacity_;
   if (words >= (uint64_t(1) << 32))
@@ -44,7 +43,7 @@ void ListNodePool::allocate(uint64_t capacity) {
   data_.clear_to_zero();
   ShaderDefines defines = defines_;
   defines.set("LDM_NODE_CAPACITY", std::to_string(capacity_) + "u");
-  build_program_ = build_ldm_raster_program(build_shader_, defines);
+  build_program_ = in.fragments.build_program(build_shader_, defines);
 }
 
 void ListNodePool::bind() const {
@@ -62,7 +61,7 @@ void ListNodePool::construct(const BuildInputs& in, GpuTimer* timer) {
   }
   ScopedSubpass timed(timer, "construct");
   bind();
-  rasterizer_->rasterize(in.scene, in.views, build_program_);
+  in.fragments.run(build_program_);
 }
 
 void ListNodePool::build(const BuildInputs& in, GpuTimer* timer) {
@@ -72,7 +71,7 @@ void ListNodePool::build(const BuildInputs& in, GpuTimer* timer) {
   for (uint64_t wanted = read_counters()[0]; wanted > capacity_; wanted = read_counters()[0]) {
     uint64_t capacity = capacity_;
     while (capacity < wanted) capacity *= 2;
-    allocate(capacity);
+    allocate(in, capacity);
     ++rebuilds_;
     construct(in, timer);
   }

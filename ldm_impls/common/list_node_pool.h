@@ -16,7 +16,6 @@
 #include <string>
 
 #include "harness/gl/gl_objects.h"
-#include "ldm_impls/common/ldm_rasterizer.h"
 #include "ldm_impls/ldm_structure.h"
 
 namespace ldm {
@@ -49,7 +48,7 @@ class ListNodePool {
 
  private:
   enum class Policy { Counted, Grow, Fixed };
-  void allocate(uint64_t capacity);
+  void allocate(const BuildInputs& in, uint64_t capacity);
   void construct(const BuildInputs& in, GpuTimer* timer);
 
   std::string structure_;
@@ -63,7 +62,6 @@ class ListNodePool {
   ShaderDefines defines_;  // the structure's and the census's, without the capacity
   GlBuffer data_, counters_;
   GlProgram build_program_;
-  std::unique_ptr<LdmRasterizer> rasterizer_;
 };
 
 }  // namespace ldm

@@ -32,13 +32,12 @@ void DfBuffer::prepare(const BuildInputs& in) {
   depths_ = GlBuffer("depths", checked_storage_block("dfbuffer", "depths", words(depth_words)));
   counters_ = GlBuffer("counters", words(kCounterWords));
   scan_ = std::make_unique<PrefixSum>(pixels_);
-  rasterizer_ = std::make_unique<LdmRasterizer>(in.views.views().resolution);
 
   ShaderDefines defines = common_structure_defines(in);
   defines.set("LDM_DF_CAPACITY", std::to_string(capacity_) + "u");
   query_defines_ = defines;
-  count_program_ = build_ldm_raster_program("ldm/dfbuffer/count.frag", defines);
-  build_program_ = build_ldm_raster_program("ldm/dfbuffer/build.frag", defines);
+  count_program_ = in.fragments.build_program("ldm/dfbuffer/count.frag", defines);
+  build_program_ = in.fragments.build_program("ldm/dfbuffer/build.frag", defines);
   unfilled_program_ = build_compute_program("ldm/dfbuffer/unfilled.comp", defines);
   defines.set("LDM_SORT_LOCAL", std::to_string(local_) + "u");
   sort_program_ = build_compute_program("ldm/dfbuffer/sort.comp", defines);
@@ -56,7 +55,7 @@ void DfBuffer::clear(GpuTimer* timer) {
 void DfBuffer::count(const BuildInputs& in, GpuTimer* timer) {
   ScopedSubpass timed(timer, "count");
   counts_.bind_storage(kBindingCounts);
-  rasterizer_->rasterize(in.scene, in.views, count_program_);
+  in.fragments.run(count_program_);
 }
 
 void DfBuffer::prefix_sum(GpuTimer* timer) {
@@ -70,7 +69,7 @@ void DfBuffer::construct(const BuildInputs& in, GpuTimer* timer) {
   offsets_.bind_storage(kBindingOffsets);
   depths_.bind_storage(kBindingDepths);
   counters_.bind_atomic_counter(kStructureCounterBinding);
-  rasterizer_->rasterize(in.scene, in.views, build_program_);
+  in.fragments.run(build_program_);
 }
 
 void DfBuffer::sort(GpuTimer* timer) {

@@ -16,7 +16,6 @@
 #include <memory>
 
 #include "harness/gl/gl_objects.h"
-#include "ldm_impls/common/ldm_rasterizer.h"
 #include "ldm_impls/dfbuffer/prefix_sum.h"
 #include "ldm_impls/ldm_structure.h"
 
@@ -56,7 +55,6 @@ class DfBuffer final : public LdmStructure {
   GlBuffer counters_;
   std::unique_ptr<PrefixSum> scan_;
   GlProgram count_program_, build_program_, sort_program_, unfilled_program_;
-  std::unique_ptr<LdmRasterizer> rasterizer_;
 };
 
 }  // namespace ldm

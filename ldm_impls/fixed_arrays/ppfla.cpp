@@ -15,8 +15,7 @@ void Ppfla::prepare(const BuildInputs& in) {
   entries_ = GlBuffer("entries", layout_.entry_bytes());
   counts_ = GlBuffer("counts", layout_.pixels * sizeof(uint32_t));
   dropped_ = GlBuffer("dropped", sizeof(uint32_t));
-  rasterizer_ = std::make_unique<LdmRasterizer>(in.views.views().resolution);
-  build_program_ = build_ldm_raster_program("ldm/fixed_arrays/ppfla_build.frag", defines_);
+  build_program_ = in.fragments.build_program("ldm/fixed_arrays/ppfla_build.frag", defines_);
   ShaderDefines sort_defines = binding_defines();
   sort_defines.values.insert(sort_defines.values.end(), defines_.values.begin(),
                              defines_.values.end());
@@ -50,7 +49,7 @@ void Ppfla::build(const BuildInputs& in, GpuTimer* timer) {
     ScopedSubpass timed(timer, "construct");
     bind_storage();
     dropped_.bind_atomic_counter(kStructureCounterBinding);
-    rasterizer_->rasterize(in.scene, in.views, build_program_);
+    in.fragments.run(build_program_);
   }
   {
     ScopedSubpass timed(timer, "sort");

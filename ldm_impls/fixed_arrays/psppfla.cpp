@@ -18,8 +18,7 @@ void Psppfla::prepare(const BuildInputs& in) {
   defines_ = fixed_array_defines(layout_, in);
   entries_ = GlBuffer("entries", layout_.entry_bytes());
   dropped_ = GlBuffer("dropped", sizeof(uint32_t));
-  rasterizer_ = std::make_unique<LdmRasterizer>(in.views.views().resolution);
-  build_program_ = build_ldm_raster_program("ldm/fixed_arrays/psppfla_build.frag", defines_);
+  build_program_ = in.fragments.build_program("ldm/fixed_arrays/psppfla_build.frag", defines_);
 }
 
 void Psppfla::build(const BuildInputs& in, GpuTimer* timer) {
@@ -32,7 +31,7 @@ void Psppfla::build(const BuildInputs& in, GpuTimer* timer) {
     ScopedSubpass timed(timer, "construct");
     entries_.bind_storage(kStructureBinding0);
     dropped_.bind_atomic_counter(kStructureCounterBinding);
-    rasterizer_->rasterize(in.scene, in.views, build_program_);
+    in.fragments.run(build_program_);
   }
 }
 

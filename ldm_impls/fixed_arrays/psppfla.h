@@ -12,7 +12,6 @@
 #include <memory>
 
 #include "harness/gl/gl_objects.h"
-#include "ldm_impls/common/ldm_rasterizer.h"
 #include "ldm_impls/fixed_arrays/fixed_array_layout.h"
 #include "ldm_impls/ldm_structure.h"
 
@@ -40,7 +39,6 @@ class Psppfla final : public LdmStructure {
   ShaderDefines defines_;
   GlBuffer entries_, dropped_;
   GlProgram build_program_;
-  std::unique_ptr<LdmRasterizer> rasterizer_;
 };
 
 }  // namespace ldm

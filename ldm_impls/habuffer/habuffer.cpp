@@ -132,8 +132,7 @@ void HaBuffer::prepare(const BuildInputs& in) {
   // mean a faulty device (see ha_build.frag).
   defines_.set("HA_MAX_INSERT_STEPS", std::to_string(64ull * (max_age_ + 1)) + "u");
 
-  rasterizer_ = std::make_unique<LdmRasterizer>(in.views.views().resolution);
-  build_program_ = build_ldm_raster_program("ldm/habuffer/ha_build.frag", defines_);
+  build_program_ = in.fragments.build_program("ldm/habuffer/ha_build.frag", defines_);
   ShaderDefines reduce_defines = binding_defines();
   reduce_defines.values.insert(reduce_defines.values.end(), defines_.values.begin(),
                                defines_.values.end());
@@ -153,7 +152,7 @@ void HaBuffer::build(const BuildInputs& in, GpuTimer* timer) {
     bind_for_query();
     age_counts_.bind_storage(kStructureBinding0 + 2);
     counters_.bind_atomic_counter(kStructureCounterBinding);
-    rasterizer_->rasterize(in.scene, in.views, build_program_);
+    in.fragments.run(build_program_);
   }
 }
 

@@ -24,7 +24,6 @@
 #include <memory>
 
 #include "harness/gl/gl_objects.h"
-#include "ldm_impls/common/ldm_rasterizer.h"
 #include "ldm_impls/ldm_structure.h"
 
 namespace ldm {
@@ -65,7 +64,6 @@ class HaBuffer final : public LdmStructure {
   ShaderDefines defines_;
   GlBuffer table_, offsets_, age_counts_, counters_, age_summary_;
   GlProgram build_program_, highest_age_program_;
-  std::unique_ptr<LdmRasterizer> rasterizer_;
 };
 
 }  // namespace ldm

@@ -102,7 +102,8 @@ struct MisSizedDfBuffer {
 
   MisSizedDfBuffer(const LdmFixture& f, int64_t delta) : census(f.census) {
     census.total_fragments = uint64_t(int64_t(census.total_fragments) + delta);
-    inputs = std::make_unique<BuildInputs>(BuildInputs{*f.gpu_scene, *f.gpu_views, census, {}});
+    inputs = std::make_unique<BuildInputs>(
+        BuildInputs{*f.gpu_scene, *f.gpu_views, census, {}, *f.raster});
     structure = make_structure("dfbuffer", {});
     structure->prepare(*inputs);
     structure->build(*inputs, nullptr);

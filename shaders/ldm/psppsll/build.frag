@@ -38,7 +38,12 @@ void main() {
       memoryBarrierBuffer();
       const uint seen = atomicCompSwap(data[previous_slot], current, node);
       if (seen == current) return;
-      current = seen;  // another invocation inserted here first: continue from its node
+      // Another invocation inserted here first: continue from its node. Acquire: its depth
+      // and next index were written before its compare-and-swap published it (the barrier
+      // above, on its side); this barrier keeps our reads of them after our atomic.
+      LDM_COUNT_RETRY();
+      memoryBarrierBuffer();
+      current = seen;
     } else {
       previous_slot = list_next_slot(current);
       current = READ_NEXT(previous_slot);
