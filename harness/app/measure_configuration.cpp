@@ -99,6 +99,10 @@ void add_measurement(Record& r, const Measurement& m) {
   const TimingSummary* raster = find_summary(summaries, "raster_baseline");
   if (build && raster && raster->median > 0)
     r.set("build_vs_raster", build->median / raster->median);
+  const TimingSummary* touch = find_summary(summaries, "raster_touch");
+  if (build && touch && touch->median > 0)
+    r.set("build_vs_raster_touch", build->median / touch->median);
+  r.set("raster_touch_fragments", m.raster_touch_fragments);
   if (build && build->median > 0)
     r.set("fragments_per_second", double(m.census.fragments) / (build->median * 1e-3));
 

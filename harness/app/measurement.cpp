@@ -13,9 +13,12 @@
 namespace ldm {
 namespace {
 
-// The raster baseline is timed beside the build but belongs to neither the build nor the
-// frame: it is the yardstick the build is compared with (build_vs_raster).
-constexpr const char* kRasterBaseline = "raster_baseline";
+// The raster baselines are timed beside the build but belong to neither the build nor the
+// frame: they are the yardsticks the build is compared with (build_vs_raster,
+// build_vs_raster_touch).
+bool is_raster_baseline(const std::string& name) {
+  return name == "raster_baseline" || name == "raster_touch";
+}
 
 CensusSummary summarize_census(const FragmentCensus& census) {
   CensusSummary s;
@@ -27,12 +30,12 @@ CensusSummary summarize_census(const FragmentCensus& census) {
   return s;
 }
 
-// Adds the sums "build" (the structure's sub-passes: all but the baseline and the pass's
-// own) and "frame" (all but the baseline) to one frame's times.
+// Adds the sums "build" (the structure's sub-passes: all but the baselines and the pass's
+// own) and "frame" (all but the baselines) to one frame's times.
 void add_frame_sums(FrameTimes& times, const std::vector<std::string>& pass_subpasses) {
   double build_ms = 0, frame_ms = 0;
   for (const auto& [name, ms] : times) {
-    if (name == kRasterBaseline) continue;
+    if (is_raster_baseline(name)) continue;
     frame_ms += ms;
     if (std::find(pass_subpasses.begin(), pass_subpasses.end(), name) == pass_subpasses.end())
       build_ms += ms;
@@ -88,7 +91,7 @@ Measurement measure(const Scene& scene, const MeasurementRequest& request) {
   m.census = summarize_census(census);
 
   auto structure = setup.prepare(request.structure, request.structure_params);
-  const RasterBaseline baseline(request.resolution);
+  const RasterBaseline baseline(*setup.raster, setup.views);
   pass->prepare({setup.scene, *setup.gpu_scene, &in, structure.get(), request.width,
                  request.height});
   const LdmInspector inspector(*structure, in);
@@ -104,7 +107,7 @@ Measurement measure(const Scene& scene, const MeasurementRequest& request) {
     const bool warmup = frame < request.warmup;
     if (!warmup && !keep_running()) break;
     timer.begin_frame();
-    baseline.render(*setup.gpu_scene, *setup.gpu_views, &timer);
+    baseline.render(&timer);
     structure->build(in, &timer);
     pass->render(&timer);
     FrameTimes times = timer.end_frame();
@@ -117,6 +120,14 @@ Measurement measure(const Scene& scene, const MeasurementRequest& request) {
     m.frames.push_back(std::move(times));
   }
 
+  // A touch baseline that shaded other fragments than the census would make
+  // build_vs_raster_touch a ratio to something else.
+  m.raster_touch_fragments = baseline.touched_fragments();
+  if (m.raster_touch_fragments != census.total_fragments)
+    health.report_problem("the raster_touch baseline shaded " +
+                          std::to_string(m.raster_touch_fragments) +
+                          " fragments where the census counted " +
+                          std::to_string(census.total_fragments));
   m.images = pass->images();
   if (m.images.empty()) throw std::logic_error("pass " + request.pass + " produced no image");
   for (const auto& image : m.images) {

@@ -4,7 +4,7 @@
 // inspect. All three call measure(), so they build, time and judge alike.
 //
 // measure() uploads what the pass requires, takes the fragment census, prepares the
-// structure and the pass, then runs frames: raster baseline │ structure build │ pass, each
+// structure and the pass, then runs frames: raster baselines │ structure build │ pass, each
 // sub-pass timed, and after every frame (untimed) the inspector's read-back judged by
 // BuildHealth (ldm_impls/common/build_health.h). Warm-up frames are judged but not kept.
 #include <cstdint>
@@ -68,8 +68,11 @@ struct Measurement {
   std::vector<BufferMemory> memory;
 
   // Every measured frame, in order: each sub-pass's milliseconds, then "build" (the
-  // structure's sub-passes) and "frame" (everything but the raster baseline).
+  // structure's sub-passes) and "frame" (everything but the raster baselines).
   std::vector<FrameTimes> frames;
+  // Fragments the last raster_touch pass shaded (harness/passes/raster_baseline.h): the
+  // census total when the touch baseline really touched every fragment.
+  uint64_t raster_touch_fragments = 0;
   std::vector<std::string> pass_subpasses;  // the pass's own, as declared
 
   std::vector<PassImage> images;

@@ -81,7 +81,8 @@ std::string format_double(double value) {
 HaBuffer::HaBuffer(StructureParams& params) {
   load_factor_ = params.get_double("load_factor", 0.75, 0.01, 64.0);
   max_age_ = uint32_t(params.get_uint("max_age", 254, 0, 254));
-  key_bits_request_ = params.get_choice("key_bits", "auto", {"auto", "32", "64"});
+  // 32 by default on every device: the records of two devices then compare the same packing.
+  key_bits_request_ = params.get_choice("key_bits", "32", {"32", "64", "auto"});
 }
 
 uint32_t HaBuffer::choose_key_bits() const {
@@ -212,7 +213,7 @@ std::vector<std::pair<std::string, std::string>> HaBuffer::sizing() const {
       {"load_factor_actual", format_double(double(census_fragments_) / double(table_size_))},
       {"max_age", std::to_string(max_age_)},
       {"key_bits", std::to_string(key_bits_)},
-      {"key_bits_policy", key_bits_request_ == "auto" ? "auto" : "parameter"}};
+      {"key_bits_request", key_bits_request_}};
   if (key_bits_ == 32)
     s.emplace_back("depth_step", format_double(std::ldexp(1.0, depth_step_log2_)));
   return s;

@@ -17,9 +17,12 @@
 //                     0..c-1, so a smaller cap drops fragments of deep pixels; queries stop at
 //                     each pixel's own highest age (the per-pixel age table), so a high cap
 //                     costs nothing. Default: the largest the key holds.
-//   key_bits=auto|32|64  auto: 64-bit keys (the exact float depth) where the device has
-//                     64-bit atomics (GL_NV_shader_atomic_int64 + GL_ARB_gpu_shader_int64),
-//                     else 32-bit keys with 24-bit quantised depth (see depth_quantum()).
+//   key_bits=32|64|auto  32 (default, the thesis's choice): 8-bit age and 24-bit quantised
+//                     depth (see depth_quantum()), on every device, so that bytes and error
+//                     do not change with the device. 64: the exact float depth; needs 64-bit
+//                     atomics (GL_NV_shader_atomic_int64 + GL_ARB_gpu_shader_int64). auto:
+//                     64 where the device has them, else 32. The record's sizing_key_bits
+//                     says which packing ran.
 // Sub-passes: clear (table, age table, counters), construct (geometry pass).
 #include <memory>
 
@@ -53,7 +56,7 @@ class HaBuffer final : public LdmStructure {
 
   double load_factor_ = 0.75;
   uint32_t max_age_ = 254;
-  std::string key_bits_request_ = "auto";
+  std::string key_bits_request_ = "32";
 
   uint32_t key_bits_ = 32;
   uint64_t pixels_ = 0;      // N * R_LDM^2

@@ -114,6 +114,18 @@ TEST(HaBuffer, CornellMatchesPsppsllWithin32BitQuantum) {
 }
 TEST(HaBuffer, AtriumMatchesPsppsllWithinQuantum) { expect_matches_psppsll("atrium", 12, 64, {}); }
 
+// The default packing is the thesis's 32-bit key on every device, so that bytes and error
+// do not change with the device; the record says which packing ran.
+TEST(HaBuffer, DefaultKeysAre32BitsOnEveryDevice) {
+  const LdmFixture f("cornell", 4, 32);
+  const auto ha = f.prepare("habuffer");
+  EXPECT_EQ(test::sizing_value(*ha, "key_bits"), "32");
+  EXPECT_EQ(test::sizing_value(*ha, "key_bits_request"), "32");
+  const auto automatic = f.prepare("habuffer", {{"key_bits", "auto"}});
+  EXPECT_EQ(test::sizing_value(*automatic, "key_bits"),
+            test::gl_context().device().has_int64_atomics ? "64" : "32");
+}
+
 // 64-bit keys: exact floats where the device has 64-bit atomics; a UserError naming the
 // parameter where it does not.
 TEST(HaBuffer, SixtyFourBitKeysNeedInt64Atomics) {
