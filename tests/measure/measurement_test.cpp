@@ -134,12 +134,13 @@ TEST(Measurement, KeepsEveryFrameAndSplitsBuildFromThePass) {
   EXPECT_EQ(m.pass_subpasses, (std::vector<std::string>{"gbuffer", "ao"}));
   for (const FrameTimes& frame : m.frames) {
     std::map<std::string, double> t(frame.begin(), frame.end());
-    for (const char* name : {"raster_baseline", "clear", "count", "prefix_sum", "construct",
-                             "sort", "gbuffer", "ao", "build", "frame"})
+    for (const char* name : {"raster_baseline", "raster_touch", "clear", "count", "prefix_sum",
+                             "construct", "sort", "gbuffer", "ao", "build", "frame"})
       EXPECT_TRUE(t.count(name)) << name;
     EXPECT_DOUBLE_EQ(t["build"], t["clear"] + t["count"] + t["prefix_sum"] + t["construct"] + t["sort"]);
     EXPECT_DOUBLE_EQ(t["frame"], t["build"] + t["gbuffer"] + t["ao"]);
   }
+  EXPECT_EQ(m.raster_touch_fragments, m.census.fragments);
   EXPECT_EQ(m.summaries().front().samples, 3u);
   ASSERT_EQ(m.images.size(), 1u);
   EXPECT_EQ(m.images[0].name, "ao");
