@@ -13,6 +13,8 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
+#include <map>
+#include <string>
 #include <random>
 
 #include "harness/scene/scene_loader.h"
@@ -135,17 +137,35 @@ uint64_t pixels_not_matching(const ContentionSetup& s, const LdmStructure& struc
   return wrong;
 }
 
-class Contention : public ::testing::TestWithParam<std::string> {};
+// A structure and parameters that select another of its paths.
+struct Variant {
+  std::string structure;
+  std::map<std::string, std::string> params;
+  std::string label() const {
+    std::string out = structure;
+    for (const auto& [key, value] : params) out += "_" + key + "_" + value;
+    return out;
+  }
+};
+
+std::vector<Variant> every_structure() {
+  std::vector<Variant> v;
+  for (const std::string& name : structure_names()) v.push_back({name, {}});
+  return v;
+}
+
+class Contention : public ::testing::TestWithParam<Variant> {};
 
 TEST_P(Contention, ConcurrentInsertionsStoreExactlyTheKnownDepths) {
   const ContentionSetup& s = setup();
   ASSERT_EQ(s.census.max_depth_complexity, kHotFragments);
+  const Variant& variant = GetParam();
   const uint64_t retries_before = s.source.retries();
-  auto structure = make_structure(GetParam(), StructureParams({}, "contention test"));
+  auto structure = make_structure(variant.structure, StructureParams(variant.params, "contention test"));
   structure->prepare(s.inputs);
   // Repeated builds into the same storage: the clear paths too, and new interleavings.
   for (int build = 0; build < 3; ++build) {
-    const std::string what = GetParam() + " build " + std::to_string(build);
+    const std::string what = variant.label() + " build " + std::to_string(build);
     structure->build(s.inputs, nullptr);
     const BuildStats stats = structure->stats();
     EXPECT_EQ(stats.fragments_rasterized, s.census.total_fragments) << what;
@@ -160,12 +180,23 @@ TEST_P(Contention, ConcurrentInsertionsStoreExactlyTheKnownDepths) {
   }
   const uint64_t retries = s.source.retries() - retries_before;
   RecordProperty("retries", std::to_string(retries));
-  std::cout << GetParam() << ": " << s.census.total_fragments << " fragments x 3 builds, "
+  std::cout << variant.label() << ": " << s.census.total_fragments << " fragments x 3 builds, "
             << retries << " retries counted by LDM_COUNT_RETRY (failed compare-and-swap)\n";
 }
 
-INSTANTIATE_TEST_SUITE_P(AllStructures, Contention, ::testing::ValuesIn(structure_names()),
-                         [](const auto& info) { return info.param; });
+INSTANTIATE_TEST_SUITE_P(AllStructures, Contention, ::testing::ValuesIn(every_structure()),
+                         [](const auto& info) { return info.param.label(); });
+
+// Other paths under the same contention: the §3.4.3 atomic reads, a pool grown and rebuilt
+// from a one-node-per-pixel start, and post-sorts whose local array is shorter than the hot
+// pixels' lists (sorted in place).
+INSTANTIATE_TEST_SUITE_P(Paths, Contention,
+                         ::testing::Values(Variant{"psppsll", {{"atomic_reads", "true"}}},
+                                           Variant{"psppsll", {{"pool", "grow"}}},
+                                           Variant{"ppsll", {{"pool", "grow"}}},
+                                           Variant{"ppsll", {{"local", "8"}}},
+                                           Variant{"dfbuffer", {{"local", "8"}}}),
+                         [](const auto& info) { return info.param.label(); });
 
 // The synthetic source itself: the census shader run on it counts every listed fragment
 // once, pixel by pixel (nothing skipped, nothing run twice).
