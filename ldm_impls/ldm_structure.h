@@ -99,8 +99,9 @@ class LdmStructure {
   virtual void prepare(const BuildInputs& in) = 0;
   // One construction: every sub-pass (clear, count, scan, store, sort...) timed by `timer`.
   virtual void build(const BuildInputs& in, GpuTimer* timer) = 0;
-  // What the last build stored and lost (reads small counters back; never timed).
-  virtual BuildStats stats() = 0;
+  // What the last build stored and lost (reads small counters back; never timed). Any
+  // number of calls, in any order with memory(), give the same answer.
+  virtual BuildStats stats() const = 0;
 
   // The query API implementation: files prepended to a pass's shader, their defines, and
   // the bindings they read.
@@ -108,6 +109,7 @@ class LdmStructure {
   virtual ShaderDefines query_defines() const = 0;
   virtual void bind_for_query() const = 0;
 
+  // Every buffer, allocated and used by the last build (reads back what it needs itself).
   virtual std::vector<BufferMemory> memory() const = 0;
   // How storage was sized, for records: e.g. {"pool_policy", "counted"}.
   virtual std::vector<std::pair<std::string, std::string>> sizing() const = 0;

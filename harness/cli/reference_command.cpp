@@ -1,12 +1,16 @@
 // `ldmbench reference`: a path-traced reference image on its own.
+#include <cstdio>
 #include <filesystem>
+#include <map>
 #include <iostream>
 #include <memory>
 
 #include "harness/app/run_command.h"
 #include "harness/cli/commands.h"
 #include "harness/metrics/image_metrics.h"
-#include "harness/reference/ao_reference.h"
+#include "harness/passes/pass.h"
+#include "harness/reference/reference_cache.h"
+#include "harness/reference/reference_settings.h"
 #include "harness/scene/scene_loader.h"
 #include "harness/util/error.h"
 
@@ -14,38 +18,50 @@ namespace ldm::cli {
 namespace {
 
 struct ReferenceOptions {
-  std::string scene = "cornell", pass = "ao", out, cache_dir = kDefaultReferenceCacheDir;
-  std::string visibility = "scene";
+  std::string scene = "cornell", pass = "ao", out, visibility = "scene";
   int width = 256, height = 256;
   float d_max = 0;
-  bool use_cache = true;
-  AoReferenceRequest request;
+  ReferenceSettings reference;
 };
+
+// The pass parameters these options stand for (the same keys `ldmbench run` hands a pass).
+std::map<std::string, std::string> pass_params(const ReferenceOptions& o) {
+  std::map<std::string, std::string> params;
+  if (o.d_max > 0) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.9g", double(o.d_max));
+    params["d_max"] = text;
+  }
+  if (o.visibility != "scene") params["visibility"] = o.visibility;
+  return params;
+}
 
 }  // namespace
 
 Runner add_reference_command(CLI::App& app) {
   auto o = std::make_shared<ReferenceOptions>();
+  o->reference.cache_dir = kDefaultReferenceCacheDir;
   auto* cmd = app.add_subcommand("reference", "Render the path-traced (Embree) reference of a "
                                               "pass for a scene's camera");
   cmd->add_option("--scene", o->scene, "Built-in scene name or scene file path")
       ->capture_default_str();
-  cmd->add_option("--pass", o->pass, "Pass whose reference to render: ao")
-      ->check(CLI::IsMember({"ao"}))
+  cmd->add_option("--pass", o->pass, "Pass whose reference to render (see `ldmbench passes`)")
+      ->check(CLI::IsMember(pass_names()))
       ->capture_default_str();
   cmd->add_option("--width", o->width, "Image width")->check(CLI::Range(1, 16384))->capture_default_str();
   cmd->add_option("--height", o->height, "Image height")->check(CLI::Range(1, 16384))->capture_default_str();
-  cmd->add_option("--spp", o->request.spp_per_half,
+  cmd->add_option("--spp", o->reference.spp.spp_per_half,
                   "Samples per pixel per half (0: double until the noise target)")
       ->check(CLI::Range(0u, 1u << 20))
       ->capture_default_str();
-  cmd->add_option("--noise", o->request.target_noise_mse, "Noise target (expected MSE)")
+  cmd->add_option("--noise", o->reference.spp.target_noise_mse, "Noise target (expected MSE)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  cmd->add_option("--max-spp", o->request.max_spp_per_half, "Cap of the automatic rule, per half")
+  cmd->add_option("--max-spp", o->reference.spp.max_spp_per_half,
+                  "Cap of the automatic rule, per half")
       ->check(CLI::Range(1u, 1u << 20))
       ->capture_default_str();
-  cmd->add_option("--seed", o->request.seed, "Seed (the halves use seed and seed + 1)")
+  cmd->add_option("--seed", o->reference.seed, "Seed (the halves use seed and seed + 1)")
       ->capture_default_str();
   cmd->add_option("--d-max", o->d_max, "AO attenuation distance (default: the scene's)")
       ->check(CLI::PositiveNumber);
@@ -53,21 +69,15 @@ Runner add_reference_command(CLI::App& app) {
       ->check(CLI::IsMember({"scene", "attenuated", "unattenuated"}))
       ->capture_default_str();
   cmd->add_option("--out", o->out, "Output EXR path (a PNG is written beside it)")->required();
-  cmd->add_option("--cache-dir", o->cache_dir, "Reference cache folder")->capture_default_str();
-  cmd->add_flag("!--no-cache", o->use_cache, "Render even if a cached reference exists");
+  cmd->add_option("--cache-dir", o->reference.cache_dir, "Reference cache folder")
+      ->capture_default_str();
+  cmd->add_flag("!--no-cache", o->reference.use_cache, "Render even if a cached reference exists");
   return [o]() {
     if (std::filesystem::path(o->out).extension() != ".exr")
       throw UserError("--out: '" + o->out + "' must end in .exr (linear float output)");
     const Scene scene = load_scene(o->scene);
-    AoSettings ao = scene.ao;
-    if (o->d_max > 0) ao.d_max = o->d_max;
-    if (o->visibility != "scene") ao.attenuated = o->visibility == "attenuated";
-    AoReferenceRequest request = o->request;
-    request.width = o->width;
-    request.height = o->height;
-    request.ao = ao;
-    const ReferenceResult result = o->use_cache ? cached_ao_reference(scene, request, o->cache_dir)
-                                                : render_ao_reference(scene, request);
+    const auto pass = make_pass(o->pass, StructureParams(pass_params(*o), "--pass " + o->pass));
+    const ReferenceResult result = pass->reference(scene, o->width, o->height, o->reference);
     write_exr(o->out, result.image);
     const auto png = std::filesystem::path(o->out).replace_extension(".png").string();
     write_png(png, result.image);

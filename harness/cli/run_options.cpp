@@ -96,15 +96,15 @@ Runner add_run_command(CLI::App& app, const std::string& command_line) {
   run->add_flag("!--no-images", s.write_images, "Do not write images");
   run->add_flag("!--no-reference", s.reference.enabled,
                 "Skip the path-traced reference and the image metrics");
-  run->add_option("--reference-spp", s.reference.spp_per_half,
+  run->add_option("--reference-spp", s.reference.spp.spp_per_half,
                   "Reference samples per pixel per half (0: double until the noise target)")
       ->check(CLI::Range(0u, 1u << 20))
       ->capture_default_str();
-  run->add_option("--reference-noise", s.reference.target_noise_mse,
+  run->add_option("--reference-noise", s.reference.spp.target_noise_mse,
                   "Noise target of the automatic spp rule: the reference's expected MSE")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  run->add_option("--reference-max-spp", s.reference.max_spp_per_half,
+  run->add_option("--reference-max-spp", s.reference.spp.max_spp_per_half,
                   "Cap of the automatic spp rule (samples per pixel per half)")
       ->check(CLI::Range(1u, 1u << 20))
       ->capture_default_str();

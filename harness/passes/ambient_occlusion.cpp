@@ -65,10 +65,10 @@ ReferenceResult AmbientOcclusion::reference(const Scene& scene, int width, int h
   request.width = width;
   request.height = height;
   request.ao = settings_for(scene);
-  request.spp_per_half = settings.spp_per_half;
-  request.target_noise_mse = settings.target_noise_mse;
-  request.max_spp_per_half = settings.max_spp_per_half;
+  request.spp = settings.spp;
   request.seed = settings.seed;
+  request.progress = settings.progress;
+  if (!settings.use_cache) return render_ao_reference(scene, request);
   return cached_ao_reference(
       scene, request, settings.cache_dir.empty() ? kDefaultReferenceCacheDir : settings.cache_dir);
 }

@@ -1,7 +1,7 @@
 #include "harness/passes/gbuffer_pass.h"
 
 #include "harness/gl/bindings.h"
-#include "harness/passes/camera.h"
+#include "harness/scene/camera.h"
 #include "harness/util/error.h"
 
 namespace ldm {

@@ -5,7 +5,7 @@
 // directions. No LDM normal offset: this is the ground truth the LDM passes are judged by.
 #include <cstdint>
 
-#include "harness/passes/camera.h"
+#include "harness/scene/camera.h"
 #include "harness/reference/embree_scene.h"
 #include "harness/reference/pcg32.h"
 #include "harness/scene/scene.h"

@@ -22,14 +22,6 @@ void validate(const AoReferenceRequest& request) {
   if (request.threads < 0) throw UserError("AO reference: threads must be >= 0");
 }
 
-SppRule spp_rule(const AoReferenceRequest& request) {
-  SppRule rule;
-  rule.spp_per_half = request.spp_per_half;
-  rule.target_noise_mse = request.target_noise_mse;
-  rule.max_spp_per_half = request.max_spp_per_half;
-  return rule;
-}
-
 AoSettings settings_used(const Scene& scene, const AoReferenceRequest& request) {
   return request.ao.value_or(scene.ao);
 }
@@ -64,7 +56,7 @@ Image render_ao_half(const Scene& scene, const AoSettings& ao, int width, int he
 
 ReferenceResult render_ao_reference(const Scene& scene, const AoReferenceRequest& request) {
   validate(request);
-  const SppRule rule = spp_rule(request);
+  const SppRule& rule = request.spp;
   validate_spp_rule(rule);
   scene.validate();
   const AoSettings ao = settings_used(scene, request);
@@ -82,12 +74,12 @@ ReferenceResult render_ao_reference(const Scene& scene, const AoReferenceRequest
 nlohmann::json ao_reference_inputs(const Scene& scene, const AoReferenceRequest& request) {
   const AoSettings ao = settings_used(scene, request);
   nlohmann::json spp;
-  if (request.spp_per_half > 0)
-    spp = {{"per_half", request.spp_per_half}};
+  if (request.spp.spp_per_half > 0)
+    spp = {{"per_half", request.spp.spp_per_half}};
   else
-    spp = {{"auto_target_noise_mse", request.target_noise_mse},
-           {"auto_max_per_half", request.max_spp_per_half},
-           {"auto_start_per_half", SppRule{}.start_spp_per_half}};
+    spp = {{"auto_target_noise_mse", request.spp.target_noise_mse},
+           {"auto_max_per_half", request.spp.max_spp_per_half},
+           {"auto_start_per_half", request.spp.start_spp_per_half}};
   return {{"pass", "ao"},
           {"renderer_version", kAoReferenceVersion},
           {"scene", scene.name},
@@ -105,7 +97,7 @@ nlohmann::json ao_reference_inputs(const Scene& scene, const AoReferenceRequest&
 ReferenceResult cached_ao_reference(const Scene& scene, const AoReferenceRequest& request,
                                     const std::string& cache_dir) {
   validate(request);
-  validate_spp_rule(spp_rule(request));
+  validate_spp_rule(request.spp);
   const nlohmann::json inputs = ao_reference_inputs(scene, request);
   if (auto cached = load_cached_reference(cache_dir, inputs)) return *cached;
   ReferenceResult result = render_ao_reference(scene, request);

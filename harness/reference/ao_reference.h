@@ -22,9 +22,7 @@ inline constexpr int kAoReferenceVersion = 1;
 struct AoReferenceRequest {
   int width = 0, height = 0;
   std::optional<AoSettings> ao;  // overrides scene.ao (normal_offset_pixels is not used)
-  uint32_t spp_per_half = 0;     // 0: automatic (reference_image.h)
-  double target_noise_mse = 1e-5;  // PSNR >= 50 dB for [0, 1] images
-  uint32_t max_spp_per_half = 4096;
+  SppRule spp;                   // samples per pixel (reference_image.h)
   uint64_t seed = 1;   // the halves use seed and seed + 1
   int threads = 0;     // 0: all cores; does not change the image
   bool progress = true;

@@ -4,15 +4,17 @@
 #include <cstdint>
 #include <string>
 
+#include "harness/reference/reference_image.h"
+
 namespace ldm {
 
 struct ReferenceSettings {
   bool enabled = true;
-  uint32_t spp_per_half = 0;         // 0: automatic (doubling until the noise target is met)
-  double target_noise_mse = 1e-5;
-  uint32_t max_spp_per_half = 4096;
-  uint64_t seed = 1;
-  std::string cache_dir;             // default: results/cache/references
+  SppRule spp;            // samples per pixel: fixed, or doubling until the noise target
+  uint64_t seed = 1;      // the halves use seed and seed + 1
+  std::string cache_dir;  // default: results/cache/references
+  bool use_cache = true;  // false: render even when the cache holds a matching entry
+  bool progress = true;   // progress with ETA on a terminal
 };
 
 }  // namespace ldm

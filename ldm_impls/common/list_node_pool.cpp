@@ -25,7 +25,6 @@ void ListNodePool::prepare(const BuildInputs& in, const std::string& build_shade
                          extra_defines.values.end());
   counters_ = GlBuffer("counters", 2 * sizeof(uint32_t));
   rebuilds_ = 0;
-  stored_ = 0;
   switch (policy_) {
     case Policy::Counted: allocate(in, in.census.total_fragments); break;
     case Policy::Grow: allocate(in, heads_); break;
@@ -83,7 +82,7 @@ std::array<uint32_t, 2> ListNodePool::read_counters() const {
   return c;
 }
 
-BuildStats ListNodePool::stats(const std::array<uint32_t, 2>& counters, uint64_t unlinked) {
+BuildStats ListNodePool::stats(const std::array<uint32_t, 2>& counters, uint64_t unlinked) const {
   BuildStats s;
   s.fragments_rasterized = counters[0];
   s.overflow = counters[0] > capacity_;
@@ -91,15 +90,14 @@ BuildStats ListNodePool::stats(const std::array<uint32_t, 2>& counters, uint64_t
   s.fragments_stored = written - std::min(written, unlinked);
   s.fragments_lost = s.fragments_rasterized - s.fragments_stored;
   s.counters = {{"pool_rebuilds", double(rebuilds_)}};
-  stored_ = s.fragments_stored;
   return s;
 }
 
-std::vector<BufferMemory> ListNodePool::memory() const {
+std::vector<BufferMemory> ListNodePool::memory(uint64_t stored_nodes) const {
   const uint64_t head_bytes = heads_ * sizeof(uint32_t);
   const uint64_t node_bytes = kWordsPerNode * sizeof(uint32_t);
   return {{"heads", head_bytes, head_bytes},
-          {"nodes", capacity_ * node_bytes, stored_ * node_bytes},
+          {"nodes", capacity_ * node_bytes, stored_nodes * node_bytes},
           {"counters", counters_.bytes(), counters_.bytes()}};
 }
 

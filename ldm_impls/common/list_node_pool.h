@@ -39,11 +39,12 @@ class ListNodePool {
   // [1] the structure's own (PSPPSLL: aborted insertions, PPSLL: lists sorted in place).
   std::array<uint32_t, 2> read_counters() const;
   // Rasterised / stored / lost / overflow of the last build, given how many allocated nodes
-  // never made it into a list; also remembers the stored count for memory().
-  BuildStats stats(const std::array<uint32_t, 2>& counters, uint64_t unlinked);
+  // never made it into a list.
+  BuildStats stats(const std::array<uint32_t, 2>& counters, uint64_t unlinked) const;
 
   uint64_t heads() const { return heads_; }
-  std::vector<BufferMemory> memory() const;
+  // `stored_nodes`: the fragments_stored of stats().
+  std::vector<BufferMemory> memory(uint64_t stored_nodes) const;
   std::vector<std::pair<std::string, std::string>> sizing() const;
 
  private:
@@ -57,7 +58,6 @@ class ListNodePool {
   uint64_t heads_ = 0;     // N * R_LDM^2
   uint64_t capacity_ = 0;  // nodes
   uint64_t rebuilds_ = 0;
-  uint64_t stored_ = 0;    // nodes in lists after the last build
   std::string build_shader_;
   ShaderDefines defines_;  // the structure's and the census's, without the capacity
   GlBuffer data_, counters_;

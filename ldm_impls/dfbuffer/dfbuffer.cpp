@@ -105,7 +105,7 @@ uint64_t DfBuffer::count_unfilled_slots() const {
   return unfilled;
 }
 
-BuildStats DfBuffer::stats() {
+BuildStats DfBuffer::stats() const {
   uint32_t scan_total = 0;
   offsets_.download(&scan_total, sizeof scan_total, pixels_ * sizeof(uint32_t));
   uint32_t c[kCounterWords] = {};
@@ -126,7 +126,6 @@ BuildStats DfBuffer::stats() {
                 {"unfilled_slots", double(unfilled)},
                 {"lost_beyond_count", double(lost_beyond_count)},
                 {"lost_beyond_capacity", double(lost_beyond_capacity)}};
-  stored_ = s.fragments_stored;
   return s;
 }
 
@@ -138,10 +137,11 @@ void DfBuffer::bind_for_query() const {
 }
 
 std::vector<BufferMemory> DfBuffer::memory() const {
+  const uint64_t stored = stats().fragments_stored;
   const uint64_t scratch = scan_ ? scan_->scratch_bytes() : 0;
   return {{"counts", counts_.bytes(), counts_.bytes()},
           {"offsets", offsets_.bytes(), offsets_.bytes()},
-          {"depths", depths_.bytes(), stored_ * sizeof(float)},
+          {"depths", depths_.bytes(), stored * sizeof(float)},
           {"scan_block_sums", scratch, scratch},
           {"counters", counters_.bytes(), counters_.bytes()}};
 }

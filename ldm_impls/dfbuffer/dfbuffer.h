@@ -28,7 +28,7 @@ class DfBuffer final : public LdmStructure {
   std::string name() const override { return "dfbuffer"; }
   void prepare(const BuildInputs& in) override;
   void build(const BuildInputs& in, GpuTimer* timer) override;
-  BuildStats stats() override;
+  BuildStats stats() const override;
   std::vector<std::string> query_sources() const override;
   ShaderDefines query_defines() const override;
   void bind_for_query() const override;
@@ -47,7 +47,6 @@ class DfBuffer final : public LdmStructure {
   uint32_t local_ = 0;            // K of the sort pass
   uint64_t pixels_ = 0;           // N * R_LDM^2
   uint64_t capacity_ = 0;         // depths: the census's fragment total
-  uint64_t stored_ = 0;           // depths held after the last build (from stats())
   ShaderDefines query_defines_;
   GlBuffer counts_, offsets_, depths_;
   // [0] lost: no slot left in the pixel's range, [1] lost: slot past the depth array,

@@ -57,9 +57,8 @@ void Ppfla::build(const BuildInputs& in, GpuTimer* timer) {
   }
 }
 
-BuildStats Ppfla::stats() {
+BuildStats Ppfla::stats() const {
   BuildStats s = fixed_array_stats(dropped_, census_fragments_);
-  stored_ = s.fragments_stored;
   return s;
 }
 
@@ -70,7 +69,8 @@ ShaderDefines Ppfla::query_defines() const { return defines_; }
 void Ppfla::bind_for_query() const { bind_storage(); }
 
 std::vector<BufferMemory> Ppfla::memory() const {
-  return {{"entries", entries_.bytes(), stored_ * sizeof(uint32_t)},
+  const uint64_t stored = stats().fragments_stored;
+  return {{"entries", entries_.bytes(), stored * sizeof(uint32_t)},
           {"counts", counts_.bytes(), counts_.bytes()},
           {"dropped_counter", dropped_.bytes(), dropped_.bytes()}};
 }

@@ -22,7 +22,7 @@ class Ppfla final : public LdmStructure {
   std::string name() const override { return "ppfla"; }
   void prepare(const BuildInputs& in) override;
   void build(const BuildInputs& in, GpuTimer* timer) override;
-  BuildStats stats() override;
+  BuildStats stats() const override;
   std::vector<std::string> query_sources() const override;
   ShaderDefines query_defines() const override;
   void bind_for_query() const override;
@@ -36,7 +36,6 @@ class Ppfla final : public LdmStructure {
   uint32_t requested_k_ = 0;
   FixedArrayLayout layout_;
   uint64_t census_fragments_ = 0;
-  uint64_t stored_ = 0;  // from the last stats()
   ShaderDefines defines_;
   GlBuffer entries_, counts_, dropped_;
   GlProgram build_program_, sort_program_;

@@ -35,9 +35,8 @@ void Psppfla::build(const BuildInputs& in, GpuTimer* timer) {
   }
 }
 
-BuildStats Psppfla::stats() {
+BuildStats Psppfla::stats() const {
   BuildStats s = fixed_array_stats(dropped_, census_fragments_);
-  stored_ = s.fragments_stored;
   return s;
 }
 
@@ -48,7 +47,8 @@ ShaderDefines Psppfla::query_defines() const { return defines_; }
 void Psppfla::bind_for_query() const { entries_.bind_storage(kStructureBinding0); }
 
 std::vector<BufferMemory> Psppfla::memory() const {
-  return {{"entries", entries_.bytes(), stored_ * sizeof(uint32_t)},
+  const uint64_t stored = stats().fragments_stored;
+  return {{"entries", entries_.bytes(), stored * sizeof(uint32_t)},
           {"dropped_counter", dropped_.bytes(), dropped_.bytes()}};
 }
 

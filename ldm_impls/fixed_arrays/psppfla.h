@@ -24,7 +24,7 @@ class Psppfla final : public LdmStructure {
   std::string name() const override { return "psppfla"; }
   void prepare(const BuildInputs& in) override;
   void build(const BuildInputs& in, GpuTimer* timer) override;
-  BuildStats stats() override;
+  BuildStats stats() const override;
   std::vector<std::string> query_sources() const override;
   ShaderDefines query_defines() const override;
   void bind_for_query() const override;
@@ -35,7 +35,6 @@ class Psppfla final : public LdmStructure {
   uint32_t requested_k_ = 0;
   FixedArrayLayout layout_;
   uint64_t census_fragments_ = 0;
-  uint64_t stored_ = 0;  // from the last stats()
   ShaderDefines defines_;
   GlBuffer entries_, dropped_;
   GlProgram build_program_;

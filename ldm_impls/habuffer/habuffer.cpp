@@ -157,8 +157,10 @@ void HaBuffer::build(const BuildInputs& in, GpuTimer* timer) {
   }
 }
 
-uint32_t HaBuffer::read_highest_age_count() {
-  age_summary_.clear_to_zero();
+uint32_t HaBuffer::read_highest_age_count() const {
+  // A scratch word of the read-back, not state of the structure: cleared here directly.
+  const uint32_t zero = 0;
+  glClearNamedBufferData(age_summary_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
   highest_age_program_.use();
   age_counts_.bind_storage(kStructureBinding0 + 2);
   age_summary_.bind_storage(kStructureBinding0 + 3);
@@ -171,7 +173,7 @@ uint32_t HaBuffer::read_highest_age_count() {
   return highest;
 }
 
-BuildStats HaBuffer::stats() {
+BuildStats HaBuffer::stats() const {
   uint32_t counters[kCounterWords] = {0, 0};
   counters_.download(counters, sizeof counters);
   const uint64_t dropped = counters[0], aborted = counters[1];
@@ -184,7 +186,6 @@ BuildStats HaBuffer::stats() {
   s.counters = {{"max_age_used", highest_age_count ? double(highest_age_count - 1) : 0.0},
                 {"dropped_max_age", double(dropped)},
                 {"aborted_insertions", double(aborted)}};
-  stored_ = s.fragments_stored;
   return s;
 }
 
@@ -198,8 +199,9 @@ void HaBuffer::bind_for_query() const {
 }
 
 std::vector<BufferMemory> HaBuffer::memory() const {
+  const uint64_t stored = stats().fragments_stored;
   const uint64_t key_bytes = key_bits_ / 8;
-  return {{"table", table_.bytes(), stored_ * key_bytes},
+  return {{"table", table_.bytes(), stored * key_bytes},
           {"age_table", age_counts_.bytes(), age_counts_.bytes()},
           {"offsets", offsets_.bytes(), offsets_.bytes()},
           {"counters", counters_.bytes(), counters_.bytes()}};

@@ -38,7 +38,7 @@ class HaBuffer final : public LdmStructure {
   std::string name() const override { return "habuffer"; }
   void prepare(const BuildInputs& in) override;
   void build(const BuildInputs& in, GpuTimer* timer) override;
-  BuildStats stats() override;
+  BuildStats stats() const override;
   std::vector<std::string> query_sources() const override;
   ShaderDefines query_defines() const override;
   void bind_for_query() const override;
@@ -52,7 +52,7 @@ class HaBuffer final : public LdmStructure {
   uint32_t choose_key_bits() const;
   void size_table(const BuildInputs& in);
   void upload_offsets();
-  uint32_t read_highest_age_count();
+  uint32_t read_highest_age_count() const;
 
   double load_factor_ = 0.75;
   uint32_t max_age_ = 254;
@@ -63,7 +63,6 @@ class HaBuffer final : public LdmStructure {
   uint64_t table_size_ = 0;  // |H|, entries
   int depth_step_log2_ = 0;  // 32-bit keys: the quantisation step is 2^depth_step_log2_
   uint64_t census_fragments_ = 0;
-  uint64_t stored_ = 0;  // from the last stats()
   ShaderDefines defines_;
   GlBuffer table_, offsets_, age_counts_, counters_, age_summary_;
   GlProgram build_program_, highest_age_program_;

@@ -37,7 +37,7 @@ void Ppsll::build(const BuildInputs& in, GpuTimer* timer) {
   sort(timer);
 }
 
-BuildStats Ppsll::stats() {
+BuildStats Ppsll::stats() const {
   const auto counters = pool_.read_counters();  // [1]: lists the sort did in place
   BuildStats s = pool_.stats(counters, 0);
   s.counters.emplace_back("lists_sorted_in_place", double(counters[1]));
@@ -48,7 +48,7 @@ BuildStats Ppsll::stats() {
 std::vector<std::string> Ppsll::query_sources() const { return {"ldm/common/list_query.glsl"}; }
 ShaderDefines Ppsll::query_defines() const { return query_defines_; }
 void Ppsll::bind_for_query() const { pool_.bind(); }
-std::vector<BufferMemory> Ppsll::memory() const { return pool_.memory(); }
+std::vector<BufferMemory> Ppsll::memory() const { return pool_.memory(stats().fragments_stored); }
 
 std::vector<std::pair<std::string, std::string>> Ppsll::sizing() const {
   auto s = pool_.sizing();

@@ -20,7 +20,7 @@ void Psppsll::prepare(const BuildInputs& in) {
 
 void Psppsll::build(const BuildInputs& in, GpuTimer* timer) { pool_.build(in, timer); }
 
-BuildStats Psppsll::stats() {
+BuildStats Psppsll::stats() const {
   const auto counters = pool_.read_counters();  // [1]: insertions abandoned
   BuildStats s = pool_.stats(counters, counters[1]);
   s.counters.emplace_back("aborted_insertions", double(counters[1]));
@@ -30,7 +30,7 @@ BuildStats Psppsll::stats() {
 std::vector<std::string> Psppsll::query_sources() const { return {"ldm/common/list_query.glsl"}; }
 ShaderDefines Psppsll::query_defines() const { return query_defines_; }
 void Psppsll::bind_for_query() const { pool_.bind(); }
-std::vector<BufferMemory> Psppsll::memory() const { return pool_.memory(); }
+std::vector<BufferMemory> Psppsll::memory() const { return pool_.memory(stats().fragments_stored); }
 
 std::vector<std::pair<std::string, std::string>> Psppsll::sizing() const {
   auto s = pool_.sizing();

@@ -20,7 +20,7 @@ class Psppsll final : public LdmStructure {
   std::string name() const override { return "psppsll"; }
   void prepare(const BuildInputs& in) override;
   void build(const BuildInputs& in, GpuTimer* timer) override;
-  BuildStats stats() override;
+  BuildStats stats() const override;
   std::vector<std::string> query_sources() const override;
   ShaderDefines query_defines() const override;
   void bind_for_query() const override;

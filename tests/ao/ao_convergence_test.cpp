@@ -17,7 +17,7 @@ TEST(AoConvergence, ErrorAgainstTheReferenceFallsAsNGrows) {
   AoReferenceRequest request;
   request.width = width;
   request.height = height;
-  request.spp_per_half = 1024;
+  request.spp.spp_per_half = 1024;
   request.progress = false;
   const ReferenceResult reference = render_ao_reference(scene, request);
   std::vector<double> errors;

@@ -12,7 +12,7 @@
 
 #include <gtest/gtest.h>
 
-#include "harness/passes/camera.h"
+#include "harness/scene/camera.h"
 #include "harness/reference/ao_estimator.h"
 #include "harness/reference/ao_reference.h"
 #include "harness/reference/embree_scene.h"
@@ -140,7 +140,7 @@ float ray_offset(const Scene& scene) {
 ReferenceResult render(const Scene& scene) {
   AoReferenceRequest request;
   request.width = request.height = kSize;
-  request.spp_per_half = kSppPerHalf;
+  request.spp.spp_per_half = kSppPerHalf;
   request.threads = 2;
   request.progress = false;
   return render_ao_reference(scene, request);

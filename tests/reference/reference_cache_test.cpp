@@ -22,7 +22,7 @@ class ReferenceCache : public ::testing::Test {
   static AoReferenceRequest request() {
     AoReferenceRequest r;
     r.width = r.height = 16;
-    r.spp_per_half = 8;
+    r.spp.spp_per_half = 8;
     r.threads = 2;
     r.progress = false;
     return r;
@@ -69,7 +69,7 @@ TEST_F(ReferenceCache, EveryKeyInputMisses) {
     EXPECT_NE(result.cache_key, base.cache_key) << what;
   };
   AoReferenceRequest r = request();
-  r.spp_per_half = 16;
+  r.spp.spp_per_half = 16;
   expect_miss(scene(), r, "spp");
   r = request();
   r.seed = 2;
@@ -81,11 +81,11 @@ TEST_F(ReferenceCache, EveryKeyInputMisses) {
   r.height = 8;
   expect_miss(scene(), r, "height");
   r = request();
-  r.spp_per_half = 0;
-  r.target_noise_mse = 1e-2;
-  r.max_spp_per_half = 16;
+  r.spp.spp_per_half = 0;
+  r.spp.target_noise_mse = 1e-2;
+  r.spp.max_spp_per_half = 16;
   expect_miss(scene(), r, "automatic spp");
-  r.target_noise_mse = 2e-2;
+  r.spp.target_noise_mse = 2e-2;
   expect_miss(scene(), r, "automatic spp target");
   r = request();
   r.ao = scene().ao;

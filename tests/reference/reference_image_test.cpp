@@ -15,7 +15,7 @@ Scene cornell() { return generate_scene("cornell", nlohmann::json::object(), "te
 AoReferenceRequest small_request(uint32_t spp_per_half, int threads = 2, uint64_t seed = 1) {
   AoReferenceRequest request;
   request.width = request.height = 32;
-  request.spp_per_half = spp_per_half;
+  request.spp.spp_per_half = spp_per_half;
   request.seed = seed;
   request.threads = threads;
   request.progress = false;
@@ -78,7 +78,7 @@ TEST(ReferenceImage, NoiseEstimateHalvesWhenSppDoubles) {
 TEST(ReferenceImage, AutomaticSppStopsAtTheFirstLevelMeetingTheTarget) {
   const Scene scene = cornell();
   AoReferenceRequest request = small_request(0);
-  request.target_noise_mse = 1e-4;
+  request.spp.target_noise_mse = 1e-4;
   const ReferenceResult r = render_ao_reference(scene, request);
   EXPECT_TRUE(r.noise_target_met);
   EXPECT_LE(r.noise_mse, 1e-4);
@@ -87,7 +87,7 @@ TEST(ReferenceImage, AutomaticSppStopsAtTheFirstLevelMeetingTheTarget) {
   // The rule doubles from 16: the same request capped one level lower repeats the same
   // passes, and must have missed the target (else the rule should have stopped there).
   EXPECT_EQ(r.spp_per_half & (r.spp_per_half - 1), 0u) << "not 16 * 2^k: " << r.spp_per_half;
-  request.max_spp_per_half = r.spp_per_half / 2;
+  request.spp.max_spp_per_half = r.spp_per_half / 2;
   const ReferenceResult lower = render_ao_reference(scene, request);
   EXPECT_EQ(lower.spp_per_half, r.spp_per_half / 2);
   EXPECT_FALSE(lower.noise_target_met);
@@ -96,8 +96,8 @@ TEST(ReferenceImage, AutomaticSppStopsAtTheFirstLevelMeetingTheTarget) {
 
 TEST(ReferenceImage, AutomaticSppStopsAtTheMaximum) {
   AoReferenceRequest request = small_request(0);
-  request.target_noise_mse = 1e-12;  // unreachable
-  request.max_spp_per_half = 40;     // 16, 32, then capped at 40
+  request.spp.target_noise_mse = 1e-12;  // unreachable
+  request.spp.max_spp_per_half = 40;     // 16, 32, then capped at 40
   const ReferenceResult r = render_ao_reference(cornell(), request);
   EXPECT_EQ(r.spp_per_half, 40u);
   EXPECT_EQ(r.spp_total, 80u);
@@ -121,10 +121,10 @@ TEST(ReferenceImage, RejectsBadRequestsNamingTheField) {
   r.height = -3;
   EXPECT_NE(message_of(r).find("height"), std::string::npos);
   r = small_request(0);
-  r.target_noise_mse = 0.0;
+  r.spp.target_noise_mse = 0.0;
   EXPECT_NE(message_of(r).find("target_noise_mse"), std::string::npos);
   r = small_request(8);
-  r.max_spp_per_half = 4;
+  r.spp.max_spp_per_half = 4;
   EXPECT_NE(message_of(r).find("spp_per_half"), std::string::npos);
   r = small_request(8);
   r.ao = AoSettings{};

@@ -64,7 +64,6 @@ TEST(Ppsll, FixedPoolOverflowIsCountedAndTheStoredListsAreSorted) {
 TEST(Ppsll, MemoryAndSizingFollowTheCensus) {
   const LdmFixture f("cornell", 8, 32);
   const auto s = f.build("ppsll");
-  s->stats();  // memory() reports what the last build used
   EXPECT_EQ(test::sizing_value(*s, "pool_policy"), "counted");
   EXPECT_EQ(test::sizing_value(*s, "pool_capacity_nodes"),
             std::to_string(f.census.total_fragments));

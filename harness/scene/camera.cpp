@@ -1,4 +1,4 @@
-#include "harness/passes/camera.h"
+#include "harness/scene/camera.h"
 
 #include <algorithm>
 #include <cmath>
