@@ -12,6 +12,6 @@ using Runner = std::function<int()>;  // returns the process exit status
 Runner add_run_command(CLI::App& app, const std::string& command_line);
 Runner add_reference_command(CLI::App& app);
 Runner add_compare_command(CLI::App& app);
-Runner add_listing_commands(CLI::App& app);  // scenes, structures, info
+Runner add_listing_commands(CLI::App& app);  // scenes, structures, passes, columns, info
 
 }  // namespace ldm::cli

@@ -2,7 +2,7 @@
 //   ldmbench run             measure structures x passes x parameters: records and images
 //   ldmbench reference       render a path-traced reference image
 //   ldmbench compare-images  error metrics between two images
-//   ldmbench scenes | structures | info
+//   ldmbench scenes | structures | passes | columns | info
 #include <CLI/CLI.hpp>
 
 #include <iostream>

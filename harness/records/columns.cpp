@@ -1,0 +1,136 @@
+#include "harness/records/columns.h"
+
+#include <algorithm>
+#include <sstream>
+
+namespace ldm {
+
+const std::vector<ColumnSpec>& record_columns() {
+  static const std::vector<ColumnSpec> columns = {
+      {"identity", "config_id", "", "unique name of the configuration, also the image file stem"},
+      {"identity", "status", "", "ok, lossy (counted loss by configured capacity), invalid (never measured) or failed"},
+      {"identity", "status_detail", "", "why the status is not ok, and warnings such as a missed reference noise target"},
+      {"identity", "scene", "", "the --scene value: a built-in name or a scene file path"},
+      {"identity", "structure", "", "LDM structure (`ldmbench structures`)"},
+      {"identity", "pass", "", "pass run through the structure (`ldmbench passes`)"},
+      {"identity", "n_views", "views", "N, the number of LDM views"},
+      {"identity", "r_ldm", "pixels", "R_LDM, the side of each view's square LDM"},
+      {"identity", "width", "pixels", "output image width"},
+      {"identity", "height", "pixels", "output image height"},
+      {"identity", "structure_params", "", "the structure's --param values, key=value;..."},
+      {"identity", "frames", "frames", "measured frames"},
+      {"identity", "warmup", "frames", "warm-up frames (judged, not timed)"},
+      {"identity", "ldmbench_version", "", "version of the build that measured"},
+      {"identity", "git_commit", "", "commit of the build that measured"},
+      {"device", "device", "", "GL_RENDERER"},
+      {"device", "gl_vendor", "", "GL_VENDOR"},
+      {"device", "gl_version", "", "GL_VERSION"},
+      {"device", "egl_platform", "", "EGL platform of the headless context (device or surfaceless)"},
+      {"device", "int64_atomics", "", "whether GL_NV_shader_atomic_int64 is available"},
+      {"device", "timer", "", "sub-pass timer: gl_timestamp or fenced_wall_clock"},
+      {"scene", "scene_name", "", "the scene's own name"},
+      {"scene", "scene_hash", "", "64-bit hash of the scene's content (geometry, camera, settings)"},
+      {"scene", "triangles", "triangles", "triangles in the scene"},
+      {"scene", "scene_attributes", "", "vertex attributes uploaded, as the pass requires (position+normal, ...)"},
+      {"scene", "scene_gpu_bytes", "bytes", "geometry buffers on the device"},
+      {"scene", "payload", "", "what the structure stores per fragment, as the pass requires (depth, ...)"},
+      {"pass", "visibility", "", "AO visibility: attenuated or unattenuated (after --visibility)"},
+      {"pass", "d_max", "scene units", "AO attenuation distance (after --d-max)"},
+      {"pass", "falloff_exponent", "", "AO falloff exponent of min(d/d_max, 1)^e"},
+      {"pass", "normal_offset_pixels", "LDM pixels", "normal offset of thesis §4.4.2 (after --normal-offset)"},
+      {"census", "fragments", "fragments", "fragments of all views, counted by the census before allocation"},
+      {"census", "max_depth_complexity", "fragments", "longest list of any LDM pixel"},
+      {"census", "mean_depth_complexity", "fragments", "mean list length over non-empty pixels"},
+      {"census", "nonempty_pixel_fraction", "", "share of LDM pixels holding a fragment"},
+      {"build", "fragments_stored", "fragments", "fragments the last build holds"},
+      {"build", "fragments_lost", "fragments", "fragments the last build dropped (counted by the structure)"},
+      {"build", "overflow", "", "whether any build found its storage too small"},
+      {"build", "checksum_changes", "builds", "builds whose lists differed from the first build's"},
+      {"build", "lists_checksum", "", "checksum of every pixel's depth list after the first build"},
+      {"build", "counter_<name>", "", "a structure's own count of its last build (pool_rebuilds, max_age_used, ...)"},
+      {"build", "sizing_<key>", "", "how the structure sized its storage (policy and parameters)"},
+      {"time", "<subpass>_ms_median", "ms", "median over the measured frames of a sub-pass, of build or of frame"},
+      {"time", "<subpass>_ms_min", "ms", "minimum over the measured frames"},
+      {"time", "<subpass>_ms_max", "ms", "maximum over the measured frames"},
+      {"time", "<subpass>_ms_stddev", "ms", "sample standard deviation over the measured frames"},
+      {"time", "build_vs_raster", "", "build median over raster_baseline median (the empty raster pass)"},
+      {"time", "build_vs_raster_touch", "", "build median over raster_touch median (every fragment shaded, one atomicAdd each)"},
+      {"time", "raster_touch_fragments", "fragments", "fragments the raster_touch baseline shaded (checked against the census)"},
+      {"time", "fragments_per_second", "1/s", "census fragments over the build median"},
+      {"time", "wall_seconds", "s", "wall time of the whole configuration, reference included"},
+      {"memory", "mem_<buffer>_allocated", "bytes", "bytes reserved for one of the structure's buffers"},
+      {"memory", "mem_<buffer>_used", "bytes", "bytes of that buffer holding data after the last build"},
+      {"memory", "bytes_allocated", "bytes", "sum over the structure's buffers"},
+      {"memory", "bytes_used", "bytes", "sum over the structure's buffers"},
+      {"accuracy", "ref_spp", "samples", "reference samples per pixel (both halves)"},
+      {"accuracy", "ref_noise_mse", "", "expected MSE of the reference itself: MSE(half A, half B) / 4"},
+      {"accuracy", "ref_noise_mssim", "", "MSSIM between the reference's two halves"},
+      {"accuracy", "ref_noise_target_met", "", "whether the automatic spp rule reached its noise target"},
+      {"accuracy", "ref_render_seconds", "s", "time the reference took to render (when it was rendered)"},
+      {"accuracy", "ref_from_cache", "", "whether the reference came from the cache"},
+      {"accuracy", "ref_cache_key", "", "cache key of the reference (hash of everything it depends on)"},
+      {"accuracy", "mse", "", "mean squared error against the reference, averaged over channels"},
+      {"accuracy", "nrmse", "", "sqrt(MSE) over the reference's range"},
+      {"accuracy", "psnr", "dB", "peak signal-to-noise ratio with the reference's peak"},
+      {"accuracy", "mssim", "", "mean SSIM (Wang et al. 2004, skimage's Gaussian variant)"},
+      {"accuracy", "ssim_exposure", "", "exposure scale applied before SSIM (1 for AO)"},
+      {"accuracy", "mse_over_noise", "", "mse over ref_noise_mse: how far the error stands above the reference's noise"},
+      {"accuracy", "metrics_error", "", "why the image was not measured (NaN or infinity)"},
+      {"images", "image_exr", "", "the pass's image, linear EXR (path relative to the records)"},
+      {"images", "image_png", "", "the pass's image, sRGB PNG"},
+      {"images", "reference_exr", "", "the reference, linear EXR (one per reference)"},
+      {"images", "ssim_map_png", "", "SSIM map as a heat map"},
+      {"images", "diff_png", "", "absolute difference to the reference as a heat map (EXR beside it)"},
+      {"images", "diff_png_max", "", "the difference that maps to the top of the heat map"},
+  };
+  return columns;
+}
+
+namespace {
+
+bool matches(const std::string& pattern, const std::string& column) {
+  const auto open = pattern.find('<');
+  if (open == std::string::npos) return pattern == column;
+  const auto close = pattern.find('>', open);
+  const std::string prefix = pattern.substr(0, open), suffix = pattern.substr(close + 1);
+  return column.size() > prefix.size() + suffix.size() && column.starts_with(prefix) &&
+         column.ends_with(suffix);
+}
+
+}  // namespace
+
+const ColumnSpec* find_column(const std::string& column) {
+  for (const auto& c : record_columns())
+    if (c.name == column) return &c;
+  for (const auto& c : record_columns())
+    if (matches(c.name, column)) return &c;
+  return nullptr;
+}
+
+std::string columns_markdown() {
+  std::ostringstream out;
+  out << "| group | column | unit | description |\n| --- | --- | --- | --- |\n";
+  std::string group;
+  for (const auto& c : record_columns()) {
+    out << "| " << (c.group == group ? "" : c.group) << " | `" << c.name << "` | " << c.unit
+        << " | " << c.description << " |\n";
+    group = c.group;
+  }
+  return out.str();
+}
+
+std::string columns_text() {
+  size_t width = 0;
+  for (const auto& c : record_columns()) width = std::max(width, c.name.size());
+  std::ostringstream out;
+  std::string group;
+  for (const auto& c : record_columns()) {
+    if (c.group != group) out << (group.empty() ? "" : "\n") << c.group << ":\n";
+    group = c.group;
+    out << "  " << c.name << std::string(width + 2 - c.name.size(), ' ')
+        << (c.unit.empty() ? "" : "[" + c.unit + "] ") << c.description << "\n";
+  }
+  return out.str();
+}
+
+}  // namespace ldm
