@@ -69,27 +69,9 @@ TEST(DfBufferPrefixSum, AllZeroCountsGiveAllZeroOffsets) {
   for (size_t i = 0; i <= 5000; ++i) ASSERT_EQ(actual[i], 0u) << "offset " << i;
 }
 
-TEST(DfBuffer, CornellListsAreBitIdenticalToPsppsll) {
-  test::expect_matches_psppsll("dfbuffer", "cornell", 8, 32);
-  test::expect_matches_psppsll("dfbuffer", "cornell", 12, 64);
-}
-
-TEST(DfBuffer, AtriumListsAreBitIdenticalToPsppsll) {
-  test::expect_matches_psppsll("dfbuffer", "atrium", 8, 32);
-  test::expect_matches_psppsll("dfbuffer", "atrium", 12, 64);
-}
-
 TEST(DfBuffer, SmallLocalArraysSortInPlaceAndCountIt) {
   test::expect_in_place_sort_matches_psppsll("dfbuffer", "cornell", 8, 32);
   test::expect_in_place_sort_matches_psppsll("dfbuffer", "atrium", 8, 32);
-}
-
-TEST(DfBuffer, RepeatedBuildsGiveIdenticalChecksums) {
-  test::expect_repeated_builds_identical("dfbuffer", "atrium", 8, 32);
-}
-
-TEST(DfBuffer, AoIsIdenticalToAoThroughPsppsll) {
-  test::expect_ao_identical_to_psppsll("dfbuffer", "cornell", 8, 32);
 }
 
 // A DF-buffer prepared from a census that disagrees with the scene by `delta` fragments,

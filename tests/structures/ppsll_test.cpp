@@ -12,27 +12,9 @@ namespace {
 
 using test::LdmFixture;
 
-TEST(Ppsll, CornellListsAreBitIdenticalToPsppsll) {
-  test::expect_matches_psppsll("ppsll", "cornell", 8, 32);
-  test::expect_matches_psppsll("ppsll", "cornell", 12, 64);
-}
-
-TEST(Ppsll, AtriumListsAreBitIdenticalToPsppsll) {
-  test::expect_matches_psppsll("ppsll", "atrium", 8, 32);
-  test::expect_matches_psppsll("ppsll", "atrium", 12, 64);
-}
-
 TEST(Ppsll, SmallLocalArraysSortInPlaceAndCountIt) {
   test::expect_in_place_sort_matches_psppsll("ppsll", "cornell", 8, 32);
   test::expect_in_place_sort_matches_psppsll("ppsll", "atrium", 8, 32);
-}
-
-TEST(Ppsll, RepeatedBuildsGiveIdenticalChecksums) {
-  test::expect_repeated_builds_identical("ppsll", "atrium", 8, 32);
-}
-
-TEST(Ppsll, AoIsIdenticalToAoThroughPsppsll) {
-  test::expect_ao_identical_to_psppsll("ppsll", "cornell", 8, 32);
 }
 
 TEST(Ppsll, GrowPoolRebuildsUntilTheListsMatchPsppsll) {
