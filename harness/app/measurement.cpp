@@ -103,6 +103,10 @@ Measurement measure(const Scene& scene, const MeasurementRequest& request) {
     if (request.keep_running) return request.keep_running();
     return measured++ < request.frames;
   };
+  // One frame: the yardstick, the build, the pass. Work that belongs to the build (e.g. a
+  // per-frame census, or a rebuild after an overflow under a sizing policy) goes between
+  // begin_frame() and pass->render(), timed under its own sub-pass name, so that it counts
+  // as build time; the pass then reads the finished structure.
   for (int frame = 0;; ++frame) {
     const bool warmup = frame < request.warmup;
     if (!warmup && !keep_running()) break;

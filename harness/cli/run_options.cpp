@@ -5,6 +5,7 @@
 #include "harness/app/run_command.h"
 #include "harness/cli/commands.h"
 #include "harness/util/error.h"
+#include "harness/passes/pass.h"
 #include "ldm_impls/ldm_structure.h"
 
 namespace ldm::cli {
@@ -20,6 +21,12 @@ void parse_structure_param(const std::string& text, RunSettings& settings) {
                     text + "'");
   settings.structure_params[text.substr(0, colon)][text.substr(colon + 1, equals - colon - 1)] =
       text.substr(equals + 1);
+}
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
 }
 
 Visibility parse_visibility(const std::string& text) {
@@ -47,11 +54,10 @@ Runner add_run_command(CLI::App& app, const std::string& command_line) {
                   "Built-in scene name (see `ldmbench scenes`) or scene file path")
       ->delimiter(',')
       ->capture_default_str();
-  run->add_option("--structure", s.structures,
-                  "LDM structure(s): psppsll, ppsll, dfbuffer, habuffer, ppfla, psppfla, or all")
+  run->add_option("--structure", s.structures, "LDM structure(s): " + joined(structure_names()) + ", or all")
       ->delimiter(',')
       ->capture_default_str();
-  run->add_option("--pass", s.passes, "Pass(es) run on each structure: ao")
+  run->add_option("--pass", s.passes, "Pass(es) run on each structure: " + joined(pass_names()))
       ->delimiter(',')
       ->capture_default_str();
   run->add_option("-N,--views", s.views,
