@@ -148,6 +148,9 @@ struct Variant {
   }
 };
 
+// How gtest names the parameter in test listings (ctest shows it).
+void PrintTo(const Variant& v, std::ostream* os) { *os << v.label(); }
+
 std::vector<Variant> every_structure() {
   std::vector<Variant> v;
   for (const std::string& name : structure_names()) v.push_back({name, {}});
