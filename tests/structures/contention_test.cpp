@@ -14,8 +14,8 @@
 #include <cmath>
 #include <iostream>
 #include <map>
-#include <string>
 #include <random>
+#include <string>
 
 #include "harness/scene/scene_loader.h"
 #include "ldm_impls/common/ldm_inspector.h"
