@@ -14,8 +14,8 @@
 #include <cmath>
 #include <iostream>
 #include <map>
-#include <string>
 #include <random>
+#include <string>
 
 #include "harness/scene/scene_loader.h"
 #include "ldm_impls/common/ldm_inspector.h"
@@ -147,6 +147,9 @@ struct Variant {
     return out;
   }
 };
+
+// How gtest names the parameter in test listings (ctest shows it).
+void PrintTo(const Variant& v, std::ostream* os) { *os << v.label(); }
 
 std::vector<Variant> every_structure() {
   std::vector<Variant> v;
