@@ -11,6 +11,8 @@
 //  - AO: through the structure as through PSPPSLL (bit-identical for exact depths, within
 //    the bound the quantum implies otherwise)
 //  - the shared measurement path: measure() judges a default build ok
+//  - under contention (contention_test.cpp, over the same registry and some parameter
+//    variants): concurrent insertions into a few pixels store exactly the known depths
 #include <gtest/gtest.h>
 
 #include <functional>
