@@ -55,7 +55,7 @@ struct BuildStats {
   // has one (lists, DF-buffer). Structures without one (HA-buffer, fixed arrays) report the
   // census's count; for them a fragment the device silently failed to store shows up as
   // fewer fragments reachable through the query API than fragments_stored claims, which the
-  // per-build integrity check (harness/app/measure_configuration.cpp) flags as invalid.
+  // per-build integrity check (BuildHealth, ldm_impls/common/build_health.h) flags as invalid.
   uint64_t fragments_rasterized = 0;
   uint64_t fragments_stored = 0;      // fragments the structure holds
   uint64_t fragments_lost = 0;        // rasterized - stored: overflow, drops, aborted inserts

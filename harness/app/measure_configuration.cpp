@@ -1,6 +1,7 @@
 #include "harness/app/measure_configuration.h"
 
 #include "harness/app/accuracy.h"
+#include "harness/passes/raster_baseline.h"
 #include "harness/records/output_folder.h"
 #include "harness/util/error.h"
 #include "harness/util/hash.h"
@@ -96,10 +97,10 @@ void add_measurement(Record& r, const Measurement& m) {
   const auto summaries = m.summaries();
   add_timings(r, summaries);
   const TimingSummary* build = find_summary(summaries, "build");
-  const TimingSummary* raster = find_summary(summaries, "raster_baseline");
+  const TimingSummary* raster = find_summary(summaries, kRasterBaselineSubpass);
   if (build && raster && raster->median > 0)
     r.set("build_vs_raster", build->median / raster->median);
-  const TimingSummary* touch = find_summary(summaries, "raster_touch");
+  const TimingSummary* touch = find_summary(summaries, kRasterTouchSubpass);
   if (build && touch && touch->median > 0)
     r.set("build_vs_raster_touch", build->median / touch->median);
   r.set("raster_touch_fragments", m.raster_touch_fragments);

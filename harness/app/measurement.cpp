@@ -13,13 +13,6 @@
 namespace ldm {
 namespace {
 
-// The raster baselines are timed beside the build but belong to neither the build nor the
-// frame: they are the yardsticks the build is compared with (build_vs_raster,
-// build_vs_raster_touch).
-bool is_raster_baseline(const std::string& name) {
-  return name == "raster_baseline" || name == "raster_touch";
-}
-
 CensusSummary summarize_census(const FragmentCensus& census) {
   CensusSummary s;
   s.fragments = census.total_fragments;
@@ -35,7 +28,9 @@ CensusSummary summarize_census(const FragmentCensus& census) {
 void add_frame_sums(FrameTimes& times, const std::vector<std::string>& pass_subpasses) {
   double build_ms = 0, frame_ms = 0;
   for (const auto& [name, ms] : times) {
-    if (is_raster_baseline(name)) continue;
+    // The baselines are timed beside the build but belong to neither the build nor the
+    // frame: they are the yardsticks the build is compared with (build_vs_raster*).
+    if (RasterBaseline::is_baseline_subpass(name)) continue;
     frame_ms += ms;
     if (std::find(pass_subpasses.begin(), pass_subpasses.end(), name) == pass_subpasses.end())
       build_ms += ms;

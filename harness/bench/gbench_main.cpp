@@ -9,11 +9,13 @@
 // time. Axes come from these flags, given before or among Google Benchmark's own:
 //   --ldm_scenes=cornell,atrium  --ldm_structures=all  --ldm_passes=all  --ldm_views=32
 //   --ldm_r=128  --ldm_width=256 --ldm_height=256
+//   --ldm_param=STRUCTURE:KEY=VALUE (repeatable, as `ldmbench run --param`)
 // A configuration whose builds BuildHealth judges invalid (exactly those `ldmbench run`
 // records as "invalid") is reported as an error, not as a time; a lossy one is timed, with
 // its fragments_lost counter.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cstring>
 #include <iostream>
 #include <map>
@@ -37,6 +39,7 @@ struct Axes {
   std::vector<uint32_t> views = {32};
   std::vector<uint32_t> resolutions = {128};
   int width = 256, height = 256;
+  std::map<std::string, std::map<std::string, std::string>> params;  // structure -> key -> value
 };
 
 std::vector<std::string> split(const std::string& text) {
@@ -79,6 +82,14 @@ Axes parse_axes(int* argc, char** argv) {
     else if (const char* v = value("--ldm_r")) axes.resolutions = split_numbers("--ldm_r", v);
     else if (const char* v = value("--ldm_width")) axes.width = int(split_numbers("--ldm_width", v).at(0));
     else if (const char* v = value("--ldm_height")) axes.height = int(split_numbers("--ldm_height", v).at(0));
+    else if (const char* v = value("--ldm_param")) {
+      const std::string text = v;
+      const auto colon = text.find(':'), equals = text.find('=');
+      if (colon == std::string::npos || equals == std::string::npos || equals < colon + 2 || colon == 0)
+        throw UserError("--ldm_param: expected STRUCTURE:KEY=VALUE, got '" + text + "'");
+      axes.params[text.substr(0, colon)][text.substr(colon + 1, equals - colon - 1)] =
+          text.substr(equals + 1);
+    }
     else if (arg.rfind("--ldm_", 0) == 0) throw UserError("unknown flag " + arg);
     else argv[kept++] = argv[i];
   }
@@ -93,11 +104,12 @@ HeadlessContext* g_context = nullptr;
 // sub-passes) or one of the pass's own. Every build is judged by the same BuildHealth, so a
 // configuration `ldmbench run` marks invalid is an error here, never a time.
 void run_measurement(benchmark::State& state, const Scene* scene, std::string structure,
-                     std::string pass, std::string timed, uint32_t views, uint32_t resolution,
+                     std::map<std::string, std::string> params, std::string pass, std::string timed, uint32_t views, uint32_t resolution,
                      int width, int height) {
   try {
     MeasurementRequest request;
     request.structure = structure;
+    request.structure_params = params;
     request.pass = pass;
     request.views = views;
     request.resolution = resolution;
@@ -137,7 +149,11 @@ int main(int argc, char** argv) {
   std::map<std::string, Scene> scenes;
   try {
     axes = parse_axes(&argc, argv);
-    for (const auto& s : axes.structures) make_structure(s, StructureParams());
+    for (const auto& s : axes.structures)
+      make_structure(s, StructureParams(axes.params[s], "--ldm_param " + s));
+    for (const auto& [s, p] : axes.params)
+      if (std::find(axes.structures.begin(), axes.structures.end(), s) == axes.structures.end())
+        throw UserError("--ldm_param " + s + ":...: structure '" + s + "' is not benchmarked");
     for (const auto& p : axes.passes) make_pass(p, StructureParams());
     for (const auto& scene : axes.scenes) scenes.emplace(scene, load_scene(scene));
   } catch (const UserError& e) {
@@ -164,7 +180,8 @@ int main(int argc, char** argv) {
               timed.emplace_back(pass + ":" + s.name, s.name);
             for (const auto& [label, subpass] : timed)
               benchmark::RegisterBenchmark((label + suffix).c_str(), run_measurement,
-                                           &scenes.at(scene), structure, pass, subpass, n, r,
+                                           &scenes.at(scene), structure, axes.params[structure],
+                                           pass, subpass, n, r,
                                            axes.width, axes.height)
                   ->UseManualTime()
                   ->Unit(benchmark::kMillisecond);

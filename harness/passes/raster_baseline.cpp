@@ -17,12 +17,12 @@ RasterBaseline::RasterBaseline(const FragmentSource& fragments, const ViewSet& v
 
 void RasterBaseline::render(GpuTimer* timer) const {
   {
-    ScopedSubpass timed(timer, "raster_baseline");
+    ScopedSubpass timed(timer, kRasterBaselineSubpass);
     fragments_.run(empty_program_);
   }
   counts_.clear_to_zero();  // before the timed pass: the touch alone is measured
   counts_.bind_storage(kCensusBinding);
-  ScopedSubpass timed(timer, "raster_touch");
+  ScopedSubpass timed(timer, kRasterTouchSubpass);
   fragments_.run(touch_program_);
 }
 

@@ -11,6 +11,7 @@
 // Records relate each structure's construction to both (build_vs_raster,
 // build_vs_raster_touch).
 #include <cstdint>
+#include <string>
 
 #include "harness/gl/gl_objects.h"
 #include "harness/measure/gpu_timer.h"
@@ -19,11 +20,18 @@
 
 namespace ldm {
 
+// The names render() times its two sub-passes under.
+inline constexpr const char* kRasterBaselineSubpass = "raster_baseline";
+inline constexpr const char* kRasterTouchSubpass = "raster_touch";
+
 class RasterBaseline {
  public:
   // `fragments` must outlive the baseline.
   RasterBaseline(const FragmentSource& fragments, const ViewSet& views);
   void render(GpuTimer* timer) const;
+  static bool is_baseline_subpass(const std::string& name) {
+    return name == kRasterBaselineSubpass || name == kRasterTouchSubpass;
+  }
   // Fragments the last raster_touch pass counted (a read-back, never timed): the census
   // total when every fragment was shaded.
   uint64_t touched_fragments() const;

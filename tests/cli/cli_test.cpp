@@ -222,6 +222,32 @@ TEST(Gbench, TimesBuildAndEveryPassSubpassOfEveryStructure) {
   const Outcome bad = {test::run_command(std::string(LDM_GBENCH_PATH) + " --ldm_views=0", &output), output};
   EXPECT_EQ(bad.status, 2);
 }
+
+// gbench judges builds as `ldmbench run` does (the same measure() and BuildHealth): a lossy
+// configuration, which run records as "lossy" and measures, is timed with its loss counted,
+// not refused; bad parameters are usage errors.
+TEST(Gbench, LossyBuildsAreTimedLikeRunMeasuresThem) {
+  const std::string json = (fs::path(test::make_temp_dir("ldm-gbench")) / "out.json").string();
+  std::string output;
+  const int status = test::run_command(
+      std::string(LDM_GBENCH_PATH) + " --ldm_scenes=cornell --ldm_structures=ppfla "
+      "--ldm_views=4 --ldm_r=32 --ldm_width=16 --ldm_height=16 --ldm_param=ppfla:k=1 "
+      "--benchmark_filter=Build --benchmark_min_time=0.01 --benchmark_out_format=json "
+      "--benchmark_out=" + json, &output);
+  ASSERT_EQ(status, 0) << output;
+  const auto j = nlohmann::json::parse(read_text(json));
+  ASSERT_EQ(j["benchmarks"].size(), 1u) << output;
+  const auto& b = j["benchmarks"][0];
+  EXPECT_FALSE(b.contains("error_occurred") && b["error_occurred"].get<bool>()) << b.dump();
+  EXPECT_GT(b["fragments_lost"].get<double>(), 0.0) << b.dump();
+  EXPECT_GT(b["real_time"].get<double>(), 0.0);
+  const Outcome bad = {test::run_command(std::string(LDM_GBENCH_PATH) +
+                                             " --ldm_structures=ppfla --ldm_param=ppfla:kk=1",
+                                         &output),
+                       output};
+  EXPECT_EQ(bad.status, 2) << bad.output;
+  EXPECT_NE(bad.output.find("has no parameter 'kk'"), std::string::npos) << bad.output;
+}
 #endif
 
 // A device without OpenGL 4.5 gets an error saying what it found. Mesa can be made to offer

@@ -2,10 +2,12 @@
 // consumer shares (ldm_impls/common/build_health.h), and the pass registry.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <map>
 
 #include "harness/app/measurement.h"
 #include "harness/passes/pass.h"
+#include "harness/records/output_folder.h"
 #include "harness/scene/scene_loader.h"
 #include "harness/util/error.h"
 #include "support/test_support.h"
@@ -162,6 +164,30 @@ TEST(Measurement, AnExternalLoopDecidesHowManyFramesRun) {
   request.keep_running = [&] { return left-- > 0; };
   const Measurement m = measure(load_scene("cornell"), request);
   EXPECT_EQ(m.frames.size(), 2u);
+}
+
+}  // namespace
+}  // namespace ldm
+
+namespace ldm {
+namespace {
+
+// Image paths in records are relative to the folder holding records.csv, wherever the
+// images folder is given from.
+TEST(OutputFolder, WritesImagesAndReturnsPathsRelativeToTheRecords) {
+  const std::filesystem::path dir = test::make_temp_dir("ldm-output-folder");
+  const std::filesystem::path images = dir / "run" / "images";
+  std::filesystem::create_directories(images);
+  const OutputFolder folder((dir / "run").string(), images.string());
+  Image image(4, 2, 1);
+  for (size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] = float(i) / 8.0f;
+  EXPECT_EQ(folder.write_png("a.png", image), "images/a.png");
+  EXPECT_EQ(folder.write_exr("a.exr", image), "images/a.exr");
+  EXPECT_TRUE(folder.contains("a.png"));
+  EXPECT_FALSE(folder.contains("b.png"));
+  EXPECT_EQ(read_image((images / "a.exr").string()).pixels, image.pixels);
+  const OutputFolder outside((dir / "run").string(), (dir / "elsewhere").string());
+  EXPECT_EQ(outside.record_path("c.png"), "../elsewhere/c.png");
 }
 
 }  // namespace

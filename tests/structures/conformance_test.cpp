@@ -10,6 +10,7 @@
 //    fragments in order, and the verdict is lossy, never invalid
 //  - AO: through the structure as through PSPPSLL (bit-identical for exact depths, within
 //    the bound the quantum implies otherwise)
+//  - stats() and memory() are self-contained: any order, same answers
 //  - the shared measurement path: measure() judges a default build ok
 //  - under contention (contention_test.cpp, over the same registry and some parameter
 //    variants): concurrent insertions into a few pixels store exactly the known depths
@@ -194,6 +195,32 @@ TEST_P(StructureConformance, TheSharedMeasurementJudgesADefaultBuildOk) {
   EXPECT_EQ(m.status, BuildStatus::Ok) << m.status_detail;
   EXPECT_EQ(m.last_build.fragments_stored, m.census.fragments);
   EXPECT_EQ(m.frames.size(), 2u);
+}
+
+// stats() and memory() each read back what they need: asked in any order, any number of
+// times, after a build, they agree; memory() alone already knows what the build used.
+TEST_P(StructureConformance, StatsAndMemoryAreSelfContained) {
+  const LdmFixture f("cornell", 4, 16);
+  const auto s = f.build(structure());
+  const std::vector<BufferMemory> before = s->memory();  // no stats() call yet
+  const BuildStats first = s->stats(), second = s->stats();
+  const std::vector<BufferMemory> after = s->memory();
+  EXPECT_EQ(first.fragments_stored, second.fragments_stored);
+  EXPECT_EQ(first.fragments_lost, second.fragments_lost);
+  EXPECT_EQ(first.counters, second.counters);
+  ASSERT_EQ(before.size(), after.size());
+  uint64_t used = 0, allocated = 0;
+  for (size_t i = 0; i < before.size(); ++i) {
+    EXPECT_EQ(before[i].name, after[i].name);
+    EXPECT_EQ(before[i].allocated, after[i].allocated) << before[i].name;
+    EXPECT_EQ(before[i].used, after[i].used) << before[i].name;
+    EXPECT_LE(before[i].used, before[i].allocated) << before[i].name;
+    used += before[i].used;
+    allocated += before[i].allocated;
+  }
+  // Storage that holds every fragment's depth cannot be less than 4 bytes a fragment.
+  EXPECT_GE(used, 4 * f.census.total_fragments);
+  EXPECT_GT(allocated, 0u);
 }
 
 INSTANTIATE_TEST_SUITE_P(Registered, StructureConformance, ::testing::ValuesIn(structure_names()),
