@@ -67,7 +67,7 @@ TEST(AoConvergence, IntervalAndPlaneTracesKeepConvergingWhereListing5Plateaus) {
   const Scene scene = load_scene("cornell");
   AoReferenceRequest request;
   request.width = request.height = 64;
-  request.spp_per_half = 2048;
+  request.spp.spp_per_half = 2048;
   request.progress = false;
   const ReferenceResult reference = render_ao_reference(scene, request);
   // Listing 5 at the offset it was used with (1 px), the others at 1 px and `plane` also at its
