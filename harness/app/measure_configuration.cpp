@@ -75,6 +75,7 @@ void add_measurement(Record& r, const Measurement& m) {
   r.set("scene_hash", m.scene_hash);
   r.set("triangles", m.triangles);
   for (const auto& [key, value] : m.pass_settings) r.put(key, value);
+  for (const auto& [key, value] : m.pass_results) r.put(key, value);
   r.set("scene_attributes", m.scene_attributes);
   r.set("scene_gpu_bytes", m.scene_gpu_bytes);
   r.set("payload", m.payload);

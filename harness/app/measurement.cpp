@@ -128,6 +128,7 @@ Measurement measure(const Scene& scene, const MeasurementRequest& request) {
                           " fragments where the census counted " +
                           std::to_string(census.total_fragments));
   m.images = pass->images();
+  m.pass_results = pass->results();
   if (m.images.empty()) throw std::logic_error("pass " + request.pass + " produced no image");
   for (const auto& image : m.images) {
     try {

@@ -76,6 +76,7 @@ struct Measurement {
   std::vector<std::string> pass_subpasses;  // the pass's own, as declared
 
   std::vector<PassImage> images;
+  std::vector<std::pair<std::string, RecordValue>> pass_results;  // Pass::results()
 
   std::vector<TimingSummary> summaries() const;  // per sub-pass, first-seen order
   uint64_t bytes_allocated() const;

@@ -25,6 +25,8 @@ std::string Configuration::id() const {
   }
   if (visibility == Visibility::Attenuated) id += "-att";
   if (visibility == Visibility::Unattenuated) id += "-unatt";
+  id += "-" + ao_trace_name(trace);
+  if (estimator != AoEstimatorChoice::Eq13) id += "-" + ao_estimator_name(estimator);
   for (const auto& [key, value] : params) id += "-" + key + "=" + value;
   for (char& c : id)
     if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.' || c == '='))
@@ -54,23 +56,29 @@ std::vector<Configuration> expand_configurations(const RunSettings& s) {
         for (uint32_t n : s.views)
           for (uint32_t r : s.resolutions)
             for (const auto& d : d_values)
-              for (Visibility v : s.visibility) {
-                Configuration c;
-                c.scene = scene;
-                c.structure = structure;
-                c.pass = pass;
-                c.views = n;
-                c.resolution = r;
-                c.d_max = d;
-                c.visibility = v;
-                auto params = s.structure_params.find(structure);
-                if (params != s.structure_params.end()) c.params = params->second;
-                if (d) c.pass_params["d_max"] = float_text(*d);
-                if (v != Visibility::Scene) c.pass_params["visibility"] = visibility_name(v);
-                if (s.normal_offset_pixels)
-                  c.pass_params["normal_offset_pixels"] = float_text(*s.normal_offset_pixels);
-                out.push_back(c);
-              }
+              for (Visibility v : s.visibility)
+                for (AoTrace trace : s.traces)
+                  for (AoEstimatorChoice estimator : s.estimators) {
+                    Configuration c;
+                    c.scene = scene;
+                    c.structure = structure;
+                    c.pass = pass;
+                    c.views = n;
+                    c.resolution = r;
+                    c.d_max = d;
+                    c.visibility = v;
+                    c.trace = trace;
+                    c.estimator = estimator;
+                    auto params = s.structure_params.find(structure);
+                    if (params != s.structure_params.end()) c.params = params->second;
+                    if (d) c.pass_params["d_max"] = float_text(*d);
+                    if (v != Visibility::Scene) c.pass_params["visibility"] = visibility_name(v);
+                    if (s.normal_offset_pixels)
+                      c.pass_params["normal_offset_pixels"] = float_text(*s.normal_offset_pixels);
+                    c.pass_params["trace"] = ao_trace_name(trace);
+                    c.pass_params["ao_estimator"] = ao_estimator_name(estimator);
+                    out.push_back(c);
+                  }
   return out;
 }
 

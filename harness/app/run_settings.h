@@ -9,6 +9,7 @@
 
 #include "harness/gl/egl_context.h"
 #include "harness/reference/reference_settings.h"
+#include "harness/scene/ao_variants.h"
 
 namespace ldm {
 
@@ -23,6 +24,8 @@ struct RunSettings {
   std::vector<uint32_t> resolutions = {128};
   std::vector<float> d_max;  // empty: the scene's own
   std::vector<Visibility> visibility = {Visibility::Scene};
+  std::vector<AoTrace> traces = {kDefaultAoTrace};
+  std::vector<AoEstimatorChoice> estimators = {AoEstimatorChoice::Eq13};
   // structure name -> key -> value (--param psppsll:pool=grow)
   std::map<std::string, std::map<std::string, std::string>> structure_params;
   // Shared.
@@ -44,11 +47,15 @@ struct Configuration {
   uint32_t resolution = 0;
   std::optional<float> d_max;
   Visibility visibility = Visibility::Scene;
+  AoTrace trace = kDefaultAoTrace;
+  AoEstimatorChoice estimator = AoEstimatorChoice::Eq13;
   std::map<std::string, std::string> params;
   // The pass's parameters (harness/passes/pass.h): the AO axes of the command line
-  // (--d-max, --visibility, --normal-offset) as key=value, checked by the pass itself.
+  // (--d-max, --visibility, --normal-offset, --trace, --ao-estimator) as key=value, checked
+  // by the pass itself.
   std::map<std::string, std::string> pass_params;
-  // A short unique name for file names: cornell-psppsll-ao-n32-r128[-d1.5][-att][-k=v...]
+  // A short unique name for file names:
+  // cornell-psppsll-ao-n32-r128[-d1.5][-att]-<trace>[-normalized][-k=v...]
   std::string id() const;
 };
 

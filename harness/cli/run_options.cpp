@@ -37,7 +37,7 @@ Visibility parse_visibility(const std::string& text) {
 
 struct RunOptions {
   RunSettings settings;
-  std::vector<std::string> params, visibility;
+  std::vector<std::string> params, visibility, traces, estimators;
   std::string platform = "auto";
   float normal_offset = -1.0f;
 };
@@ -84,6 +84,18 @@ Runner add_run_command(CLI::App& app, const std::string& command_line) {
                   "scene's own choice)")
       ->delimiter(',')
       ->check(CLI::IsMember({"scene", "attenuated", "unattenuated"}));
+  run->add_option("--trace", o->traces,
+                  "AO trace variant(s): listing5 (thesis Listing 5: nearest fragment is x's own "
+                  "surface), interval (split at x's depth; needs --normal-offset >= ~0.7), "
+                  "plane (skip x's own plane predicted from the normal; works with offset 0) "
+                  "(default: " + ao_trace_name(kDefaultAoTrace) + ")")
+      ->delimiter(',')
+      ->check(CLI::IsMember(ao_trace_names()));
+  run->add_option("--ao-estimator", o->estimators,
+                  "AO estimator(s): eq13 (thesis Eq. 13, 2/N sum V|cos|, may exceed 1) or "
+                  "normalized (sum V|cos| / sum |cos|) (default: eq13)")
+      ->delimiter(',')
+      ->check(CLI::IsMember(ao_estimator_names()));
   run->add_option("--normal-offset", o->normal_offset,
                   "Normal offset of thesis §4.4.2 in LDM pixels (default: the scene's; 0 = off)")
       ->check(CLI::Range(0.0f, 1000.0f));
@@ -137,6 +149,14 @@ Runner add_run_command(CLI::App& app, const std::string& command_line) {
     if (!o->visibility.empty()) {
       settings.visibility.clear();
       for (const auto& v : o->visibility) settings.visibility.push_back(parse_visibility(v));
+    }
+    if (!o->traces.empty()) {
+      settings.traces.clear();
+      for (const auto& t : o->traces) settings.traces.push_back(parse_ao_trace(t));
+    }
+    if (!o->estimators.empty()) {
+      settings.estimators.clear();
+      for (const auto& e : o->estimators) settings.estimators.push_back(parse_ao_estimator(e));
     }
     if (o->normal_offset >= 0.0f) settings.normal_offset_pixels = o->normal_offset;
     settings.context.platform = parse_egl_platform(o->platform);

@@ -1,5 +1,6 @@
 #include "harness/passes/ambient_occlusion.h"
 
+#include "harness/metrics/ao_range.h"
 #include "harness/reference/ao_reference.h"
 #include "harness/reference/reference_settings.h"
 #include "harness/util/error.h"
@@ -15,6 +16,10 @@ AmbientOcclusion::AmbientOcclusion(StructureParams& params) {
   if (params.has("normal_offset_pixels"))
     overrides_.normal_offset_pixels =
         float(params.get_double("normal_offset_pixels", 0.0, 0.0, 1000.0));
+  overrides_.trace = parse_ao_trace(
+      params.get_choice("trace", ao_trace_name(kDefaultAoTrace), ao_trace_names()));
+  overrides_.estimator = parse_ao_estimator(params.get_choice(
+      "ao_estimator", ao_estimator_name(AoEstimatorChoice::Eq13), ao_estimator_names()));
 }
 
 AoSettings AmbientOcclusion::settings_for(const Scene& scene) const {
@@ -40,7 +45,9 @@ std::vector<std::pair<std::string, RecordValue>> AmbientOcclusion::describe(
   return {{"visibility", std::string(ao.attenuated ? "attenuated" : "unattenuated")},
           {"d_max", double(ao.d_max)},
           {"falloff_exponent", double(ao.falloff_exponent)},
-          {"normal_offset_pixels", double(ao.normal_offset_pixels)}};
+          {"normal_offset_pixels", double(ao.normal_offset_pixels)},
+          {"trace", ao_trace_name(ao.trace)},
+          {"ao_estimator", ao_estimator_name(ao.estimator)}};
 }
 
 void AmbientOcclusion::prepare(const PassInputs& in) {
@@ -58,6 +65,12 @@ void AmbientOcclusion::render(GpuTimer* timer) {
 }
 
 std::vector<PassImage> AmbientOcclusion::images() const { return {{"ao", ao_->read_image()}}; }
+
+std::vector<std::pair<std::string, RecordValue>> AmbientOcclusion::results() const {
+  // Eq. 13 may exceed 1 (a quadrature of the cosine): say how far, over covered pixels.
+  const AoRange range = ao_range(ao_->read_image(), gbuffer_->read_positions());
+  return {{"ao_max", range.max}, {"ao_fraction_above_1", range.fraction_above_1}};
+}
 
 ReferenceResult AmbientOcclusion::reference(const Scene& scene, int width, int height,
                                             const ReferenceSettings& settings) const {

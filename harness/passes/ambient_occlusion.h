@@ -7,6 +7,8 @@
 //   d_max                  attenuation distance, scene units (> 0)
 //   visibility             scene | attenuated | unattenuated
 //   normal_offset_pixels   the §4.4.2 normal offset in LDM pixels (0 = off)
+//   trace                  listing5 | interval | plane (harness/scene/ao_variants.h)
+//   ao_estimator           eq13 | normalized
 #include <memory>
 
 #include "harness/passes/ao_pass.h"
@@ -26,6 +28,7 @@ class AmbientOcclusion : public Pass {
   void prepare(const PassInputs& in) override;
   void render(GpuTimer* timer) override;
   std::vector<PassImage> images() const override;
+  std::vector<std::pair<std::string, RecordValue>> results() const override;
   ReferenceResult reference(const Scene& scene, int width, int height,
                             const ReferenceSettings& settings) const override;
 

@@ -76,6 +76,8 @@ class Pass {
   virtual void render(GpuTimer* timer) = 0;
   // The images of the last render(); the first is the one scored against the reference.
   virtual std::vector<PassImage> images() const = 0;
+  // Record fields computed from the last render() (e.g. AO's range of values); none by default.
+  virtual std::vector<std::pair<std::string, RecordValue>> results() const { return {}; }
 
   // The converged image the first output estimates, width x height, for this scene and the
   // pass's settings: from the cache under settings.cache_dir when an entry matches, else

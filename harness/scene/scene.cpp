@@ -80,6 +80,8 @@ AoSettings apply_ao_overrides(AoSettings ao, const AoOverrides& overrides) {
   if (overrides.d_max) ao.d_max = *overrides.d_max;
   if (overrides.attenuated) ao.attenuated = *overrides.attenuated;
   if (overrides.normal_offset_pixels) ao.normal_offset_pixels = *overrides.normal_offset_pixels;
+  if (overrides.trace) ao.trace = *overrides.trace;
+  if (overrides.estimator) ao.estimator = *overrides.estimator;
   return ao;
 }
 

@@ -8,6 +8,8 @@
 
 #include <glm/glm.hpp>
 
+#include "harness/scene/ao_variants.h"
+
 namespace ldm {
 
 struct Material {
@@ -53,8 +55,12 @@ struct AoSettings {
   float d_max = 1.0f;            // attenuation distance, scene units
   float falloff_exponent = 2.0f;
   // Normal offset of §4.4.2, in LDM pixels: x += n * sin(angle(n, w)) * normal_offset * pixel.
-  // Expressed in pixels (not scene units) so that it scales with R_LDM.
-  float normal_offset_pixels = 1.0f;
+  // Expressed in pixels (not scene units) so that it scales with R_LDM. The default, 0.5, is
+  // the measured best compromise for the default (plane) trace (README "Trace variants").
+  float normal_offset_pixels = 0.5f;
+  // LDM pass only (run axes, not scene properties; no reference depends on them).
+  AoTrace trace = kDefaultAoTrace;
+  AoEstimatorChoice estimator = AoEstimatorChoice::Eq13;
 };
 
 // What a run or a reference asks to change in the scene's AO settings; unset fields keep
@@ -63,6 +69,8 @@ struct AoOverrides {
   std::optional<float> d_max;
   std::optional<bool> attenuated;
   std::optional<float> normal_offset_pixels;
+  std::optional<AoTrace> trace;
+  std::optional<AoEstimatorChoice> estimator;
 };
 AoSettings apply_ao_overrides(AoSettings scene_ao, const AoOverrides& overrides);
 

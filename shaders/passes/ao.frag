@@ -1,8 +1,11 @@
 // Ambient occlusion with LDMs (thesis §4.4.1, Listings 5 and 6; Eq. 13):
-//   AO(x) = 2/N * sum_i V(d_i) * |cos theta_i|
+//   AO(x) = 2/N * sum_i V(d_i) * |cos theta_i|                     (AO_NORMALIZED 0)
+// or, normalised so that an unoccluded point gives exactly 1 at any N,
+//   AO(x) = sum_i V(d_i) * |cos theta_i| / sum_i |cos theta_i|    (AO_NORMALIZED 1)
 // over the N LDM views, each sampled once in the hemisphere around the normal: along
 // +forward (the next fragment) when the normal faces +forward, else along -forward (the
 // previous one). The normal offset of §4.4.2 moves x by n * sin(angle(n, w)) * k LDM pixels.
+// The trace variant (LDM_TRACE) is chosen in passes/ldm_trace.glsl.
 #include "passes/ldm_trace.glsl"
 
 layout(binding = 0) uniform sampler2D gbuffer_position;
@@ -21,14 +24,15 @@ float visibility(float distance) {
 #endif
 }
 
-float ao_contribution(uint view_index, vec3 x, vec3 n) {
+// x: the surface point; returns (V * |cos theta|, |cos theta|).
+vec2 ao_contribution(uint view_index, vec3 x, vec3 n) {
   const LdmView view = ldm_views[view_index];
   const float cos_theta = dot(view.forward.xyz, n);
   const float sin_alpha = sqrt(max(0.0, 1.0 - cos_theta * cos_theta));
   const vec3 offset_x = x + n * (sin_alpha * ao_normal_offset_pixels * view.eye.w);
-  const LdmNeighbours hits = ldm_neighbours(view_index, offset_x);
-  return cos_theta > 0.0 ? visibility(hits.ahead) * cos_theta
-                         : visibility(hits.behind) * -cos_theta;
+  const LdmNeighbours hits = ldm_neighbours(view_index, offset_x, x, n);
+  const float weight = abs(cos_theta);
+  return vec2(visibility(cos_theta > 0.0 ? hits.ahead : hits.behind) * weight, weight);
 }
 
 void main() {
@@ -39,7 +43,11 @@ void main() {
     return;
   }
   const vec3 n = texelFetch(gbuffer_normal, pixel, 0).xyz;
-  float sum = 0.0;
+  vec2 sum = vec2(0.0);
   for (uint v = 0u; v < LDM_VIEW_COUNT; ++v) sum += ao_contribution(v, position.xyz, n);
-  out_ao = 2.0 / float(LDM_VIEW_COUNT) * sum;
+#if AO_NORMALIZED
+  out_ao = sum.y > 0.0 ? sum.x / sum.y : 1.0;
+#else
+  out_ao = 2.0 / float(LDM_VIEW_COUNT) * sum.x;
+#endif
 }

@@ -15,6 +15,7 @@
 
 #include <cmath>
 
+#include "harness/metrics/ao_range.h"
 #include "harness/passes/ao_pass.h"
 #include "harness/passes/gbuffer_pass.h"
 #include "harness/scene/generators.h"
@@ -52,16 +53,60 @@ double visibility(const AoSettings& ao, double d) {
   return std::pow(std::min(d / ao.d_max, 1.0), double(ao.falloff_exponent));
 }
 
+// How close (in depth, from the traced point) an occluder may be before the trace may miss it
+// or take it for x's own surface, and whether x's own surface may be taken for an occluder;
+// per trace variant, from the worst case over one LDM pixel (shaders/passes/ldm_trace.glsl).
+struct TraceBlindness {
+  double reach = 0;
+  bool own_may_occlude = false;
+};
+
+// weight = |cos(angle(n, view axis))|; offset_depth: depth from the traced (offset) point to
+// x's own plane along the view axis, k * pixel * tan; own_error: how far x's own fragment at
+// the LDM pixel centre may lie from where x's depth says it is.
+TraceBlindness trace_blindness(AoTrace trace, double weight, double offset_depth,
+                               double own_error, double pixel, double coincident) {
+  const double tan_a = weight > 0 ? std::sqrt(1 - weight * weight) / weight : 1e30;
+  switch (trace) {
+    case AoTrace::Listing5:
+      // The nearest fragment is taken for x's own: an occluder nearer than x's own fragment
+      // could be (|own - x| <= offset_depth + own_error) is mistaken for it.
+      return {2 * (offset_depth + own_error), false};
+    case AoTrace::Interval:
+      // Only fragments beyond x's depth (by more than `coincident`) count: x's own fragment,
+      // offset_depth behind x give or take own_error, does once the error exceeds the offset
+      // (half the coincidence band is left to float error).
+      return {coincident, own_error >= offset_depth + 0.5 * coincident};
+    case AoTrace::Plane: {
+      const double tolerance =
+          coincident + pixel * (kPlaneToleranceConstant +
+                                kPlaneToleranceSlope * std::min(tan_a, kPlaneMaxSlope));
+      // At grazing normals (weight < 1/max slope) the trace falls back to `interval`.
+      const bool grazing = weight * kPlaneMaxSlope < 1;
+      return {offset_depth + own_error + tolerance,
+              grazing && own_error >= offset_depth + 0.5 * coincident};
+    }
+  }
+  return {1e30, true};
+}
+
 // Contribution of one LDM direction at x: exact value and the interval the LDM may produce.
 Interval direction_contribution(const std::vector<Rect>& rects, const AoSettings& ao,
-                                glm::dvec3 x, glm::dvec3 n, glm::dvec3 forward, double pixel) {
+                                glm::dvec3 surface, glm::dvec3 n, const LdmView& view) {
+  const glm::dvec3 forward(view.forward);
+  const double pixel = view.pixel_size();
   const double cos_theta = glm::dot(forward, n);
   const glm::dvec3 w = cos_theta > 0 ? forward : -forward;
   const double weight = std::abs(cos_theta);
+  const double sin_a = std::sqrt(std::max(0.0, 1 - weight * weight));
+  // The normal offset of §4.4.2, as in shaders/passes/ao.frag: the trace starts at x.
+  const glm::dvec3 x = surface + n * (sin_a * double(ao.normal_offset_pixels) * pixel);
+  const double offset_depth = weight > 0 ? glm::dot(n, x - surface) / weight : 0;
   const double lateral = pixel / std::sqrt(2.0);  // x to its LDM pixel centre, at most
-  // x's own sample sits off by this much in depth; beyond half the occluder distance the
-  // nearest-sample search may pick the wrong fragment.
-  const double own_error = weight > 0 ? lateral * std::sqrt(1 - weight * weight) / weight : 1e30;
+  // x's own sample sits off by this much in depth.
+  const double own_error = weight > 0 ? lateral * sin_a / weight : 1e30;
+  const TraceBlindness blind = trace_blindness(ao.trace, weight, offset_depth, own_error, pixel,
+                                               double(view.depth_range) / 65536.0);
 
   double nearest = INFINITY, nearest_error = 0;  // the exact first occluder
   double certain = INFINITY, certain_error = 0;  // the first one not near its edge
@@ -94,8 +139,8 @@ Interval direction_contribution(const std::vector<Rect>& rects, const AoSettings
   }
   Interval c;
   c.exact = visibility(ao, nearest);
-  if (own_error >= 0.5 * (certain - certain_error) ||
-      (uncertain_hit && own_error >= 0.5 * uncertain_distance)) {
+  if (blind.own_may_occlude || certain - certain_error <= blind.reach ||
+      (uncertain_hit && uncertain_distance <= blind.reach)) {
     c.lo = 0;
     c.hi = 1;
   } else {
@@ -112,16 +157,22 @@ Interval direction_contribution(const std::vector<Rect>& rects, const AoSettings
   return c;
 }
 
+// The LDM estimator at x over the views; Eq. 13 scales by 2/N, the normalised estimator by
+// 1 / sum |cos| (the exact value then uses the same normalisation).
 Interval ldm_estimator(const std::vector<Rect>& rects, const AoSettings& ao, const ViewSet& views,
                        glm::dvec3 x, glm::dvec3 n) {
   Interval sum;
+  double weights = 0;
   for (const auto& v : views.views) {
-    const Interval c = direction_contribution(rects, ao, x, n, glm::dvec3(v.forward), v.pixel_size());
+    const Interval c = direction_contribution(rects, ao, x, n, v);
     sum.lo += c.lo;
     sum.hi += c.hi;
     sum.exact += c.exact;
+    weights += std::abs(glm::dot(glm::dvec3(v.forward), n));
   }
-  const double scale = 2.0 / double(views.size());
+  const double scale = ao.estimator == AoEstimatorChoice::Normalized
+                           ? (weights > 0 ? 1.0 / weights : 0.0)
+                           : 2.0 / double(views.size());
   return {sum.lo * scale, sum.hi * scale, sum.exact * scale};
 }
 
@@ -131,13 +182,22 @@ struct AnalyticCase {
   double half = 4, h = 1, height = 4;
 };
 
-void expect_gpu_within_ldm_bounds(const AnalyticCase& ac, uint32_t n, uint32_t r) {
+// The AO settings a trace is run with: `interval` needs the normal offset to lift x clear of
+// its own surface (k > 1/sqrt(2) px, see ldm_trace.glsl); the others use the scene's (0).
+AoSettings settings_for(AoTrace trace, AoSettings ao) {
+  ao.trace = trace;
+  if (trace == AoTrace::Interval) ao.normal_offset_pixels = 1.0f;
+  return ao;
+}
+
+void expect_gpu_within_ldm_bounds(const AnalyticCase& ac, uint32_t n, uint32_t r, AoTrace trace) {
   const Scene scene = generate_scene(ac.scene, ac.params, "test");
+  const AoSettings settings = settings_for(trace, scene.ao);
   const test::LdmFixture f(scene, n, r);
   auto structure = f.build("psppsll");
   const int size = 48;
   GBufferPass gbuffer(size, size);
-  AoPass ao(*structure, *f.inputs, size, size, scene.ao);
+  AoPass ao(*structure, *f.inputs, size, size, settings);
   gbuffer.render(*f.gpu_scene, scene, nullptr);
   ao.render(gbuffer, nullptr);
   const Image image = ao.read_image();
@@ -153,7 +213,7 @@ void expect_gpu_within_ldm_bounds(const AnalyticCase& ac, uint32_t n, uint32_t r
       ++covered;
       const glm::dvec3 p(positions.at(x, y, 0), positions.at(x, y, 1), positions.at(x, y, 2));
       const glm::dvec3 nn(normals.at(x, y, 0), normals.at(x, y, 1), normals.at(x, y, 2));
-      const Interval bound = ldm_estimator(rects, scene.ao, f.views, p, nn);
+      const Interval bound = ldm_estimator(rects, settings, f.views, p, nn);
       const double gpu = image.at(x, y);
       const double slack = 1e-5;  // float arithmetic on the GPU
       if (gpu < bound.lo - slack || gpu > bound.hi + slack) {
@@ -169,32 +229,43 @@ void expect_gpu_within_ldm_bounds(const AnalyticCase& ac, uint32_t n, uint32_t r
   ASSERT_GT(covered, size * size / 2);
   EXPECT_EQ(outside, 0);
   // The bounds must be tight enough to mean something.
-  EXPECT_LT(width_sum / covered, 0.1) << ac.scene;
-  std::printf("%s N=%u R=%u: mean |GPU - exact estimator| %.2e, mean bound width %.2e\n",
-              ac.scene.c_str(), n, r, error_sum / covered, width_sum / covered);
+  EXPECT_LT(width_sum / covered, 0.1) << ac.scene << " " << ao_trace_name(trace);
+  std::printf("%s %s N=%u R=%u: mean |GPU - exact estimator| %.2e, mean bound width %.2e\n",
+              ac.scene.c_str(), ao_trace_name(trace).c_str(), n, r, error_sum / covered,
+              width_sum / covered);
 }
 
-TEST(AoAnalytic, OpenPlaneGivesTheQuadratureOfOne) {
+// Every analytic bound holds for every trace variant.
+class AoAnalyticTrace : public ::testing::TestWithParam<AoTrace> {};
+
+TEST_P(AoAnalyticTrace, OpenPlaneGivesTheQuadratureOfOne) {
   // With no occluder AO_N = 2/N sum |w_i . n|: exactly what the GPU must produce.
-  expect_gpu_within_ldm_bounds({"plane", {{"half_size", 4.0}}}, 32, 64);
+  expect_gpu_within_ldm_bounds({"plane", {{"half_size", 4.0}}}, 32, 64, GetParam());
 }
 
-TEST(AoAnalytic, PointBetweenParallelPlanesAttenuated) {
+TEST_P(AoAnalyticTrace, PointBetweenParallelPlanesAttenuated) {
   expect_gpu_within_ldm_bounds({"parallel-planes", {{"h", 1.0}, {"d_max", 2.0}, {"half_size", 4.0}}},
-                               32, 96);
+                               32, 96, GetParam());
 }
 
-TEST(AoAnalytic, PointBetweenParallelSquaresUnattenuated) {
+TEST_P(AoAnalyticTrace, PointBetweenParallelSquaresUnattenuated) {
   expect_gpu_within_ldm_bounds(
-      {"parallel-planes", {{"h", 1.0}, {"attenuated", false}, {"half_size", 2.0}}, 2.0, 1.0}, 32, 96);
+      {"parallel-planes", {{"h", 1.0}, {"attenuated", false}, {"half_size", 2.0}}, 2.0, 1.0}, 32, 96,
+      GetParam());
 }
 
-TEST(AoAnalytic, PointNearAWallAttenuated) {
+TEST_P(AoAnalyticTrace, PointNearAWallAttenuated) {
   // Within about a pixel of the corner the LDM cannot resolve the wall from the floor (the
   // pixel-centre ray passes under the wall's foot); R = 192 keeps that band narrow.
   expect_gpu_within_ldm_bounds({"wall", {{"d_max", 1.0}, {"half_size", 4.0}, {"height", 4.0}}},
-                               32, 192);
+                               32, 192, GetParam());
 }
+
+INSTANTIATE_TEST_SUITE_P(Traces, AoAnalyticTrace,
+                         ::testing::Values(AoTrace::Listing5, AoTrace::Interval, AoTrace::Plane),
+                         [](const ::testing::TestParamInfo<AoTrace>& info) {
+                           return ao_trace_name(info.param);
+                         });
 
 // --- closed forms -------------------------------------------------------------------------
 
@@ -262,6 +333,7 @@ TEST(AoAnalytic, LdmEstimatorConvergesToTheClosedForms) {
   AoSettings attenuated;
   attenuated.attenuated = true;
   attenuated.d_max = 2.0f;
+  attenuated.normal_offset_pixels = 0.0f;  // exact estimator at x itself
   AoSettings binary = attenuated;
   binary.attenuated = false;
   const BoundingSphere sphere{{0, 0, 0}, 1.0f};
@@ -334,6 +406,63 @@ TEST(AoAnalytic, CoincidentFragmentsAreOneSurface) {
     for (size_t i = 0; i < image.pixels.size(); ++i)
       worst = std::max(worst, double(std::abs(image.pixels[i] - expected.pixels[i])));
     EXPECT_LT(worst, 1e-5) << structure;
+  }
+}
+
+}  // namespace
+}  // namespace ldm
+
+namespace ldm {
+namespace {
+
+// The normalised estimator divides by the summed weights, so an unoccluded point gives exactly
+// 1 at any N, where Eq. 13 gives the quadrature 2/N sum |cos| (above 1 for some normals).
+TEST(AoEstimatorChoice, NormalizedIsExactlyOneOnAnOpenPlaneWhereEq13IsTheQuadrature) {
+  const Scene scene = generate_scene("plane", {{"half_size", 4.0}}, "test");
+  const uint32_t n = 16;
+  const test::LdmFixture f(scene, n, 64);
+  auto structure = f.build("psppsll");
+  const int size = 32;
+  GBufferPass gbuffer(size, size);
+  gbuffer.render(*f.gpu_scene, scene, nullptr);
+  const Image positions = gbuffer.read_positions();
+  const Image normals = gbuffer.read_normals();
+  for (AoTrace trace : {AoTrace::Listing5, AoTrace::Interval, AoTrace::Plane}) {
+    AoSettings settings = scene.ao;
+    settings.trace = trace;
+    if (trace == AoTrace::Interval) settings.normal_offset_pixels = 1.0f;
+    settings.estimator = AoEstimatorChoice::Normalized;
+    AoPass normalized(*structure, *f.inputs, size, size, settings);
+    normalized.render(gbuffer, nullptr);
+    settings.estimator = AoEstimatorChoice::Eq13;
+    AoPass eq13(*structure, *f.inputs, size, size, settings);
+    eq13.render(gbuffer, nullptr);
+    const Image one = normalized.read_image(), quadrature = eq13.read_image();
+
+    int covered = 0, above = 0, wrong = 0;
+    double max_quadrature = 0;
+    for (int y = 0; y < size; ++y)
+      for (int x = 0; x < size; ++x) {
+        if (positions.at(x, y, 3) == 0.0f) continue;
+        ++covered;
+        const glm::dvec3 nn(normals.at(x, y, 0), normals.at(x, y, 1), normals.at(x, y, 2));
+        double weights = 0;
+        for (const auto& v : f.views.views) weights += std::abs(glm::dot(glm::dvec3(v.forward), nn));
+        const double expected = 2.0 / n * weights;
+        if (one.at(x, y) != 1.0f || std::abs(quadrature.at(x, y) - expected) > 1e-5) ++wrong;
+        max_quadrature = std::max(max_quadrature, double(quadrature.at(x, y)));
+        if (quadrature.at(x, y) > 1.0f) ++above;
+      }
+    ASSERT_GT(covered, size * size / 2);
+    EXPECT_EQ(wrong, 0) << ao_trace_name(trace);
+    // The records' columns on the same images.
+    const AoRange range_one = ao_range(one, positions), range_eq13 = ao_range(quadrature, positions);
+    EXPECT_EQ(range_one.max, 1.0);
+    EXPECT_EQ(range_one.fraction_above_1, 0.0);
+    EXPECT_EQ(range_eq13.covered, uint64_t(covered));
+    EXPECT_EQ(range_eq13.max, max_quadrature);
+    EXPECT_DOUBLE_EQ(range_eq13.fraction_above_1, double(above) / covered);
+    EXPECT_GT(range_eq13.max, 1.0);  // at N = 16 Eq. 13 overshoots somewhere on the plane
   }
 }
 

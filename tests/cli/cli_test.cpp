@@ -159,6 +159,43 @@ TEST(Cli, BadInputIsRejectedBeforeAnythingIsWritten) {
   expect_rejected("--scene cornell --param psppsll:colour=red", "colour");
   expect_rejected("--scene cornell --visibility sometimes", "--visibility");
   expect_rejected("--scene nosuchscene", "nosuchscene");
+  expect_rejected("--scene cornell --trace nearest", "--trace");
+  expect_rejected("--scene cornell --ao-estimator mean", "--ao-estimator");
+}
+
+// The trace and the estimator are axes of the sweep and columns of the record; the reference
+// depends on neither, so every configuration is scored against the same cached reference.
+TEST(Cli, TraceAndEstimatorAreAxesScoredAgainstOneReference) {
+  const fs::path out = fs::path(test::make_temp_dir("ldm-cli")) / "traces";
+  const std::string cache = test::make_temp_dir("ldm-cache");
+  const Outcome o = ldmbench("run --scene cornell -N 4 -R 32 --width 32 --height 32 --frames 1 "
+                             "--warmup 0 --reference-spp 16 --trace listing5,interval,plane "
+                             "--ao-estimator eq13,normalized --cache-dir " + cache +
+                             " --out " + out.string());
+  ASSERT_EQ(o.status, 0) << o.output;
+  const auto records = nlohmann::json::parse(read_text(out / "records.json"))["records"];
+  ASSERT_EQ(records.size(), 6u);
+  std::set<std::string> ids, combinations;
+  for (const auto& r : records) {
+    EXPECT_EQ(r["status"], "ok") << r["status_detail"];
+    ids.insert(r["config_id"].get<std::string>());
+    combinations.insert(r["trace"].get<std::string>() + "/" + r["ao_estimator"].get<std::string>());
+    EXPECT_EQ(r["ref_cache_key"], records[0]["ref_cache_key"]);
+    ASSERT_TRUE(r["ao_max"].is_number() && r["ao_fraction_above_1"].is_number());
+    // N = 4: Eq. 13's quadrature of the cosine overshoots 1 on the open parts of the box; the
+    // normalised estimator never does.
+    if (r["ao_estimator"] == "normalized") {
+      EXPECT_LE(r["ao_max"].get<double>(), 1.0);
+      EXPECT_EQ(r["ao_fraction_above_1"].get<double>(), 0.0);
+    } else {
+      EXPECT_GT(r["ao_max"].get<double>(), 1.0);
+      EXPECT_GT(r["ao_fraction_above_1"].get<double>(), 0.0);
+    }
+  }
+  EXPECT_EQ(ids.size(), 6u);
+  EXPECT_EQ(combinations.size(), 6u);
+  EXPECT_FALSE(records[0]["ref_from_cache"].get<bool>());
+  EXPECT_TRUE(records[5]["ref_from_cache"].get<bool>());
 }
 
 TEST(Cli, ReferenceAndCompareImages) {
@@ -268,7 +305,8 @@ TEST(Cli, HelpDocumentsEveryRunOption) {
   const Outcome o = ldmbench("run --help");
   EXPECT_EQ(o.status, 0);
   for (const char* option : {"--scene", "--structure", "--pass", "--views", "--r-ldm", "--width",
-                             "--height", "--d-max", "--frames", "--warmup", "--out", "--param"})
+                             "--height", "--d-max", "--frames", "--warmup", "--out", "--param",
+                             "--trace", "--ao-estimator"})
     EXPECT_NE(o.output.find(option), std::string::npos) << option;
 }
 

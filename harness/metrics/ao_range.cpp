@@ -1,0 +1,31 @@
+#include "harness/metrics/ao_range.h"
+
+#include <algorithm>
+
+#include "harness/metrics/image_checks.h"
+#include "harness/util/error.h"
+
+namespace ldm {
+
+AoRange ao_range(const Image& ao, const Image& positions) {
+  require_nonempty(ao, "AO image");
+  require_nonempty(positions, "G-buffer positions");
+  if (ao.channels != 1 || positions.channels != 4 || ao.width != positions.width ||
+      ao.height != positions.height)
+    throw UserError("ao_range: expected a 1-channel AO image and 4-channel positions of the "
+                    "same size, got " + shape_string(ao) + " and " + shape_string(positions));
+  AoRange range;
+  uint64_t above = 0;
+  for (int y = 0; y < ao.height; ++y)
+    for (int x = 0; x < ao.width; ++x) {
+      if (positions.at(x, y, 3) == 0.0f) continue;  // background
+      const double value = ao.at(x, y);
+      range.max = range.covered == 0 ? value : std::max(range.max, value);
+      ++range.covered;
+      if (value > 1.0) ++above;
+    }
+  if (range.covered > 0) range.fraction_above_1 = double(above) / double(range.covered);
+  return range;
+}
+
+}  // namespace ldm

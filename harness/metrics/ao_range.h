@@ -1,0 +1,21 @@
+#pragma once
+// How far an AO image leaves [0, 1]. Eq. 13's estimator (2/N sum V |cos|) is a quadrature of
+// the cosine and can exceed 1 where little occludes (2.0 at N = 1); a reader who takes AO as
+// a fraction must see that, so the records carry the maximum and the share above 1.
+#include <cstdint>
+
+#include "harness/image/image.h"
+
+namespace ldm {
+
+struct AoRange {
+  double max = 0.0;               // largest AO value over the covered pixels (0 if none)
+  double fraction_above_1 = 0.0;  // covered pixels with AO > 1, over covered pixels
+  uint64_t covered = 0;           // pixels with geometry (G-buffer position alpha != 0)
+};
+
+// ao: one channel; positions: the G-buffer positions (4 channels, alpha 0 = background), the
+// same size. Throws UserError on a shape mismatch.
+AoRange ao_range(const Image& ao, const Image& positions);
+
+}  // namespace ldm
