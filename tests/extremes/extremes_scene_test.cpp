@@ -6,7 +6,6 @@
 #include <fstream>
 
 #include "harness/scene/generators.h"
-#include "harness/scene/obj_syntax.h"
 #include "harness/scene/scene_loader.h"
 #include "harness/util/error.h"
 #include "support/test_support.h"
