@@ -144,8 +144,12 @@ Runner add_run_command(CLI::App& app, const std::string& command_line) {
                   "Structure parameter STRUCTURE:KEY=VALUE, repeatable (e.g. psppsll:pool=grow, "
                   "ppfla:k=4, habuffer:load_factor=0.5)");
   run->add_option("--out", s.out_dir,
-                  "Output folder for records.csv, records.json and images/ (default: "
-                  "results/runs/<timestamp>)");
+                  "Output folder for records.jsonl, records.csv, records.json and images/ "
+                  "(default: results/runs/<timestamp>). A folder holding an interrupted run "
+                  "of the same command is resumed: finished configurations are kept");
+  run->add_flag("--overwrite", s.overwrite,
+                "Replace the records and images in --out when they belong to another sweep "
+                "(without it such a folder is refused; the same sweep is resumed)");
   run->add_flag("!--no-images", s.write_images, "Do not write images");
   run->add_flag("!--no-reference", s.reference.enabled,
                 "Skip the path-traced reference and the image metrics");

@@ -11,6 +11,7 @@
 
 #include "harness/reference/progress.h"
 #include "harness/util/error.h"
+#include "harness/util/interrupt.h"
 
 namespace ldm {
 namespace {
@@ -63,6 +64,7 @@ Image render_pixels(const PixelRenderSettings& settings, int channels,
   auto work = [&] {
     try {
       for (int tile = next_tile++; tile < tile_count && !failed; tile = next_tile++) {
+        throw_if_stop_requested();  // SIGINT/SIGTERM: abandon the image (util/interrupt.h)
         render_tile(tile);
         {
           std::lock_guard lock(mutex);
