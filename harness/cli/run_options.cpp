@@ -65,6 +65,10 @@ void validate_numbers(const RunOptions& o) {
   const double noise = o.settings.reference.target_noise_mse;
   if (!(std::isfinite(noise) && noise > 0.0))
     throw UserError("--reference-noise: " + format_g(noise) + " is not a positive number");
+  const ReferenceSettings& reference = o.settings.reference;
+  if (reference.spp_per_half > reference.max_spp_per_half)  // found up front, not per record
+    throw UserError("--reference-spp " + std::to_string(reference.spp_per_half) +
+                    " exceeds --reference-max-spp " + std::to_string(reference.max_spp_per_half));
 }
 
 }  // namespace
