@@ -66,6 +66,10 @@ run depth --scene "$s/stack1.json,$s/stack16.json,$s/stack201.json,$s/stack1024.
 run views --scene cornell -N 1,4096 -R 1,16 --no-reference
 run degenerate --scene "$s/slivers.json,$s/grazing.json" -N 16 -R 64 --reference-spp 256
 
+echo "== layer separation (two squares h apart, N = 1, R = 16)"
+LDM_EXTREMES_SCAN=1 build/tests/test_extremes --gtest_filter='ExtremesSeparation.*' 2>&1 |
+  grep '^separation' | tee "$out/separation.txt"
+
 python3 - "$out" <<'PY'
 import csv, glob, math, os, sys
 out = sys.argv[1]
