@@ -62,10 +62,10 @@ void validate_numbers(const RunOptions& o) {
       !(std::isfinite(o.normal_offset) && o.normal_offset >= 0.0f && o.normal_offset <= 1000.0f))
     throw UserError("--normal-offset: " + format_g(o.normal_offset) +
                     " is not a number in [0, 1000]");
-  const double noise = o.settings.reference.target_noise_mse;
+  const double noise = o.settings.reference.spp.target_noise_mse;
   if (!(std::isfinite(noise) && noise > 0.0))
     throw UserError("--reference-noise: " + format_g(noise) + " is not a positive number");
-  const ReferenceSettings& reference = o.settings.reference;
+  const SppRule& reference = o.settings.reference.spp;
   if (reference.spp_per_half > reference.max_spp_per_half)  // found up front, not per record
     throw UserError("--reference-spp " + std::to_string(reference.spp_per_half) +
                     " exceeds --reference-max-spp " + std::to_string(reference.max_spp_per_half));
