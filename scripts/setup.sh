@@ -6,6 +6,8 @@ set -euo pipefail
 packages=(
   # toolchain
   cmake ninja-build g++ pkg-config git
+  # parser fuzzing (scripts/fuzz.sh): clang with libFuzzer and the sanitizer runtimes
+  clang libclang-rt-14-dev
   # headless OpenGL 4.5: libglvnd's EGL/OpenGL plus Mesa's llvmpipe for machines without a GPU
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
   # libraries

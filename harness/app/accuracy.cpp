@@ -27,6 +27,11 @@ void add_accuracy(Record& r, const ReferenceResult& reference, const Image& imag
   r.set("ref_render_seconds", reference.render_seconds);
   r.set("ref_from_cache", reference.from_cache);
   r.set("ref_cache_key", reference.cache_key);
+  if (reference.ray_offset > 0) {
+    r.set("ref_ray_offset", reference.ray_offset);
+    r.set("ref_ray_offset_ok", reference.ray_offset_warning.empty());
+    if (!reference.ray_offset_warning.empty()) append_status_detail(r, reference.ray_offset_warning);
+  }
   if (!reference.noise_target_met) {
     // Not an invalid measurement, but its error floor is higher than asked: say so where a
     // reader of the record looks first.

@@ -8,13 +8,19 @@
 #include <map>
 #include <memory>
 #include <ostream>
+#include <set>
 #include <sstream>
 
 #include "harness/app/measure_configuration.h"
 #include "harness/passes/pass.h"
+#include "harness/records/journal.h"
 #include "harness/records/record.h"
+#include "harness/records/run_folder.h"
+#include "harness/reference/reference_cache.h"
 #include "harness/scene/scene_loader.h"
 #include "harness/util/error.h"
+#include "harness/util/hash.h"
+#include "harness/util/interrupt.h"
 #include "harness/util/version.h"
 #include "ldm_impls/ldm_structure.h"
 
@@ -44,49 +50,114 @@ void validate_axes(const RunSettings& s) {
   }
 }
 
+// A regular file where the reference cache folder should be is found here, not by every
+// configuration failing at run time.
+void check_cache_dir(const std::string& cache_dir) {
+  std::filesystem::path dir = cache_dir.empty() ? kDefaultReferenceCacheDir : cache_dir;
+  std::error_code error;
+  for (std::filesystem::path p = dir; !p.empty(); p = p.parent_path()) {
+    if (std::filesystem::exists(p, error)) {
+      if (!std::filesystem::is_directory(p, error))
+        throw UserError("--cache-dir: '" + p.string() + "' is not a folder" +
+                        (p == dir ? "" : " (in the cache path '" + dir.string() + "')"));
+      return;
+    }
+    if (p == p.parent_path()) break;
+  }
+}
+
+// Identifies a sweep for resuming: the command's arguments without the program path, --out
+// and --overwrite, the content of every scene, and the ldmbench build.
+std::string sweep_key(const std::string& command_line, const std::map<std::string, Scene>& scenes) {
+  std::istringstream words(command_line);
+  std::vector<std::string> args;
+  for (std::string word; words >> word;) args.push_back(word);
+  Fnv1a h;
+  for (size_t i = 1; i < args.size(); ++i) {
+    if (args[i] == "--out") {
+      ++i;
+      continue;
+    }
+    if (args[i].rfind("--out=", 0) == 0 || args[i] == "--overwrite") continue;
+    h.add_string(args[i]);
+  }
+  for (const auto& [spec, scene] : scenes) {
+    h.add_string(spec);
+    h.add(scene.content_hash());
+  }
+  h.add_string(git_commit());
+  h.add_string(ldmbench_version());
+  return hex64(h.value());
+}
+
 }  // namespace
 
 int run_benchmark(const RunSettings& settings, const std::string& command_line, std::ostream& log) {
   validate_axes(settings);
   std::map<std::string, Scene> scenes;
   for (const auto& spec : settings.scenes) scenes.emplace(spec, load_scene(spec));
+  if (settings.reference.enabled) check_cache_dir(settings.reference.cache_dir);
+
+  const std::string out_dir = settings.out_dir.empty()
+                                  ? (std::filesystem::path("results") / "runs" /
+                                     timestamp("%Y%m%d-%H%M%S")).string()
+                                  : settings.out_dir;
+  const std::string key = sweep_key(command_line, scenes);
+  const RunFolderPlan plan = plan_run_folder(out_dir, key, settings.overwrite);
 
   auto context = HeadlessContext::create(settings.context);
   const DeviceInfo& device = context->device();
   log << "device: " << device.gl_renderer << " (" << device.gl_version << ", EGL "
       << device.egl_platform << ")\n";
 
-  const std::string out_dir = settings.out_dir.empty()
-                                  ? (std::filesystem::path("results") / "runs" /
-                                     timestamp("%Y%m%d-%H%M%S")).string()
-                                  : settings.out_dir;
   const MeasurementPaths paths{out_dir, (std::filesystem::path(out_dir) / "images").string()};
-  std::error_code error;
-  std::filesystem::create_directories(paths.images_dir, error);
-  if (error) throw UserError("--out: cannot create '" + paths.images_dir + "': " + error.message());
+  prepare_run_folder(out_dir, plan);
   const std::string csv_path = (std::filesystem::path(out_dir) / "records.csv").string();
   const std::string json_path = (std::filesystem::path(out_dir) / "records.json").string();
+  RecordJournal journal((std::filesystem::path(out_dir) / kJournalFile).string());
+  install_stop_handlers();
+
+  // Finished configurations of an interrupted run of the same sweep are kept, not redone.
+  std::vector<Record> records = plan.previous.records;
+  std::set<std::string> finished;
+  for (const Record& r : records)
+    if (const RecordValue* id = r.get("config_id")) finished.insert(std::get<std::string>(*id));
 
   Record run;
   run.set("command", command_line);
+  run.set("sweep_key", key);
   run.set("started", timestamp("%Y-%m-%dT%H:%M:%S%z"));
   run.set("device", device.gl_renderer);
   run.set("gl_version", device.gl_version);
   run.set("egl_platform", device.egl_platform);
   run.set("git_commit", git_commit());
   run.set("ldmbench_version", ldmbench_version());
+  run.set("resumed_records", uint64_t(records.size()));
+  journal.append_run(run);
+  if (!records.empty()) {
+    log << "resuming: " << records.size() << " configuration(s) already recorded in "
+        << out_dir << "/" << kJournalFile << "\n";
+    write_records(csv_path, json_path, records, run);  // re-derived: consistent after any kill
+  }
 
   const auto configurations = expand_configurations(settings);
-  std::vector<Record> records;
-  std::map<std::string, int> outcomes;
-  for (size_t i = 0; i < configurations.size(); ++i) {
+  int interrupted_by = 0;
+  for (size_t i = 0; i < configurations.size() && !interrupted_by; ++i) {
     const Configuration& config = configurations[i];
+    if (finished.count(config.id())) continue;
+    if ((interrupted_by = stop_signal())) break;
     log << "[" << i + 1 << "/" << configurations.size() << "] " << config.id() << " ... "
         << std::flush;
     Record record;
     const auto started = std::chrono::steady_clock::now();
     try {
       record = measure_configuration(scenes.at(config.scene), config, settings, device, paths);
+    } catch (const Interrupted& e) {
+      // Abandoned cleanly: no record, no images; a rerun of the same command measures it.
+      remove_configuration_images(paths.images_dir, config.id() + "-" + config.pass);
+      log << "abandoned (" << e.what() << ")\n";
+      interrupted_by = e.signal();
+      break;
     } catch (const std::exception& e) {
       record = Record();
       describe_configuration(record, config, settings, device);
@@ -97,7 +168,6 @@ int run_benchmark(const RunSettings& settings, const std::string& command_line, 
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     record.set("wall_seconds", seconds);
     const std::string status = std::get<std::string>(*record.get("status"));
-    ++outcomes[status];
     log << status;
     if (const RecordValue* build = record.get("build_ms_median"))
       log << "  build " << format_csv_value(*build) << " ms";
@@ -105,11 +175,15 @@ int run_benchmark(const RunSettings& settings, const std::string& command_line, 
       log << "  ao " << format_csv_value(*ao) << " ms";
     if (status != "ok") log << "  (" << std::get<std::string>(*record.get("status_detail")) << ")";
     log << "\n";
+    journal.append_record(record);  // durable before the tables change
     records.push_back(std::move(record));
     run.set("finished", timestamp("%Y-%m-%dT%H:%M:%S%z"));
     write_records(csv_path, json_path, records, run);
   }
+  if (records.empty()) write_records(csv_path, json_path, records, run);
 
+  std::map<std::string, int> outcomes;
+  for (const Record& r : records) ++outcomes[std::get<std::string>(*r.get("status"))];
   log << "records: " << csv_path << " and " << json_path << " (";
   bool first = true;
   for (const auto& [status, count] : outcomes) {
@@ -117,6 +191,12 @@ int run_benchmark(const RunSettings& settings, const std::string& command_line, 
     first = false;
   }
   log << ")\n";
+  if (interrupted_by) {
+    log << "interrupted by signal " << interrupted_by << ": " << records.size() << " of "
+        << configurations.size() << " configurations recorded; run the same command again "
+        << "to measure the rest\n";
+    return kExitInterruptedBase + interrupted_by;
+  }
   const bool all_measured = outcomes["failed"] == 0 && outcomes["invalid"] == 0;
   return all_measured ? kExitOk : kExitSomeFailed;
 }

@@ -34,6 +34,7 @@ struct RunSettings {
   int frames = 5, warmup = 2;
   bool write_images = true;
   std::string out_dir;  // empty: results/runs/<timestamp>
+  bool overwrite = false;  // replace another sweep's results in out_dir (else refuse)
   ContextOptions context = default_context_options();
   std::string timer = "auto";  // auto | gl_timestamp | fenced_wall_clock
   ReferenceSettings reference;

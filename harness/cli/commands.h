@@ -10,6 +10,9 @@ namespace ldm::cli {
 using Runner = std::function<int()>;  // returns the process exit status
 
 Runner add_run_command(CLI::App& app, const std::string& command_line);
+// CLI11 silently drops the empty item of "-N 4,,8"; its intended value is unknown, so the
+// comma lists of `run` are checked on the raw arguments first. Throws UserError.
+void reject_empty_list_items(int argc, const char* const* argv);
 Runner add_reference_command(CLI::App& app);
 Runner add_compare_command(CLI::App& app);
 Runner add_listing_commands(CLI::App& app);  // scenes, structures, passes, columns, info

@@ -25,6 +25,12 @@ int main(int argc, char** argv) {
       {"listing", ldm::cli::add_listing_commands(app)},
   };
   try {
+    ldm::cli::reject_empty_list_items(argc, argv);
+  } catch (const ldm::UserError& e) {
+    std::cerr << "ldmbench: error: " << e.what() << "\n";
+    return ldm::kExitUsage;
+  }
+  try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help

@@ -1,4 +1,6 @@
 // `ldmbench run`: the options of a sweep.
+#include <cmath>
+#include <cstdio>
 #include <iostream>
 #include <memory>
 
@@ -39,10 +41,60 @@ struct RunOptions {
   RunSettings settings;
   std::vector<std::string> params, visibility, traces, estimators;
   std::string platform = "auto";
-  float normal_offset = -1.0f;
+  float normal_offset = 0.0f;
+  CLI::Option* normal_offset_option = nullptr;
 };
 
+std::string format_g(double x) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%g", x);
+  return buffer;
+}
+
+// Numbers are checked after the conversion to the type the run uses (float): CLI11's range
+// checks let NaN through, and 1e39 or 1e-50 only become inf or 0 when converted.
+void validate_numbers(const RunOptions& o) {
+  for (float d : o.settings.d_max)
+    if (!(std::isfinite(d) && d > 0.0f))
+      throw UserError("--d-max: the value reads as " + format_g(d) +
+                      " in a 32-bit float; it must be positive and finite (1.4e-45 to 3.4e38)");
+  if (o.normal_offset_option->count() &&
+      !(std::isfinite(o.normal_offset) && o.normal_offset >= 0.0f && o.normal_offset <= 1000.0f))
+    throw UserError("--normal-offset: " + format_g(o.normal_offset) +
+                    " is not a number in [0, 1000]");
+  const double noise = o.settings.reference.spp.target_noise_mse;
+  if (!(std::isfinite(noise) && noise > 0.0))
+    throw UserError("--reference-noise: " + format_g(noise) + " is not a positive number");
+  const SppRule& reference = o.settings.reference.spp;
+  if (reference.spp_per_half > reference.max_spp_per_half)  // found up front, not per record
+    throw UserError("--reference-spp " + std::to_string(reference.spp_per_half) +
+                    " exceeds --reference-max-spp " + std::to_string(reference.max_spp_per_half));
+}
+
 }  // namespace
+
+void reject_empty_list_items(int argc, const char* const* argv) {
+  static const char* const kListOptions[] = {"--scene", "--structure", "--pass", "-N", "--views",
+                                             "-R", "--r-ldm", "--d-max", "--visibility",
+                                             "--trace", "--ao-estimator"};
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    for (const char* option : kListOptions) {
+      const std::string name = option;
+      std::string value;
+      if (arg == name && i + 1 < argc)
+        value = argv[i + 1];
+      else if (arg.rfind(name + "=", 0) == 0)
+        value = arg.substr(name.size() + 1);
+      else
+        continue;
+      if (value.empty() || value.front() == ',' || value.back() == ',' ||
+          value.find(",,") != std::string::npos)
+        throw UserError(name + " '" + value +
+                        "': empty item in the comma list (a doubled, leading or trailing comma?)");
+    }
+  }
+}
 
 Runner add_run_command(CLI::App& app, const std::string& command_line) {
   auto o = std::make_shared<RunOptions>();
@@ -96,7 +148,7 @@ Runner add_run_command(CLI::App& app, const std::string& command_line) {
                   "normalized (sum V|cos| / sum |cos|) (default: eq13)")
       ->delimiter(',')
       ->check(CLI::IsMember(ao_estimator_names()));
-  run->add_option("--normal-offset", o->normal_offset,
+  o->normal_offset_option = run->add_option("--normal-offset", o->normal_offset,
                   "Normal offset of thesis §4.4.2 in LDM pixels (default: the scene's; 0 = off)")
       ->check(CLI::Range(0.0f, 1000.0f));
   run->add_option("--frames", s.frames, "Measured frames per configuration (median reported)")
@@ -109,8 +161,12 @@ Runner add_run_command(CLI::App& app, const std::string& command_line) {
                   "Structure parameter STRUCTURE:KEY=VALUE, repeatable (e.g. psppsll:pool=grow, "
                   "ppfla:k=4, habuffer:load_factor=0.5)");
   run->add_option("--out", s.out_dir,
-                  "Output folder for records.csv, records.json and images/ (default: "
-                  "results/runs/<timestamp>)");
+                  "Output folder for records.jsonl, records.csv, records.json and images/ "
+                  "(default: results/runs/<timestamp>). A folder holding an interrupted run "
+                  "of the same command is resumed: finished configurations are kept");
+  run->add_flag("--overwrite", s.overwrite,
+                "Replace the records and images in --out when they belong to another sweep "
+                "(without it such a folder is refused; the same sweep is resumed)");
   run->add_flag("!--no-images", s.write_images, "Do not write images");
   run->add_flag("!--no-reference", s.reference.enabled,
                 "Skip the path-traced reference and the image metrics");
@@ -145,6 +201,7 @@ Runner add_run_command(CLI::App& app, const std::string& command_line) {
 
   return [o, command_line]() {
     RunSettings& settings = o->settings;
+    validate_numbers(*o);
     for (const auto& p : o->params) parse_structure_param(p, settings);
     if (!o->visibility.empty()) {
       settings.visibility.clear();
@@ -158,7 +215,7 @@ Runner add_run_command(CLI::App& app, const std::string& command_line) {
       settings.estimators.clear();
       for (const auto& e : o->estimators) settings.estimators.push_back(parse_ao_estimator(e));
     }
-    if (o->normal_offset >= 0.0f) settings.normal_offset_pixels = o->normal_offset;
+    if (o->normal_offset_option->count()) settings.normal_offset_pixels = o->normal_offset;
     settings.context.platform = parse_egl_platform(o->platform);
     if (settings.structures.size() == 1 && settings.structures[0] == "all")
       settings.structures = structure_names();

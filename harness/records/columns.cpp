@@ -73,6 +73,8 @@ const std::vector<ColumnSpec>& record_columns() {
       {"accuracy", "ref_render_seconds", "s", "time the reference took to render (when it was rendered)"},
       {"accuracy", "ref_from_cache", "", "whether the reference came from the cache"},
       {"accuracy", "ref_cache_key", "", "cache key of the reference (hash of everything it depends on)"},
+      {"accuracy", "ref_ray_offset", "scene units", "largest distance the reference's secondary rays start off the surface"},
+      {"accuracy", "ref_ray_offset_ok", "", "false when that offset exceeds 1e-3 of d_max or of the scene's radius (the reference may be biased)"},
       {"accuracy", "mse", "", "mean squared error against the reference, averaged over channels"},
       {"accuracy", "nrmse", "", "sqrt(MSE) over the reference's range"},
       {"accuracy", "psnr", "dB", "peak signal-to-noise ratio with the reference's peak"},

@@ -12,12 +12,15 @@
 namespace ldm {
 namespace {
 
-// Secondary rays start this fraction of the scene's coordinate scale (|centre| + radius of
-// the bounding sphere) off the surface. x itself is interpolated from the triangle's
-// vertices, so its error is a few float ulps of that scale (~1e-7); 1e-5 leaves a margin of
-// ~100 ulps against self-intersection while biasing hit distances by at most 1e-5 of the
-// scene size (far below the noise of any reference).
-constexpr float kRelativeRayOffset = 1e-5f;
+// Secondary rays start this many float ulps of the hit's coordinates off the surface. x is
+// interpolated from its triangle's vertices, so its error is a few ulps of their largest
+// coordinate (and Embree's robust triangle test subtracts the ray origin from those same
+// vertices); 64 ulps leave a margin of ~16x against self-intersection. The tracer works in
+// coordinates centred on the scene (ao_reference.cpp), so these ulps are ulps of the scene's
+// extent, whatever its distance from the world origin: 64 * 2^-23 = 7.6e-6 of the radius at
+// most. (Before, the offset was 1e-5 of |centre| + radius: 17 units for a unit scene
+// translated 1e6 from the origin, past every occluder.)
+constexpr float kRayOffsetUlps = 64.0f;
 // Secondary rays go to Embree as streams of this many (rtcIntersect1M / rtcOccluded1M).
 // Measured on Cornell and atrium, 128x128, 1 thread: streams trace 1.2x (intersect) and
 // 1.6x (occluded) the rays per CPU-second of one rtcIntersect1/rtcOccluded1 call per ray;
@@ -32,9 +35,8 @@ void validate(const AoSettings& ao) {
                     std::to_string(ao.falloff_exponent) + ")");
 }
 
-float coordinate_scale(const Scene& scene) {
-  const BoundingSphere sphere = scene.bounding_sphere();
-  return glm::length(sphere.centre) + sphere.radius;
+float largest_magnitude(glm::vec3 p) {
+  return std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)});
 }
 
 RTCRay make_ray(glm::vec3 origin, glm::vec3 direction, float t_far) {
@@ -56,13 +58,19 @@ RTCRay make_ray(glm::vec3 origin, glm::vec3 direction, float t_far) {
 
 }  // namespace
 
+float AoEstimator::max_ray_offset(const Scene& scene) {
+  float largest = 0.0f;
+  for (const glm::vec3& p : scene.mesh.positions) largest = std::max(largest, largest_magnitude(p));
+  return kRayOffsetUlps * std::numeric_limits<float>::epsilon() * largest;
+}
+
 AoEstimator::AoEstimator(const EmbreeScene& scene, const AoSettings& ao, int width, int height)
     : scene_(scene),
       ao_(ao),
       width_(width),
       height_(height),
       camera_(camera_frame(scene.scene().camera, width, height)),
-      ray_offset_(kRelativeRayOffset * coordinate_scale(scene.scene())) {
+      ray_offset_(max_ray_offset(scene.scene())) {
   validate(ao);
   if (width <= 0 || height <= 0) throw UserError("AO reference: image size must be positive");
 }
@@ -90,7 +98,10 @@ bool AoEstimator::primary_hit(int x, int y, SurfacePoint* point) const {
   point->shading_normal = n;
   // Offset along the geometric normal on the side the camera sees: that is the side of the
   // triangle's plane the secondary rays must start from, whatever the shading normal says.
-  point->offset_origin = point->position + ray_offset_ * geometric;
+  const float precision =
+      std::max({largest_magnitude(p0), largest_magnitude(p1), largest_magnitude(p2)});
+  point->offset_origin =
+      point->position + kRayOffsetUlps * std::numeric_limits<float>::epsilon() * precision * geometric;
   return true;
 }
 

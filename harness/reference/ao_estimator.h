@@ -21,8 +21,11 @@ class AoEstimator {
   // (the GPU writes 0 for background).
   float pixel_mean(int x, int y, uint32_t spp, Pcg32& rng) const;
 
-  // Secondary rays start this far from x along the camera-facing geometric normal.
+  // Secondary rays start at most this far from x along the camera-facing geometric normal:
+  // 64 float ulps of the largest coordinate of x's triangle (ao_estimator.cpp).
   float ray_offset() const { return ray_offset_; }
+  // The same bound for a scene, in the coordinates it is traced in.
+  static float max_ray_offset(const Scene& scene);
 
  private:
   struct SurfacePoint {

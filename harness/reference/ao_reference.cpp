@@ -1,5 +1,7 @@
 #include "harness/reference/ao_reference.h"
 
+#include <cstdio>
+
 #include "harness/reference/ao_estimator.h"
 #include "harness/reference/embree_scene.h"
 #include "harness/reference/pixel_renderer.h"
@@ -45,12 +47,47 @@ Image render_half_with(const EmbreeScene& embree, const AoSettings& ao, int widt
                        });
 }
 
+// The secondary rays start up to `offset` off the surface, so hit distances are biased by up
+// to that much: V = (d/d_max)^2 moves by at most 2 * offset / d_max, and an occluder closer
+// than the offset is missed. Below 1e-3 of d_max the squared bias stays under 4e-6, below the
+// reference's own noise target (1e-5); above it (or above 1e-3 of the scene's radius) the
+// record says the reference may be biased.
+constexpr double kMaterialOffsetFraction = 1e-3;
+
+void annotate_ray_offset(ReferenceResult& result, const Scene& scene, const AoSettings& ao) {
+  result.ray_offset = AoEstimator::max_ray_offset(scene_centred_for_tracing(scene));
+  const double radius = scene.bounding_sphere().radius;
+  const char* scale = ao.attenuated && result.ray_offset > kMaterialOffsetFraction * ao.d_max
+                          ? "d_max"
+                      : result.ray_offset > kMaterialOffsetFraction * radius ? "the scene's radius"
+                                                                             : nullptr;
+  if (scale) {
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  "reference ray offset %g is a material fraction (> 1e-3) of %s: the reference "
+                  "may be biased",
+                  result.ray_offset, scale);
+    result.ray_offset_warning = text;
+  }
+}
+
 }  // namespace
+
+Scene scene_centred_for_tracing(const Scene& scene) {
+  Scene centred = scene;
+  const glm::vec3 centre = scene.bounding_sphere().centre;
+  for (glm::vec3& p : centred.mesh.positions) p -= centre;
+  centred.camera.eye -= centre;
+  centred.camera.target -= centre;
+  centred.light.position -= centre;
+  return centred;
+}
 
 Image render_ao_half(const Scene& scene, const AoSettings& ao, int width, int height,
                      uint32_t spp, uint64_t seed, uint32_t pass, int threads, bool progress) {
   scene.validate();
-  const EmbreeScene embree(scene);
+  const Scene centred = scene_centred_for_tracing(scene);
+  const EmbreeScene embree(centred);
   return render_half_with(embree, ao, width, height, spp, seed, pass, threads, progress);
 }
 
@@ -60,7 +97,8 @@ ReferenceResult render_ao_reference(const Scene& scene, const AoReferenceRequest
   validate_spp_rule(rule);
   scene.validate();
   const AoSettings ao = settings_used(scene, request);
-  const EmbreeScene embree(scene);  // one BVH for every pass of both halves
+  const Scene centred = scene_centred_for_tracing(scene);
+  const EmbreeScene embree(centred);  // one BVH for every pass of both halves
   ReferenceResult result = render_reference_pair(
       [&](uint64_t seed, uint32_t spp, uint32_t pass) {
         return render_half_with(embree, ao, request.width, request.height, spp, seed, pass,
@@ -68,6 +106,7 @@ ReferenceResult render_ao_reference(const Scene& scene, const AoReferenceRequest
       },
       rule, request.seed);
   result.cache_key = reference_cache_key(ao_reference_inputs(scene, request));
+  annotate_ray_offset(result, scene, ao);
   return result;
 }
 
@@ -99,7 +138,10 @@ ReferenceResult cached_ao_reference(const Scene& scene, const AoReferenceRequest
   validate(request);
   validate_spp_rule(request.spp);
   const nlohmann::json inputs = ao_reference_inputs(scene, request);
-  if (auto cached = load_cached_reference(cache_dir, inputs)) return *cached;
+  if (auto cached = load_cached_reference(cache_dir, inputs)) {
+    annotate_ray_offset(*cached, scene, settings_used(scene, request));
+    return *cached;
+  }
   ReferenceResult result = render_ao_reference(scene, request);
   store_cached_reference(cache_dir, inputs, result);
   return result;

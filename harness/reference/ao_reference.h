@@ -17,7 +17,8 @@ namespace ldm {
 
 // Bump whenever a change to the AO reference alters its images: cached entries of older
 // versions then stop matching.
-inline constexpr int kAoReferenceVersion = 1;
+// 2: traced in scene-centred coordinates, ray offset from the float precision at the hit.
+inline constexpr int kAoReferenceVersion = 2;
 
 struct AoReferenceRequest {
   int width = 0, height = 0;
@@ -27,6 +28,11 @@ struct AoReferenceRequest {
   int threads = 0;     // 0: all cores; does not change the image
   bool progress = true;
 };
+
+// The scene translated so that its bounding sphere is centred on the origin (camera and light
+// with it). The reference traces this copy: float precision then depends on the scene's
+// extent, not on its distance from the world origin (AO is translation invariant).
+Scene scene_centred_for_tracing(const Scene& scene);
 
 // One half image: `spp` samples per pixel with seed `seed`, independent pass `pass`.
 Image render_ao_half(const Scene& scene, const AoSettings& ao, int width, int height,

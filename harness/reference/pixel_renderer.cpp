@@ -11,6 +11,7 @@
 
 #include "harness/reference/progress.h"
 #include "harness/util/error.h"
+#include "harness/util/interrupt.h"
 
 namespace ldm {
 namespace {
@@ -55,6 +56,9 @@ Image render_pixels(const PixelRenderSettings& settings, int channels,
     const int x1 = std::min(x0 + kTileSize, width), y1 = std::min(y0 + kTileSize, height);
     for (int y = y0; y < y1; ++y)
       for (int x = x0; x < x1; ++x) {
+        // SIGINT/SIGTERM: abandon the image (util/interrupt.h); per pixel, since one tile
+        // of a high-spp reference can take minutes. Reading the flag costs nothing.
+        throw_if_stop_requested();
         const uint64_t pixel_index = uint64_t(y) * uint64_t(width) + uint64_t(x);
         Pcg32 rng = pixel_stream(settings.seed, settings.pass, pixel_index);
         estimator(x, y, settings.spp, rng, &image.at(x, y, 0));

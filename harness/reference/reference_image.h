@@ -38,6 +38,10 @@ struct ReferenceResult {
   double render_seconds = 0;
   bool from_cache = false;
   std::string cache_key;
+  // Where the tracer starts secondary rays off the surface (scene units; 0: not a tracer
+  // with an offset), and why that may bias the image (empty: it cannot materially).
+  double ray_offset = 0;
+  std::string ray_offset_warning;
 };
 
 // Renders `spp` samples per pixel of one half: seed s selects the half, `pass` a further

@@ -1,10 +1,22 @@
 #include "harness/scene/generators.h"
 
 #include <algorithm>
+#include <cstdint>
+#include <cstdio>
 
 #include "harness/util/error.h"
 
 namespace ldm {
+namespace {
+
+// %g, so that 1e-50 and 4e+38 read as given rather than as 0.000000 or 38 digits.
+std::string format_number(double x) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%g", x);
+  return buffer;
+}
+
+}  // namespace
 
 GeneratorParams::GeneratorParams(const nlohmann::json& params, std::string context)
     : params_(params), context_(std::move(context)) {
@@ -16,11 +28,13 @@ float GeneratorParams::number(const std::string& key, float fallback, float lo, 
   used_.push_back(key);
   if (params_.is_null() || !params_.contains(key)) return fallback;
   const auto& v = params_.at(key);
-  if (!v.is_number()) throw UserError(context_ + ": '" + key + "' must be a number");
-  const float x = v.get<float>();
+  if (!v.is_number()) throw UserError(where(key) + " must be a number");
+  // Checked after the conversion to float, the type the scene stores.
+  const double given = v.get<double>();
+  const float x = float(given);
   if (!(x >= lo && x <= hi))
-    throw UserError(context_ + ": '" + key + "' = " + std::to_string(x) + " is outside [" +
-                    std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    throw UserError(where(key) + " = " + format_number(given) + " is outside [" +
+                    format_number(lo) + ", " + format_number(hi) + "]");
   return x;
 }
 
@@ -28,20 +42,27 @@ int GeneratorParams::integer(const std::string& key, int fallback, int lo, int h
   used_.push_back(key);
   if (params_.is_null() || !params_.contains(key)) return fallback;
   const auto& v = params_.at(key);
-  if (!v.is_number_integer()) throw UserError(context_ + ": '" + key + "' must be an integer");
-  const int x = v.get<int>();
+  if (!v.is_number_integer()) throw UserError(where(key) + " must be an integer");
+  // Compared as 64-bit values: get<int>() would wrap 2^32 + 1 to 1.
+  const int64_t x = v.is_number_unsigned()
+                        ? int64_t(std::min<uint64_t>(v.get<uint64_t>(), uint64_t(INT64_MAX)))
+                        : v.get<int64_t>();
   if (x < lo || x > hi)
-    throw UserError(context_ + ": '" + key + "' = " + std::to_string(x) + " is outside [" +
+    throw UserError(where(key) + " = " + std::to_string(x) + " is outside [" +
                     std::to_string(lo) + ", " + std::to_string(hi) + "]");
-  return x;
+  return int(x);
 }
 
 bool GeneratorParams::boolean(const std::string& key, bool fallback) {
   used_.push_back(key);
   if (params_.is_null() || !params_.contains(key)) return fallback;
   const auto& v = params_.at(key);
-  if (!v.is_boolean()) throw UserError(context_ + ": '" + key + "' must be true or false");
+  if (!v.is_boolean()) throw UserError(where(key) + " must be true or false");
   return v.get<bool>();
+}
+
+std::string GeneratorParams::where(const std::string& key) const {
+  return context_ + "/" + key;
 }
 
 void GeneratorParams::finish() const {
@@ -49,14 +70,14 @@ void GeneratorParams::finish() const {
   for (const auto& [key, value] : params_.items()) {
     if (key == "type") continue;
     if (std::find(used_.begin(), used_.end(), key) == used_.end())
-      throw UserError(context_ + ": unknown parameter '" + key + "'");
+      throw UserError(where(key) + " is unknown: not a parameter of this generator");
   }
 }
 
 const std::vector<SceneGenerator>& scene_generators() {
   auto wrap = [](Scene (*make)(GeneratorParams&), const char* name) {
-    return [make, name](const nlohmann::json& params) {
-      GeneratorParams p(params, std::string("generator '") + name + "'");
+    return [make, name](const nlohmann::json& params, const std::string& context) {
+      GeneratorParams p(params, context);
       Scene scene = make(p);
       p.finish();
       scene.origin = std::string("built-in:") + name;
@@ -94,7 +115,7 @@ Scene generate_scene(const std::string& name, const nlohmann::json& params,
     for (const auto& g : scene_generators()) known += (known.empty() ? "" : ", ") + g.name;
     throw UserError(context + ": unknown scene generator '" + name + "' (known: " + known + ")");
   }
-  Scene scene = generator->make(params);
+  Scene scene = generator->make(params, context);
   scene.validate();
   return scene;
 }

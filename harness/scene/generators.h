@@ -15,12 +15,14 @@ namespace ldm {
 struct SceneGenerator {
   std::string name;
   std::string description;
-  std::function<Scene(const nlohmann::json& params)> make;
+  // `context` prefixes errors: "scene.json: /generator" names a key "scene.json: /generator/h".
+  std::function<Scene(const nlohmann::json& params, const std::string& context)> make;
 };
 
 const std::vector<SceneGenerator>& scene_generators();
 const SceneGenerator* find_scene_generator(const std::string& name);
-// Builds a built-in scene; `context` names where the parameters came from (for errors).
+// Builds a built-in scene; `context` names where the parameters came from, as the JSON path
+// of the generator object ("scene.json: /generator", "--scene cornell"); errors append "/key".
 Scene generate_scene(const std::string& name, const nlohmann::json& params,
                      const std::string& context);
 
@@ -35,6 +37,7 @@ class GeneratorParams {
   void finish() const;  // throws on keys that no getter asked for
 
  private:
+  std::string where(const std::string& key) const;  // "<context>/<key>"
   const nlohmann::json& params_;
   std::string context_;
   std::vector<std::string> used_;

@@ -3,17 +3,40 @@
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include "harness/scene/mesh_builder.h"
+#include "harness/scene/obj_syntax.h"
 #include "harness/util/error.h"
 
 namespace ldm {
 
 void load_obj_into(Scene& scene, const std::string& path, const ObjLoadOptions& options,
                    const std::string& context) {
-  if (!std::filesystem::is_regular_file(path))
+  std::error_code error;
+  const auto kind = std::filesystem::status(path, error).type();
+  if (kind == std::filesystem::file_type::not_found)
     throw UserError(context + ": OBJ file '" + path + "' does not exist");
+  if (kind == std::filesystem::file_type::directory)
+    throw UserError(context + ": OBJ file '" + path + "' is a directory, not a file");
+  if (kind != std::filesystem::file_type::regular)
+    throw UserError(context + ": OBJ file '" + path + "' is not a regular file");
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  if (!in) throw UserError(context + ": OBJ file '" + path + "' cannot be read");
+  // tinyobjloader accepts malformed numbers and short statements silently: check them first.
+  const ObjSyntax syntax = [&] {
+    try {
+      return check_obj_syntax(text.str(), path);
+    } catch (const UserError& e) {
+      throw UserError(context + ": " + e.what());
+    }
+  }();
+
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;
   config.vertex_color = false;
@@ -44,16 +67,26 @@ void load_obj_into(Scene& scene, const std::string& path, const ObjLoadOptions& 
 
   const size_t vertex_count = attrib.vertices.size() / 3;
   const size_t normal_count = attrib.normals.size() / 3;
+  if (vertex_count != syntax.vertex_lines.size())
+    throw GpuError("OBJ '" + path + "': tinyobjloader read " + std::to_string(vertex_count) +
+                   " vertices where the file has " + std::to_string(syntax.vertex_lines.size()));
   auto position = [&](int index) {
+    // check_obj_syntax has checked every index against the file's vertex count.
     if (index < 0 || size_t(index) >= vertex_count)
-      throw UserError(context + ": OBJ '" + path + "' has a face with vertex index " +
-                      std::to_string(index + 1) + " past its " + std::to_string(vertex_count) +
-                      " vertices");
+      throw GpuError("OBJ '" + path + "': tinyobjloader returned vertex index " +
+                     std::to_string(index) + " of " + std::to_string(vertex_count));
     const float* v = &attrib.vertices[3 * size_t(index)];
-    return glm::vec3(v[0], v[1], v[2]) * options.scale + options.translate;
+    const glm::vec3 p = glm::vec3(v[0], v[1], v[2]) * options.scale + options.translate;
+    const float largest = std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+    if (!(largest <= kMaxSceneCoordinate))  // also catches inf and NaN
+      throw UserError(path + ":" + std::to_string(syntax.vertex_lines[size_t(index)]) +
+                      ": the vertex lies at (" + std::to_string(p.x) + ", " +
+                      std::to_string(p.y) + ", " + std::to_string(p.z) + ") after " + context +
+                      "'s scale and translate, beyond the representable scene extent (|x| <= 1e18)");
+    return p;
   };
   const glm::vec3 normal_scale = 1.0f / options.scale;  // inverse-transpose of a scale
-  size_t triangles = 0;
+  size_t triangles = 0, degenerate = 0;
   for (const auto& shape : shapes) {
     const auto& mesh = shape.mesh;
     for (size_t f = 0; f < mesh.num_face_vertices.size(); ++f) {
@@ -68,7 +101,10 @@ void load_obj_into(Scene& scene, const std::string& path, const ObjLoadOptions& 
                                size_t(std::max({idx[0].normal_index, idx[1].normal_index,
                                                 idx[2].normal_index})) < normal_count;
       const glm::vec3 face = glm::cross(b - a, c - a);
-      if (!(glm::length(face) > 0.0f)) continue;  // degenerate
+      if (!(glm::length(face) > 0.0f)) {  // zero area: no surface to rasterise or hit
+        ++degenerate;
+        continue;
+      }
       auto& m = scene.mesh;
       const auto base = uint32_t(m.positions.size());
       m.positions.insert(m.positions.end(), {a, b, c});
@@ -86,7 +122,12 @@ void load_obj_into(Scene& scene, const std::string& path, const ObjLoadOptions& 
       ++triangles;
     }
   }
-  if (triangles == 0) throw UserError(context + ": OBJ '" + path + "' has no triangles");
+  if (triangles == 0 && degenerate > 0)
+    throw UserError(context + ": OBJ '" + path + "': all " + std::to_string(degenerate) +
+                    " triangles have zero area (after the mesh's scale)");
+  if (triangles == 0)
+    throw UserError(context + ": OBJ '" + path + "' has no faces (" +
+                    std::to_string(syntax.face_count) + " f statements)");
 }
 
 }  // namespace ldm

@@ -1,6 +1,8 @@
 #include "harness/scene/scene.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 
@@ -8,6 +10,24 @@
 #include "harness/util/hash.h"
 
 namespace ldm {
+namespace {
+
+std::string format_float(float x) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%g", double(x));
+  return buffer;
+}
+
+}  // namespace
+
+bool camera_up_is_usable(const Camera& camera) {
+  const glm::vec3 view = camera.target - camera.eye;
+  const float view_length = glm::length(view), up_length = glm::length(camera.up);
+  if (!(view_length > 0.0f) || !(up_length > 0.0f)) return false;
+  // |sin| of the angle between up and the view direction.
+  const float sine = glm::length(glm::cross(view / view_length, camera.up / up_length));
+  return sine > 1e-3f;
+}
 
 Bounds Scene::bounds() const {
   Bounds b;
@@ -60,20 +80,37 @@ void Scene::validate() const {
     throw UserError(where + ": normals and positions differ in count");
   if (mesh.triangle_materials.size() != mesh.triangles.size())
     throw UserError(where + ": every triangle needs a material");
-  for (const auto& p : mesh.positions)
+  for (size_t i = 0; i < mesh.positions.size(); ++i) {
+    const glm::vec3 p = mesh.positions[i];
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-      throw UserError(where + ": a vertex position is not finite");
+      throw UserError(where + ": vertex " + std::to_string(i) + " is not finite");
+    const float largest = std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+    if (largest > kMaxSceneCoordinate)
+      throw UserError(where + ": vertex " + std::to_string(i) + " has a coordinate of magnitude " +
+                      format_float(largest) + ", beyond the representable scene extent (|x| <= " +
+                      format_float(kMaxSceneCoordinate) + ")");
+  }
   const auto vertex_count = mesh.positions.size();
   for (const auto& t : mesh.triangles)
     if (t.x >= vertex_count || t.y >= vertex_count || t.z >= vertex_count)
       throw UserError(where + ": a triangle indexes past the vertex list");
   for (auto m : mesh.triangle_materials)
     if (m >= materials.size()) throw UserError(where + ": a triangle names a missing material");
-  if (!(ao.d_max > 0.0f)) throw UserError(where + ": ao.d_max must be positive");
+  if (!(ao.d_max > 0.0f) || !std::isfinite(ao.d_max))
+    throw UserError(where + ": ao.d_max must be positive and finite");
+  if (!(ao.falloff_exponent > 0.0f) || !std::isfinite(ao.falloff_exponent))
+    throw UserError(where + ": ao.falloff_exponent must be positive and finite");
+  if (!(ao.normal_offset_pixels >= 0.0f) || !std::isfinite(ao.normal_offset_pixels))
+    throw UserError(where + ": ao.normal_offset must be >= 0 and finite");
   if (!(camera.fov_y_deg > 0.0f && camera.fov_y_deg < 180.0f))
     throw UserError(where + ": camera.fov_y_deg must lie in (0, 180)");
-  if (glm::length(camera.target - camera.eye) <= 0.0f)
+  for (const glm::vec3 v : {camera.eye, camera.target, camera.up})
+    if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
+      throw UserError(where + ": camera eye, target and up must be finite");
+  if (!(glm::length(camera.target - camera.eye) > 0.0f))
     throw UserError(where + ": camera.eye and camera.target coincide");
+  if (!camera_up_is_usable(camera))
+    throw UserError(where + ": camera.up is parallel to the view direction (target - eye)");
 }
 
 AoSettings apply_ao_overrides(AoSettings ao, const AoOverrides& overrides) {

@@ -39,6 +39,15 @@ struct Camera {
   float fov_y_deg = 40.0f;
 };
 
+// Whether `up` fixes the camera's roll: it must not lie within ~0.06 degrees of the view
+// direction, where right = normalize(cross(forward, up)) would be rounding noise (or NaN).
+bool camera_up_is_usable(const Camera& camera);
+
+// The largest coordinate magnitude a scene may have. Bounding spheres, view matrices and the
+// reference's BVH square and sum coordinate differences in 32-bit floats: with |x| <= 1e18,
+// (2|x|)^2 * 3 stays below FLT_MAX (3.4e38) with a margin of 20x; beyond it they overflow to inf.
+inline constexpr float kMaxSceneCoordinate = 1e18f;
+
 // A spot light: radiant intensity `intensity` (W/sr, RGB) along `direction`, smoothly
 // falling to zero between the inner and outer cone angles.
 struct SpotLight {

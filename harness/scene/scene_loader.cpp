@@ -1,5 +1,8 @@
 #include "harness/scene/scene_loader.h"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -37,7 +40,7 @@ class Fields {
     if (!has(key)) return fallback;
     const json& v = object_.at(key);
     if (!v.is_number()) fail(key, "must be a number");
-    return v.get<float>();
+    return to_float(v, key);
   }
   bool boolean(const std::string& key, bool fallback) const {
     if (!has(key)) return fallback;
@@ -54,11 +57,11 @@ class Fields {
   glm::vec3 vec3(const std::string& key, glm::vec3 fallback) const {
     if (!has(key)) return fallback;
     const json& v = object_.at(key);
-    if (v.is_number()) return glm::vec3(v.get<float>());
+    if (v.is_number()) return glm::vec3(to_float(v, key));
     if (!v.is_array() || v.size() != 3 || !v[0].is_number() || !v[1].is_number() ||
         !v[2].is_number())
       fail(key, "must be an array of 3 numbers");
-    return {v[0].get<float>(), v[1].get<float>(), v[2].get<float>()};
+    return {to_float(v[0], key + "/0"), to_float(v[1], key + "/1"), to_float(v[2], key + "/2")};
   }
   const json& at(const std::string& key) const { return object_.at(key); }
   Fields child(const std::string& key) const { return Fields(object_.at(key), file_, path_ + "/" + key); }
@@ -66,6 +69,18 @@ class Fields {
   const std::string& path() const { return path_; }
 
  private:
+  // The scene stores 32-bit floats: a JSON number beyond their range (1e39) would become
+  // infinity, so it is an error here rather than a surprise on the GPU.
+  float to_float(const json& v, const std::string& key) const {
+    const double given = v.get<double>();
+    const float x = float(given);
+    if (!std::isfinite(x)) {
+      char text[32];
+      std::snprintf(text, sizeof text, "%g", given);
+      fail(key, std::string("= ") + text + " is not representable as a 32-bit float (|x| <= 3.4e38)");
+    }
+    return x;
+  }
   const json& object_;
   std::string file_;
   std::string path_;
@@ -79,6 +94,10 @@ void read_camera(const Fields& f, Camera& camera) {
   camera.fov_y_deg = f.number("fov_y_deg", camera.fov_y_deg);
   if (!(camera.fov_y_deg > 0 && camera.fov_y_deg < 180)) f.fail("fov_y_deg", "must lie in (0, 180)");
   if (glm::length(camera.up) == 0.0f) f.fail("up", "must not be zero");
+  if (!(glm::length(camera.target - camera.eye) > 0.0f)) f.fail("target", "must differ from eye");
+  if (!camera_up_is_usable(camera))
+    f.fail("up", "is parallel to the view direction (target - eye): the camera has no "
+                 "defined roll; give an up vector that is not along the view direction");
 }
 
 void read_light(const Fields& f, SpotLight& light) {
@@ -100,7 +119,8 @@ void read_ao(const Fields& f, AoSettings& ao) {
   f.only({"attenuated", "d_max", "falloff_exponent", "normal_offset"});
   ao.attenuated = f.boolean("attenuated", ao.attenuated);
   ao.d_max = f.number("d_max", ao.d_max);
-  if (!(ao.d_max > 0)) f.fail("d_max", "must be positive");
+  if (!(ao.d_max > 0))
+    f.fail("d_max", "must be positive (as a 32-bit float: values below 1.4e-45 round to 0)");
   ao.falloff_exponent = f.number("falloff_exponent", ao.falloff_exponent);
   if (!(ao.falloff_exponent > 0)) f.fail("falloff_exponent", "must be positive");
   ao.normal_offset_pixels = f.number("normal_offset", ao.normal_offset_pixels);
@@ -114,24 +134,69 @@ void append_mesh(Scene& scene, const Fields& f, const std::filesystem::path& bas
   if (path.is_relative()) path = base_dir / path;
   ObjLoadOptions options;
   options.scale = f.vec3("scale", glm::vec3(1.0f));
+  if (options.scale.x == 0.0f || options.scale.y == 0.0f || options.scale.z == 0.0f)
+    f.fail("scale", "must be non-zero in every component (a zero scale flattens the mesh "
+                    "into zero-area triangles)");
   options.translate = f.vec3("translate", glm::vec3(0.0f));
   if (f.has("material")) options.override_material = f.string("material");
   load_obj_into(scene, path.string(), options, f.file() + ": " + f.path() + "/file");
 }
 
+// The 1-based line and column of a byte offset into `text`.
+std::string line_and_column(const std::string& text, size_t offset) {
+  offset = std::min(offset, text.size());
+  size_t line = 1, column = 1;
+  for (size_t i = 0; i < offset; ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      column = 1;
+    } else {
+      ++column;
+    }
+  }
+  return "line " + std::to_string(line) + ", column " + std::to_string(column);
+}
+
+// nlohmann's DOM builder, remembering where the parser stopped. Every parse failure, including
+// a number out of double range (1e400, reported as out_of_range without a position), then
+// names its line and column.
+class LocatingDomParser : public nlohmann::detail::json_sax_dom_parser<json> {
+ public:
+  explicit LocatingDomParser(json& root) : json_sax_dom_parser(root, false) {}
+  template <class Exception>
+  bool parse_error(std::size_t position, const std::string& token, const Exception& e) {
+    error_position = position;
+    error_token = token;
+    error_message = e.what();
+    return false;
+  }
+  std::size_t error_position = 0;
+  std::string error_token, error_message;
+};
+
+json parse_json_with_location(const std::string& text, const std::string& path) {
+  json root;
+  LocatingDomParser sax(root);
+  if (json::sax_parse(text, &sax, nlohmann::detail::input_format_t::json, true, false)) return root;
+  // nlohmann's message reads "[json.exception.parse_error.101] parse error at line 3, column 9:
+  // syntax error ..."; keep its description, and say where from our own count.
+  std::string what = sax.error_message;
+  const auto colon = what.find(": ", what.find(']'));
+  if (colon != std::string::npos && what.find("parse error") != std::string::npos)
+    what = what.substr(colon + 2);
+  else if (const auto bracket = what.find("] "); bracket != std::string::npos)
+    what = what.substr(bracket + 2);
+  // The parser reports the offset just past the offending token.
+  const size_t start = sax.error_position >= sax.error_token.size()
+                           ? sax.error_position - sax.error_token.size()
+                           : 0;
+  throw UserError(path + ": malformed JSON at " + line_and_column(text, start) + ": " + what);
+}
+
 }  // namespace
 
 Scene parse_scene_file(const std::string& text, const std::string& path) {
-  json root;
-  try {
-    root = json::parse(text);
-  } catch (const json::parse_error& e) {
-    // nlohmann's message carries "at line L, column C".
-    std::string what = e.what();
-    const auto at = what.find("at line");
-    throw UserError(path + ": malformed JSON " +
-                    (at != std::string::npos ? what.substr(at) : what));
-  }
+  const json root = parse_json_with_location(text, path);
   Fields top(root, path, "");
   top.only({"name", "generator", "meshes", "materials", "camera", "light", "ao"});
   if (!top.has("generator") && !top.has("meshes"))

@@ -13,6 +13,12 @@ const char* build_status_name(BuildStatus status) {
   return "invalid";
 }
 
+BuildHealth::BuildHealth(const FragmentCensus& census) : census_(census) {
+  if (census.total_fragments == 0)
+    report_problem("no fragment in any LDM view (the geometry is edge-on to every view or too "
+                   "thin to cover a pixel centre): nothing was measured");
+}
+
 void BuildHealth::observe(const BuildStats& stats, const LdmIntegrity& integrity) {
   ++builds_;
   max_lost_ = std::max(max_lost_, stats.fragments_lost);

@@ -24,7 +24,9 @@ const char* build_status_name(BuildStatus status);  // "ok", "lossy", "invalid"
 // Watches every build of one configuration (warm-up builds included: a fault is a fault).
 class BuildHealth {
  public:
-  explicit BuildHealth(const FragmentCensus& census) : census_(census) {}
+  // A census of 0 fragments is a problem from the start: every check of a build would pass
+  // vacuously and the pass would have nothing to read.
+  explicit BuildHealth(const FragmentCensus& census);
 
   void observe(const BuildStats& stats, const LdmIntegrity& integrity);
   // A fault found outside the build (e.g. a NaN in the pass's image): the result is invalid.

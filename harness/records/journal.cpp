@@ -1,0 +1,128 @@
+#include "harness/records/journal.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "harness/util/error.h"
+
+namespace ldm {
+namespace {
+
+using ordered_json = nlohmann::ordered_json;
+
+ordered_json encode_value(const RecordValue& value) {
+  struct Visitor {
+    ordered_json operator()(std::monostate) const { return nullptr; }
+    ordered_json operator()(bool b) const { return b; }
+    ordered_json operator()(int64_t i) const { return i; }
+    ordered_json operator()(double d) const {
+      if (std::isnan(d)) return {{"nonfinite", "nan"}};
+      if (std::isinf(d)) return {{"nonfinite", d > 0 ? "inf" : "-inf"}};
+      return d;
+    }
+    ordered_json operator()(const std::string& s) const { return s; }
+  };
+  return std::visit(Visitor{}, value);
+}
+
+RecordValue decode_value(const ordered_json& v, const std::string& where) {
+  if (v.is_null()) return std::monostate{};
+  if (v.is_boolean()) return v.get<bool>();
+  if (v.is_number_integer()) return v.get<int64_t>();
+  if (v.is_number_float()) return v.get<double>();
+  if (v.is_string()) return v.get<std::string>();
+  if (v.is_object() && v.size() == 1 && v.contains("nonfinite") && v["nonfinite"].is_string()) {
+    const std::string text = v["nonfinite"];
+    if (text == "nan") return std::nan("");
+    if (text == "inf") return INFINITY;
+    if (text == "-inf") return -INFINITY;
+  }
+  throw UserError(where + ": not a record value");
+}
+
+std::string errno_text() { return std::strerror(errno); }
+
+}  // namespace
+
+std::string journal_line(const char* kind, const Record& fields) {
+  ordered_json object = ordered_json::object();
+  for (const auto& [key, value] : fields.fields()) object[key] = encode_value(value);
+  ordered_json line;
+  line[kind] = object;
+  // dump() escapes newlines inside strings: one entry is always one line.
+  return line.dump() + "\n";
+}
+
+JournalContents read_journal(const std::string& path) {
+  JournalContents contents;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return contents;
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const std::string text = buffer.str();
+  size_t begin = 0, line_number = 0;
+  while (begin < text.size()) {
+    const size_t end = text.find('\n', begin);
+    if (end == std::string::npos) {  // no newline: the write was cut short
+      contents.torn_bytes = text.size() - begin;
+      break;
+    }
+    ++line_number;
+    const std::string where = path + ":" + std::to_string(line_number);
+    const std::string line = text.substr(begin, end - begin);
+    begin = end + 1;
+    ordered_json entry;
+    try {
+      entry = ordered_json::parse(line);
+    } catch (const nlohmann::json::exception& e) {
+      throw UserError(where + ": not a journal line (" + e.what() + ")");
+    }
+    const bool is_run = entry.is_object() && entry.size() == 1 && entry.contains("run");
+    const bool is_record = entry.is_object() && entry.size() == 1 && entry.contains("record");
+    if (!(is_run || is_record) || !entry.begin().value().is_object())
+      throw UserError(where + ": not a journal line (expected {\"run\": {...}} or {\"record\": {...}})");
+    Record fields;
+    for (const auto& [key, value] : entry.begin().value().items())
+      fields.put(key, decode_value(value, where + ": " + key));
+    (is_run ? contents.runs : contents.records).push_back(std::move(fields));
+  }
+  return contents;
+}
+
+RecordJournal::RecordJournal(const std::string& path) : path_(path) {
+  const JournalContents existing = read_journal(path);
+  fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+  if (fd_ < 0) throw UserError("cannot open '" + path + "' for appending: " + errno_text());
+  if (existing.torn_bytes > 0) {
+    const off_t size = ::lseek(fd_, 0, SEEK_END);
+    if (size < 0 || ::ftruncate(fd_, size - off_t(existing.torn_bytes)) != 0)
+      throw UserError("cannot cut the torn last line off '" + path + "': " + errno_text());
+  }
+}
+
+RecordJournal::~RecordJournal() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+void RecordJournal::append(const char* kind, const Record& fields) {
+  const std::string line = journal_line(kind, fields);
+  size_t written = 0;
+  while (written < line.size()) {
+    const ssize_t n = ::write(fd_, line.data() + written, line.size() - written);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) throw UserError("cannot append to '" + path_ + "': " + errno_text());
+    written += size_t(n);
+  }
+  // The line is on disk before any table derived from it is replaced.
+  if (::fsync(fd_) != 0) throw UserError("cannot fsync '" + path_ + "': " + errno_text());
+}
+
+}  // namespace ldm

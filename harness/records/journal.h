@@ -1,0 +1,48 @@
+#pragma once
+// records.jsonl: the append-only journal of a run folder, from which records.csv and
+// records.json are derived. One JSON object per line, each written with a single write()
+// and fsync'd before the tables are touched:
+//   {"run": {...}}      the metadata of an invocation that writes to this folder
+//   {"record": {...}}   one finished configuration (its record, fields in order)
+// A kill can at worst leave a torn last line; reading drops it (it was never complete) and
+// opening for append cuts it off, so every complete line survives any number of kills.
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "harness/records/record.h"
+
+namespace ldm {
+
+struct JournalContents {
+  std::vector<Record> runs;     // in order
+  std::vector<Record> records;  // in order
+  size_t torn_bytes = 0;        // length of a torn (incomplete) last line, dropped
+};
+
+// Reads a journal; a missing file is empty. Throws UserError naming the file and line for a
+// complete line that is not a journal entry (the file is not ours, or was edited).
+JournalContents read_journal(const std::string& path);
+
+class RecordJournal {
+ public:
+  // Opens `path` for appending (creating it), after cutting off a torn last line.
+  explicit RecordJournal(const std::string& path);
+  ~RecordJournal();
+  RecordJournal(const RecordJournal&) = delete;
+  RecordJournal& operator=(const RecordJournal&) = delete;
+
+  void append_run(const Record& metadata) { append("run", metadata); }
+  void append_record(const Record& record) { append("record", record); }
+
+ private:
+  void append(const char* kind, const Record& fields);
+  std::string path_;
+  int fd_ = -1;
+};
+
+// A record as one JSON line and back. Doubles keep their type (and NaN/inf, as
+// {"nonfinite": "nan"}), so a table derived from the journal equals one written directly.
+std::string journal_line(const char* kind, const Record& fields);
+
+}  // namespace ldm

@@ -1,0 +1,24 @@
+#pragma once
+// A strict reader of the OBJ statements ldmbench uses (v, vn, vt, f), run before
+// tinyobjloader: tinyobjloader reads "v a b c" as 0, pads short vertices, keeps nan and inf,
+// and drops faces with fewer than three corners, all without a word. Here each of those is
+// an error naming the file and the line.
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace ldm {
+
+struct ObjSyntax {
+  std::vector<size_t> vertex_lines;  // 1-based line of each `v` statement, in order
+  size_t normal_count = 0, texcoord_count = 0, face_count = 0;
+};
+
+// Checks every v/vn/vt/f statement of `text`: the right count of decimal numbers, each
+// finite as a 32-bit float; vertex coordinates within kMaxSceneCoordinate; faces with at
+// least three corners whose indices (1-based, or negative = relative to the statements read
+// so far) name existing elements. Other statements (o, g, s, usemtl, mtllib, l, p, comments)
+// pass through. Throws UserError "<path>:<line>: ...".
+ObjSyntax check_obj_syntax(const std::string& text, const std::string& path);
+
+}  // namespace ldm
