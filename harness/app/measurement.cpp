@@ -139,6 +139,8 @@ Measurement measure(const Scene& scene, const MeasurementRequest& request) {
   }
   m.status = health.status();
   m.status_detail = health.detail();
+  for (const auto& warning : pass->warnings())  // measured, but known to be off: say so
+    m.status_detail += (m.status_detail.empty() ? "" : "; ") + warning;
   m.overflow = health.overflow();
   m.checksum_changes = health.checksum_changes();
   m.lists_checksum = health.first_checksum();

@@ -1,5 +1,7 @@
 #include "harness/passes/ambient_occlusion.h"
 
+#include <cstdio>
+
 #include "harness/metrics/ao_range.h"
 #include "harness/reference/ao_reference.h"
 #include "harness/reference/reference_settings.h"
@@ -65,6 +67,19 @@ void AmbientOcclusion::render(GpuTimer* timer) {
 }
 
 std::vector<PassImage> AmbientOcclusion::images() const { return {{"ao", ao_->read_image()}}; }
+
+std::vector<std::string> AmbientOcclusion::warnings() const {
+  const AoSettings ao = settings_for(*scene_);
+  if (ao.trace == AoTrace::Interval && ao.normal_offset_pixels <= kIntervalMinNormalOffset) {
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "trace interval with a normal offset of %g px (needs more than %.2f px): "
+                  "x's own surface is taken for an occluder",
+                  double(ao.normal_offset_pixels), kIntervalMinNormalOffset);
+    return {text};
+  }
+  return {};
+}
 
 std::vector<std::pair<std::string, RecordValue>> AmbientOcclusion::results() const {
   // Eq. 13 may exceed 1 (a quadrature of the cosine): say how far, over covered pixels.

@@ -78,6 +78,9 @@ class Pass {
   virtual std::vector<PassImage> images() const = 0;
   // Record fields computed from the last render() (e.g. AO's range of values); none by default.
   virtual std::vector<std::pair<std::string, RecordValue>> results() const { return {}; }
+  // Settings that run but are known to give a biased image, one sentence each, for the
+  // record's status_detail; none by default.
+  virtual std::vector<std::string> warnings() const { return {}; }
 
   // The converged image the first output estimates, width x height, for this scene and the
   // pass's settings: from the cache under settings.cache_dir when an entry matches, else

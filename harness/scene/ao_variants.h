@@ -22,6 +22,10 @@ enum class AoEstimatorChoice {
 // The default of the --trace axis (chosen from measurements, see README "Trace variants").
 inline constexpr AoTrace kDefaultAoTrace = AoTrace::Plane;
 
+// `interval` leaves x's own surface behind x only if the offset (k·s·tan a in depth) beats
+// the pixel-centre error ((s/sqrt 2)·tan a): k > 1/sqrt(2) px at every angle a.
+inline constexpr double kIntervalMinNormalOffset = 0.70710678118654752;
+
 // The plane trace's tolerance in LDM pixels: kPlaneToleranceConstant + kPlaneToleranceSlope *
 // min(tan(angle(n, view axis)), kPlaneMaxSlope). The prediction is exact for a planar surface,
 // so the tolerance covers only rasterisation and float error; the slope term grows with how

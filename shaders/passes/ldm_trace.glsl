@@ -22,18 +22,13 @@
 #define LDM_TRACE_INTERVAL 1
 #define LDM_TRACE_PLANE 2
 #ifndef LDM_TRACE
-#define LDM_TRACE LDM_TRACE_LISTING5
+#error "LDM_TRACE must name the trace variant (set by harness/passes/ao_pass.cpp)"
 #endif
 // The plane trace's tolerance, in LDM pixels: CONSTANT + SLOPE * tan(angle(n, forward)), the
-// tangent capped at MAX_SLOPE (set by the C++ side, which uses the same constants).
-#ifndef LDM_PLANE_TOLERANCE_CONSTANT
-#define LDM_PLANE_TOLERANCE_CONSTANT 0.0625
-#endif
-#ifndef LDM_PLANE_TOLERANCE_SLOPE
-#define LDM_PLANE_TOLERANCE_SLOPE 0.25
-#endif
-#ifndef LDM_PLANE_MAX_SLOPE
-#define LDM_PLANE_MAX_SLOPE 16.0
+// tangent capped at MAX_SLOPE. Set by the C++ side (harness/scene/ao_variants.h), which the
+// tests share, so there is no second copy of the numbers here.
+#if LDM_TRACE == LDM_TRACE_PLANE && (!defined(LDM_PLANE_TOLERANCE_CONSTANT) || !defined(LDM_PLANE_TOLERANCE_SLOPE) || !defined(LDM_PLANE_MAX_SLOPE))
+#error "the plane trace needs LDM_PLANE_TOLERANCE_CONSTANT, _SLOPE and LDM_PLANE_MAX_SLOPE"
 #endif
 
 // +infinity: nothing in that direction. A define, not a const: uintBitsToFloat is not a
