@@ -89,10 +89,28 @@ uint64_t checked_storage_block(const std::string& structure, const std::string& 
 }
 
 ShaderDefines common_structure_defines(const BuildInputs& in) {
+  return common_structure_defines(in.views.views().total_pixels());
+}
+
+ShaderDefines common_structure_defines(uint64_t ldm_pixels) {
   ShaderDefines d;
-  d.set("LDM_HEADS_TOTAL", std::to_string(in.views.views().total_pixels()) + "u");
-  d.set("LDM_MAX_LIST_LENGTH", std::to_string(std::max(1u, in.census.max_depth_complexity)) + "u");
+  d.set("LDM_HEADS_TOTAL", std::to_string(ldm_pixels) + "u");
+  d.set("LDM_MAX_LIST_LENGTH", std::to_string(kMaxListWalk) + "u");
   return d;
+}
+
+std::string size_source(const SizingPlan& plan, bool explicit_parameter) {
+  return explicit_parameter ? "parameter" : sizing_policy_name(plan.policy);
+}
+
+uint64_t budget_after(const std::string& structure, const SizingPlan& plan, uint64_t fixed_bytes) {
+  if (plan.budget_bytes <= fixed_bytes) {
+    auto mib = [](uint64_t b) { return std::to_string(double(b) / double(1u << 20)) + " MiB"; };
+    throw UserError(structure + ": the sizing budget of " + mib(plan.budget_bytes) +
+                    " does not hold its fixed buffers (" + mib(fixed_bytes) +
+                    "); raise --sizing-budget-mib or lower N or R_LDM");
+  }
+  return plan.budget_bytes - fixed_bytes;
 }
 
 }  // namespace ldm

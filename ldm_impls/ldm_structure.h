@@ -1,9 +1,12 @@
 #pragma once
 // The interface every layered-depth-map structure implements (the heart of ldmbench).
 //
-// C++ side: prepare() sizes GPU storage from what the scene needs (the fragment census) and
-// the structure's parameters; build() runs the construction sub-passes, each timed; stats()
+// C++ side: prepare() sizes GPU storage from the sizing plan (ldm_impls/common/sizing.h:
+// the policy and what it lets the structure know; never the census itself) and the
+// structure's parameters; build() runs the construction sub-passes, each timed; stats()
 // reports what the last build stored and lost; memory() breaks storage down by buffer.
+// needed()/fits()/resize() let a sizing policy grow the storage between builds
+// (ldm_impls/common/sizing_driver.h).
 // GLSL side: query_sources()/query_defines() implement the query API of
 // shaders/common/ldm_query_api.glsl, which is all a pass ever reads.
 //
@@ -20,8 +23,8 @@
 #include "harness/measure/gpu_timer.h"
 #include "harness/scene/gpu_scene.h"
 #include "harness/views/view_set.h"
-#include "ldm_impls/common/fragment_census.h"
 #include "ldm_impls/common/fragment_source.h"
+#include "ldm_impls/common/sizing.h"
 
 namespace ldm {
 
@@ -36,7 +39,9 @@ struct FragmentPayload {
 struct BuildInputs {
   const GpuScene& scene;
   const GpuViewSet& views;
-  const FragmentCensus& census;
+  // Everything a structure may size from. The untimed census is verification only and is
+  // deliberately not reachable from here (harness/app/ldm_setup.h keeps it).
+  const SizingPlan& sizing;
   FragmentPayload payload;
   // Compiles and runs the geometry-pass fragment shaders: the scene rasterised into the views
   // (RasterFragmentSource), or a synthetic fragment list in the contention tests. A
@@ -51,11 +56,12 @@ struct BufferMemory {
 };
 
 struct BuildStats {
-  // Fragments the construction tried to store, from the structure's own counter where it
-  // has one (lists, DF-buffer). Structures without one (HA-buffer, fixed arrays) report the
-  // census's count; for them a fragment the device silently failed to store shows up as
-  // fewer fragments reachable through the query API than fragments_stored claims, which the
-  // per-build integrity check (BuildHealth, ldm_impls/common/build_health.h) flags as invalid.
+  // Fragments the construction tried to store, from the structure's own GPU state: the
+  // lists' node counter, the DF-buffer's scan, PPFLA's per-pixel counts; for PSPPFLA and the
+  // HA-buffer, the entries found in storage plus the fragments counted as dropped (an
+  // untimed reduction in stats()). The per-build integrity check
+  // (BuildHealth, ldm_impls/common/build_health.h) compares it with the census, so a fragment the
+  // device silently failed to store is flagged as invalid.
   uint64_t fragments_rasterized = 0;
   uint64_t fragments_stored = 0;      // fragments the structure holds
   uint64_t fragments_lost = 0;        // rasterized - stored: overflow, drops, aborted inserts
@@ -103,6 +109,20 @@ class LdmStructure {
   // number of calls, in any order with memory(), give the same answer.
   virtual BuildStats stats() const = 0;
 
+  // Sizing between builds (driven by ldm_impls/common/sizing_driver.h, never by the census):
+  // what the last build would have needed, from the structure's own GPU counters, even when
+  // it overflowed (a small read-back the caller times); whether the storage holds `needs`;
+  // and growing it to hold them (buffers reallocated, size-dependent shaders recompiled).
+  // A storage size fixed by the budget policy or by an explicit parameter always "fits".
+  virtual SizingNeeds needed() = 0;
+  virtual bool fits(const SizingNeeds& needs) const = 0;
+  virtual void resize(const SizingNeeds& needs) = 0;
+  // True when build() counts its own fragments before storing them (the DF-buffer): under
+  // the census policy it then sizes itself inside build() and no separate census runs.
+  virtual bool counts_own_fragments() const { return false; }
+  // Changes whenever resize() changed query_defines(): passes recompile their programs.
+  uint64_t storage_generation() const { return storage_generation_; }
+
   // The query API implementation: files prepended to a pass's shader, their defines, and
   // the bindings they read.
   virtual std::vector<std::string> query_sources() const = 0;
@@ -119,6 +139,12 @@ class LdmStructure {
     (void)view;
     return 0.0;
   }
+
+ protected:
+  void query_defines_changed() { ++storage_generation_; }
+
+ private:
+  uint64_t storage_generation_ = 0;
 };
 
 std::vector<std::string> structure_names();
@@ -128,6 +154,18 @@ std::unique_ptr<LdmStructure> make_structure(const std::string& name, StructureP
 // Helpers shared by implementations.
 uint64_t checked_storage_block(const std::string& structure, const std::string& buffer,
                                uint64_t bytes);  // throws when over the device's block size
+// LDM_HEADS_TOTAL and LDM_MAX_LIST_LENGTH = kMaxListWalk.
 ShaderDefines common_structure_defines(const BuildInputs& in);
+ShaderDefines common_structure_defines(uint64_t ldm_pixels);
+// LDM_MAX_LIST_LENGTH, the bound on every list walk (the trace, the inspector): only a
+// safety net, since the query API ends each list itself. A constant, the same for every
+// structure and policy, because no structure may size from the census; large enough for
+// any scene here (a census deeper than this makes the measurement invalid).
+constexpr uint32_t kMaxListWalk = 1u << 16;
+// "oracle", "census", "previous_frame", "budget" or "parameter": where a size came from.
+std::string size_source(const SizingPlan& plan, bool explicit_parameter);
+// The bytes the budget policy leaves for a structure's sized storage after its fixed
+// buffers; throws UserError naming the structure when the budget cannot hold them.
+uint64_t budget_after(const std::string& structure, const SizingPlan& plan, uint64_t fixed_bytes);
 
 }  // namespace ldm

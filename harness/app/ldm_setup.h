@@ -1,13 +1,15 @@
 #pragma once
 // What every measurement of a structure builds on: the scene on the GPU (only the attributes
-// the passes read), its LDM views and their fragment census. Owned together because the
-// build inputs refer to all of them. Used by `ldmbench run`, the Google Benchmark binary and
-// the tests.
+// the passes read), its LDM views, their fragment census (untimed: verification, and the
+// sizes of the oracle policy only) and the sizing plan the structures see. Owned together
+// because the build inputs refer to them. Used by `ldmbench run`, the Google Benchmark
+// binary and the tests.
 #include <map>
 #include <memory>
 #include <string>
 
 #include "ldm_impls/common/ldm_rasterizer.h"
+#include "ldm_impls/common/fragment_census.h"
 #include "ldm_impls/ldm_structure.h"
 
 namespace ldm {
@@ -17,12 +19,13 @@ struct LdmSetup {
   std::unique_ptr<GpuScene> gpu_scene;
   ViewSet views;
   std::unique_ptr<GpuViewSet> gpu_views;
-  FragmentCensus census;
+  FragmentCensus census;  // verification; never reachable through `inputs`
+  SizingPlan sizing;
   std::unique_ptr<RasterFragmentSource> raster;  // the scene rasterised into the views
   std::unique_ptr<BuildInputs> inputs;
 
   LdmSetup(Scene scene, AttributeSet attributes, uint32_t view_count, uint32_t resolution,
-           FragmentPayload payload = {});
+           FragmentPayload payload = {}, SizingSettings sizing = {});
   LdmSetup(const LdmSetup&) = delete;
   LdmSetup& operator=(const LdmSetup&) = delete;
 

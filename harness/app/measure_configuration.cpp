@@ -42,6 +42,7 @@ void describe_configuration(Record& r, const Configuration& config, const RunSet
   std::string params;
   for (const auto& [key, value] : config.params) params += (params.empty() ? "" : ";") + key + "=" + value;
   r.set("structure_params", params);
+  r.set("sizing_policy", sizing_policy_name(config.sizing.policy));
   r.set("frames", settings.frames);
   r.set("warmup", settings.warmup);
   r.set("device", device.gl_renderer);
@@ -58,6 +59,7 @@ MeasurementRequest measurement_request(const Configuration& config, const RunSet
   MeasurementRequest request;
   request.structure = config.structure;
   request.structure_params = config.params;
+  request.sizing = config.sizing;
   request.pass = config.pass;
   request.pass_params = config.pass_params;
   request.views = config.views;
@@ -94,6 +96,9 @@ void add_measurement(Record& r, const Measurement& m) {
   r.set("lists_checksum", hex64(m.lists_checksum));
   for (const auto& [name, value] : m.last_build.counters) r.set("counter_" + name, value);
   for (const auto& [key, value] : m.sizing) r.set("sizing_" + key, value);
+  r.set("sizing_rebuilds", m.sizing_rebuilds);
+  r.set("sizing_rebuilds_measured", m.sizing_rebuilds_measured);
+  r.set("sizing_reallocations", m.sizing_reallocations);
 
   const auto summaries = m.summaries();
   add_timings(r, summaries);

@@ -9,6 +9,7 @@
 #include "harness/util/error.h"
 #include "harness/util/hash.h"
 #include "ldm_impls/common/ldm_inspector.h"
+#include "ldm_impls/common/sizing_driver.h"
 
 namespace ldm {
 namespace {
@@ -77,7 +78,7 @@ Measurement measure(const Scene& scene, const MeasurementRequest& request) {
 
   // Only what the pass reads is uploaded, and the structure stores only its payload.
   const LdmSetup setup(scene, needs.scene_attributes, request.views, request.resolution,
-                       needs.payload);
+                       needs.payload, request.sizing);
   const FragmentCensus& census = setup.census;
   const BuildInputs& in = *setup.inputs;
   m.scene_attributes = needs.scene_attributes.describe();
@@ -89,11 +90,19 @@ Measurement measure(const Scene& scene, const MeasurementRequest& request) {
   const RasterBaseline baseline(*setup.raster, setup.views);
   pass->prepare({setup.scene, *setup.gpu_scene, &in, structure.get(), request.width,
                  request.height});
-  const LdmInspector inspector(*structure, in);
+  // Verification reads the census (never sizing): a list longer than its deepest pixel is
+  // corrupt.
+  const LdmInspector inspector(*structure, in, std::max(1u, census.max_depth_complexity));
+  SizingDriver sizer(*structure, in);
+  uint64_t rebuilds_in_warmup = 0;
 
   m.timer = request.timer;
   GpuTimer timer(request.timer);
   BuildHealth health(census);
+  if (census.max_depth_complexity > kMaxListWalk)
+    health.report_problem("a pixel holds " + std::to_string(census.max_depth_complexity) +
+                          " fragments, more than list walks follow (" +
+                          std::to_string(kMaxListWalk) + ")");
   auto keep_running = [&, measured = 0]() mutable {
     if (request.keep_running) return request.keep_running();
     return measured++ < request.frames;
@@ -107,13 +116,16 @@ Measurement measure(const Scene& scene, const MeasurementRequest& request) {
     if (!warmup && !keep_running()) break;
     timer.begin_frame();
     baseline.render(&timer);
-    structure->build(in, &timer);
+    sizer.build(&timer);  // the structure's build() under its sizing policy
     pass->render(&timer);
     FrameTimes times = timer.end_frame();
     // Untimed: what the build stored, read back through the query API.
     m.last_build = structure->stats();
     health.observe(m.last_build, inspector.check());
-    if (warmup) continue;  // judged, but not measured
+    if (warmup) {  // judged, but not measured
+      rebuilds_in_warmup = sizer.rebuilds();
+      continue;
+    }
     add_frame_sums(times, m.pass_subpasses);
     if (request.on_frame) request.on_frame(times);
     m.frames.push_back(std::move(times));
@@ -145,7 +157,12 @@ Measurement measure(const Scene& scene, const MeasurementRequest& request) {
   m.checksum_changes = health.checksum_changes();
   m.lists_checksum = health.first_checksum();
   m.sizing = structure->sizing();
+  for (const auto& entry : sizer.describe()) m.sizing.push_back(entry);
+  m.sizing_rebuilds = sizer.rebuilds();
+  m.sizing_rebuilds_measured = sizer.rebuilds() - rebuilds_in_warmup;
+  m.sizing_reallocations = sizer.reallocations();
   m.memory = structure->memory();
+  for (const auto& buffer : sizer.memory()) m.memory.push_back(buffer);
   return m;
 }
 

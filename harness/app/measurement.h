@@ -4,8 +4,9 @@
 // inspect. All three call measure(), so they build, time and judge alike.
 //
 // measure() uploads what the pass requires, takes the fragment census, prepares the
-// structure and the pass, then runs frames: raster baselines │ structure build │ pass, each
-// sub-pass timed, and after every frame (untimed) the inspector's read-back judged by
+// structure and the pass, then runs frames: raster baselines │ structure build under its
+// sizing policy (ldm_impls/common/sizing_driver.h) │ pass, each sub-pass timed, and after
+// every frame (untimed) the inspector's read-back judged by
 // BuildHealth (ldm_impls/common/build_health.h). Warm-up frames are judged but not kept.
 #include <cstdint>
 #include <functional>
@@ -26,6 +27,9 @@ namespace ldm {
 struct MeasurementRequest {
   std::string structure;
   std::map<std::string, std::string> structure_params;
+  // How the structure learns its sizes (ldm_impls/common/sizing.h); the default is the
+  // run's (README "Sizing policies").
+  SizingSettings sizing = {SizingPolicy::PreviousFrame};
   std::string pass = "ao";
   std::map<std::string, std::string> pass_params;
   uint32_t views = 32, resolution = 128;
@@ -64,8 +68,11 @@ struct Measurement {
   BuildStats last_build;  // stats() of the last build
   bool overflow = false;
   uint64_t checksum_changes = 0, lists_checksum = 0;
+  // The structure's sizing() and the policy's (SizingDriver::describe()).
   std::vector<std::pair<std::string, std::string>> sizing;
-  std::vector<BufferMemory> memory;
+  // Rebuilds after an overflow (all builds; in measured frames) and reallocations.
+  uint64_t sizing_rebuilds = 0, sizing_rebuilds_measured = 0, sizing_reallocations = 0;
+  std::vector<BufferMemory> memory;  // the structure's and the sizing policy's buffers
 
   // Every measured frame, in order: each sub-pass's milliseconds, then "build" (the
   // structure's sub-passes) and "frame" (everything but the raster baselines).

@@ -48,6 +48,11 @@ void validate_axes(const RunSettings& s) {
       throw UserError("--param " + structure + ":...: structure '" + structure +
                       "' is not among --structure");
   }
+  const bool budget = std::find(s.sizing.begin(), s.sizing.end(), SizingPolicy::Budget) != s.sizing.end();
+  if (budget && s.sizing_budget_mib <= 0)
+    throw UserError("--sizing budget needs --sizing-budget-mib <MiB>");
+  if (!budget && s.sizing_budget_mib > 0)
+    throw UserError("--sizing-budget-mib is only used by --sizing budget");
 }
 
 // A regular file where the reference cache folder should be is found here, not by every

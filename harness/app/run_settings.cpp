@@ -28,6 +28,20 @@ std::string Configuration::id() const {
   id += "-" + ao_trace_name(trace);
   if (estimator != AoEstimatorChoice::Eq13) id += "-" + ao_estimator_name(estimator);
   for (const auto& [key, value] : params) id += "-" + key + "=" + value;
+  switch (sizing.policy) {
+    case SizingPolicy::Oracle: id += "-oracle"; break;
+    case SizingPolicy::Census: id += "-census"; break;
+    case SizingPolicy::PreviousFrame:
+      id += "-prevframe";
+      if (sizing.initial_per_pixel != 1) id += "-guess" + std::to_string(sizing.initial_per_pixel);
+      break;
+    case SizingPolicy::Budget: {
+      char buffer[32];
+      std::snprintf(buffer, sizeof buffer, "-budget%g", double(sizing.budget_bytes) / double(1u << 20));
+      id += buffer;
+      break;
+    }
+  }
   for (char& c : id)
     if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.' || c == '='))
       c = '_';
@@ -58,7 +72,8 @@ std::vector<Configuration> expand_configurations(const RunSettings& s) {
             for (const auto& d : d_values)
               for (Visibility v : s.visibility)
                 for (AoTrace trace : s.traces)
-                  for (AoEstimatorChoice estimator : s.estimators) {
+                  for (AoEstimatorChoice estimator : s.estimators)
+                    for (SizingPolicy sizing : s.sizing) {
                     Configuration c;
                     c.scene = scene;
                     c.structure = structure;
@@ -77,6 +92,9 @@ std::vector<Configuration> expand_configurations(const RunSettings& s) {
                       c.pass_params["normal_offset_pixels"] = float_text(*s.normal_offset_pixels);
                     c.pass_params["trace"] = ao_trace_name(trace);
                     c.pass_params["ao_estimator"] = ao_estimator_name(estimator);
+                    c.sizing.policy = sizing;
+                    c.sizing.budget_bytes = uint64_t(s.sizing_budget_mib * double(1u << 20));
+                    c.sizing.initial_per_pixel = s.sizing_initial_per_pixel;
                     out.push_back(c);
                   }
   return out;

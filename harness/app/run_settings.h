@@ -10,6 +10,7 @@
 #include "harness/gl/egl_context.h"
 #include "harness/reference/reference_settings.h"
 #include "harness/scene/ao_variants.h"
+#include "ldm_impls/common/sizing.h"
 
 namespace ldm {
 
@@ -26,6 +27,11 @@ struct RunSettings {
   std::vector<Visibility> visibility = {Visibility::Scene};
   std::vector<AoTrace> traces = {kDefaultAoTrace};
   std::vector<AoEstimatorChoice> estimators = {AoEstimatorChoice::Eq13};
+  // How structures learn their sizes (ldm_impls/common/sizing.h). The default charges every
+  // structure for what it needs to know: see README "Sizing policies".
+  std::vector<SizingPolicy> sizing = {SizingPolicy::PreviousFrame};
+  double sizing_budget_mib = 0;         // budget: required with --sizing budget
+  uint32_t sizing_initial_per_pixel = 1;  // previous_frame's first guess
   // structure name -> key -> value (--param psppsll:pool=grow)
   std::map<std::string, std::map<std::string, std::string>> structure_params;
   // Shared.
@@ -55,8 +61,10 @@ struct Configuration {
   // (--d-max, --visibility, --normal-offset, --trace, --ao-estimator) as key=value, checked
   // by the pass itself.
   std::map<std::string, std::string> pass_params;
+  SizingSettings sizing;
   // A short unique name for file names:
-  // cornell-psppsll-ao-n32-r128[-d1.5][-att]-<trace>[-normalized][-k=v...]
+  // cornell-psppsll-ao-n32-r128[-d1.5][-att]-<trace>[-normalized][-k=v...]-<sizing>, sizing
+  // one of oracle, census, prevframe[-guessG] (G != 1), budget<MiB>
   std::string id() const;
 };
 

@@ -19,7 +19,7 @@ void parse_structure_param(const std::string& text, RunSettings& settings) {
   const auto equals = text.find('=', colon == std::string::npos ? 0 : colon);
   if (colon == std::string::npos || equals == std::string::npos || colon == 0 ||
       equals == colon + 1)
-    throw UserError("--param: expected STRUCTURE:KEY=VALUE (e.g. psppsll:pool=grow), got '" +
+    throw UserError("--param: expected STRUCTURE:KEY=VALUE (e.g. ppfla:k=4), got '" +
                     text + "'");
   settings.structure_params[text.substr(0, colon)][text.substr(colon + 1, equals - colon - 1)] =
       text.substr(equals + 1);
@@ -39,7 +39,7 @@ Visibility parse_visibility(const std::string& text) {
 
 struct RunOptions {
   RunSettings settings;
-  std::vector<std::string> params, visibility, traces, estimators;
+  std::vector<std::string> params, visibility, traces, estimators, sizing;
   std::string platform = "auto";
   float normal_offset = 0.0f;
   CLI::Option* normal_offset_option = nullptr;
@@ -76,7 +76,7 @@ void validate_numbers(const RunOptions& o) {
 void reject_empty_list_items(int argc, const char* const* argv) {
   static const char* const kListOptions[] = {"--scene", "--structure", "--pass", "-N", "--views",
                                              "-R", "--r-ldm", "--d-max", "--visibility",
-                                             "--trace", "--ao-estimator"};
+                                             "--trace", "--ao-estimator", "--sizing"};
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     for (const char* option : kListOptions) {
@@ -148,6 +148,20 @@ Runner add_run_command(CLI::App& app, const std::string& command_line) {
                   "normalized (sum V|cos| / sum |cos|) (default: eq13)")
       ->delimiter(',')
       ->check(CLI::IsMember(ao_estimator_names()));
+  run->add_option("--sizing", o->sizing,
+                  "Sizing policy: previous_frame (default: the last frame's own counters, "
+                  "rebuild on overflow, timed), census (a timed counting pass every frame), "
+                  "oracle (the untimed census before the run; free, not a renderer's cost), "
+                  "budget (a fixed memory budget, overflow counted)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"oracle", "census", "previous_frame", "budget"}));
+  run->add_option("--sizing-budget-mib", s.sizing_budget_mib,
+                  "Memory budget of the budget policy per structure, MiB (all its buffers)")
+      ->check(CLI::Range(0.001, 1048576.0));
+  run->add_option("--sizing-initial-per-pixel", s.sizing_initial_per_pixel,
+                  "previous_frame's first guess: fragments per LDM pixel")
+      ->check(CLI::Range(1u, 4096u))
+      ->capture_default_str();
   o->normal_offset_option = run->add_option("--normal-offset", o->normal_offset,
                   "Normal offset of thesis §4.4.2 in LDM pixels (default: the scene's; 0 = off)")
       ->check(CLI::Range(0.0f, 1000.0f));
@@ -158,7 +172,7 @@ Runner add_run_command(CLI::App& app, const std::string& command_line) {
       ->check(CLI::Range(0, 100000))
       ->capture_default_str();
   run->add_option("--param", o->params,
-                  "Structure parameter STRUCTURE:KEY=VALUE, repeatable (e.g. psppsll:pool=grow, "
+                  "Structure parameter STRUCTURE:KEY=VALUE, repeatable (e.g. psppsll:capacity=1000, "
                   "ppfla:k=4, habuffer:load_factor=0.5)");
   run->add_option("--out", s.out_dir,
                   "Output folder for records.jsonl, records.csv, records.json and images/ "
@@ -216,6 +230,10 @@ Runner add_run_command(CLI::App& app, const std::string& command_line) {
       for (const auto& e : o->estimators) settings.estimators.push_back(parse_ao_estimator(e));
     }
     if (o->normal_offset_option->count()) settings.normal_offset_pixels = o->normal_offset;
+    if (!o->sizing.empty()) {
+      settings.sizing.clear();
+      for (const auto& name : o->sizing) settings.sizing.push_back(parse_sizing_policy(name));
+    }
     settings.context.platform = parse_egl_platform(o->platform);
     if (settings.structures.size() == 1 && settings.structures[0] == "all")
       settings.structures = structure_names();

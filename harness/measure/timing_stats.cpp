@@ -27,10 +27,13 @@ void TimingSeries::add_frame(const FrameTimes& frame) {
     size_t index = size_t(it - order_.begin());
     if (it == order_.end()) {
       order_.push_back(name);
-      samples_.emplace_back();
+      samples_.emplace_back(frames_ - 1, 0.0);  // absent from the earlier frames: 0 ms there
     }
     samples_[index].push_back(ms);
   }
+  // A sub-pass that only some frames run (a rebuild, a reallocation) took 0 ms in the rest.
+  for (auto& values : samples_)
+    if (values.size() < frames_) values.push_back(0.0);
 }
 
 std::vector<TimingSummary> TimingSeries::summarize() const {

@@ -20,7 +20,8 @@ const TimingSummary* find_summary(const std::vector<TimingSummary>& summaries,
                                   const std::string& subpass);
 
 // Collects the per-frame sub-pass times of the measured frames (warm-up frames are simply
-// never added) and summarises each sub-pass, in first-seen order.
+// never added) and summarises each sub-pass, in first-seen order. A sub-pass missing from a
+// frame (one that only some frames run, such as a rebuild) counts 0 ms in that frame.
 class TimingSeries {
  public:
   void add_frame(const FrameTimes& frame);

@@ -34,10 +34,19 @@ AoPass::AoPass(const LdmStructure& structure, const BuildInputs& in, int width, 
       output_(GL_R32F, width, height) {
   framebuffer_.attach_color(0, output_);
   framebuffer_.check_complete("AO output");
+  compile();
+}
+
+// Again whenever the structure's storage changed its query defines (a sizing policy grew
+// it): untimed, as a pass of a renderer with run-time sizes would not recompile.
+void AoPass::compile() {
+  const LdmStructure& structure = structure_;
+  const AoSettings& settings = settings_;
+  generation_ = structure.storage_generation();
   ShaderDefines defines = binding_defines();
   const ShaderDefines query = structure.query_defines();
   defines.values.insert(defines.values.end(), query.values.begin(), query.values.end());
-  defines.set("LDM_VIEW_COUNT", std::to_string(in.views.views().size()) + "u");
+  defines.set("LDM_VIEW_COUNT", std::to_string(views_.views().size()) + "u");
   defines.set("AO_ATTENUATED", settings.attenuated ? 1 : 0);
   defines.set("AO_NORMALIZED", settings.estimator == AoEstimatorChoice::Normalized ? 1 : 0);
   defines.set("LDM_TRACE", "LDM_TRACE_" + upper(ao_trace_name(settings.trace)));
@@ -53,6 +62,7 @@ AoPass::AoPass(const LdmStructure& structure, const BuildInputs& in, int width, 
 }
 
 void AoPass::render(const GBufferPass& gbuffer, GpuTimer* timer) {
+  if (structure_.storage_generation() != generation_) compile();
   ScopedSubpass timed(timer, "ao");
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
   glViewport(0, 0, width_, height_);

@@ -17,6 +17,7 @@ class AoPass {
   Image read_image() const;  // one channel, linear, top row first
 
  private:
+  void compile();
   const LdmStructure& structure_;
   const GpuViewSet& views_;
   int width_, height_;
@@ -25,6 +26,7 @@ class AoPass {
   GlFramebuffer framebuffer_;
   GlVertexArray empty_vao_;
   GlProgram program_;
+  uint64_t generation_ = 0;  // the structure's storage_generation() program_ was built for
 };
 
 }  // namespace ldm

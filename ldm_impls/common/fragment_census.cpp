@@ -43,4 +43,23 @@ FragmentCensus take_fragment_census(const FragmentSource& source, const ViewSet&
   return census;
 }
 
+SizingNeeds census_needs(const FragmentCensus& census) {
+  return {census.total_fragments, census.max_depth_complexity};
+}
+
+CensusPass::CensusPass(const FragmentSource& source, uint64_t ldm_pixels)
+    : source_(source),
+      pixels_(ldm_pixels),
+      counts_("census_counts", checked_storage_block("the census pass", "counts",
+                                                     pixels_ * sizeof(uint32_t))),
+      program_(source.build_program("ldm/census.frag", {})) {}
+
+SizingNeeds CensusPass::run() const {
+  counts_.clear_to_zero();
+  counts_.bind_storage(kCensusBinding);
+  source_.run(program_);
+  const UintReductionResult r = reduction_.run(counts_, pixels_);
+  return {r.sum, r.max};
+}
+
 }  // namespace ldm

@@ -1,14 +1,21 @@
 #pragma once
-// The fragment census: how many fragments every LDM pixel of every view receives. Measured
-// on the GPU with the structures' own geometry pass, it sizes every structure from what the
-// scene needs (pool sizes, hash table sizes, the fixed arrays' k) and is the ground truth
-// against which each build's stored fragments are checked.
+// The fragment census: how many fragments every LDM pixel of every view receives, measured
+// on the GPU with the structures' own geometry pass. Two uses, kept apart:
+//  - take_fragment_census(): untimed, once per setup, read back in full. The ground truth
+//    against which each build's stored fragments are checked (verification), and the
+//    sizes of the `oracle` sizing policy (ldm_impls/common/sizing.h), labelled as such.
+//  - CensusPass: the `census` sizing policy's per-frame sub-pass, timed and charged to the
+//    build: the same counting pass, reduced on the GPU, two words read back.
 #include <cstdint>
+#include <memory>
 #include <vector>
 
+#include "harness/gl/gl_objects.h"
 #include "harness/scene/gpu_scene.h"
 #include "harness/views/view_set.h"
 #include "ldm_impls/common/fragment_source.h"
+#include "ldm_impls/common/sizing.h"
+#include "ldm_impls/common/uint_reduction.h"
 
 namespace ldm {
 
@@ -31,5 +38,25 @@ struct FragmentCensus {
 FragmentCensus take_fragment_census(const FragmentSource& source, const ViewSet& views);
 // The census of `scene` rasterised into `views`.
 FragmentCensus take_fragment_census(const GpuScene& scene, const GpuViewSet& views);
+
+// What the oracle policy hands a structure: the census's totals (nothing else of it).
+SizingNeeds census_needs(const FragmentCensus& census);
+
+// The census as a sub-pass of a frame: clear the counts, count every fragment, reduce the
+// counts to (total, deepest pixel) on the GPU and read those back (the sync a renderer that
+// sizes from a census pays). The caller times it.
+class CensusPass {
+ public:
+  CensusPass(const FragmentSource& source, uint64_t ldm_pixels);
+  SizingNeeds run() const;
+  uint64_t counts_bytes() const { return counts_.bytes(); }
+
+ private:
+  const FragmentSource& source_;
+  uint64_t pixels_ = 0;
+  mutable GlBuffer counts_;
+  GlProgram program_;
+  UintReduction reduction_;
+};
 
 }  // namespace ldm

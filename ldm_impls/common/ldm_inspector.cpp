@@ -8,10 +8,12 @@
 namespace ldm {
 namespace {
 
-GlProgram inspect_program(const LdmStructure& structure, bool dump) {
+GlProgram inspect_program(const LdmStructure& structure, bool dump, uint32_t max_list_length) {
   ShaderDefines defines = binding_defines();
   const ShaderDefines query = structure.query_defines();
-  defines.values.insert(defines.values.end(), query.values.begin(), query.values.end());
+  for (const auto& define : query.values)
+    if (!(max_list_length && define.first == "LDM_MAX_LIST_LENGTH")) defines.values.push_back(define);
+  if (max_list_length) defines.set("LDM_MAX_LIST_LENGTH", std::to_string(max_list_length) + "u");
   defines.set("LDM_INSPECT_DUMP", dump ? 1 : 0);
   return build_program({{GL_COMPUTE_SHADER, "ldm/inspect.comp", structure.query_sources()}},
                        defines);
@@ -19,11 +21,21 @@ GlProgram inspect_program(const LdmStructure& structure, bool dump) {
 
 }  // namespace
 
-LdmInspector::LdmInspector(const LdmStructure& structure, const BuildInputs& in)
+LdmInspector::LdmInspector(const LdmStructure& structure, const BuildInputs& in,
+                           uint32_t max_list_length)
     : structure_(structure),
       views_(in.views),
-      check_program_(inspect_program(structure, false)),
-      dump_program_(inspect_program(structure, true)) {}
+      max_list_length_(max_list_length),
+      generation_(structure.storage_generation()),
+      check_program_(inspect_program(structure, false, max_list_length)),
+      dump_program_(inspect_program(structure, true, max_list_length)) {}
+
+void LdmInspector::compile_if_stale() const {
+  if (structure_.storage_generation() == generation_) return;
+  generation_ = structure_.storage_generation();
+  check_program_ = inspect_program(structure_, false, max_list_length_);
+  dump_program_ = inspect_program(structure_, true, max_list_length_);
+}
 
 void LdmInspector::dispatch(const GlProgram& program, uint64_t first, uint64_t count,
                             bool store_lengths) const {
@@ -38,6 +50,7 @@ void LdmInspector::dispatch(const GlProgram& program, uint64_t first, uint64_t c
 }
 
 LdmIntegrity LdmInspector::check() const {
+  compile_if_stale();
   const uint64_t pixels = views_.views().total_pixels();
   GlBuffer buffer("inspect", 8 * sizeof(uint32_t));
   buffer.clear_to_zero();
@@ -54,6 +67,7 @@ LdmIntegrity LdmInspector::check() const {
 }
 
 std::vector<std::vector<float>> LdmInspector::read_back(uint32_t view) const {
+  compile_if_stale();
   const uint64_t count = views_.views().pixels_per_view();
   const uint64_t first = uint64_t(view) * count;
   // Pass 1: lengths.

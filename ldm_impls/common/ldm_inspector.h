@@ -13,14 +13,17 @@ namespace ldm {
 struct LdmIntegrity {
   uint64_t fragments = 0;        // fragments reachable through the query API
   uint64_t unsorted_pixels = 0;  // pixels whose depths are not ascending
-  uint64_t overlong_pixels = 0;  // pixels longer than the census maximum (corrupt lists)
+  uint64_t overlong_pixels = 0;  // pixels longer than the bound (corrupt lists)
   uint64_t checksum = 0;         // of every pixel's depth sequence; equal builds, equal sums
   bool operator==(const LdmIntegrity&) const = default;
 };
 
 class LdmInspector {
  public:
-  LdmInspector(const LdmStructure& structure, const BuildInputs& in);
+  // `max_list_length`: a list longer than this is overlong (the census's maximum depth
+  // complexity in measurements; 0: the structure's own LDM_MAX_LIST_LENGTH). Programs are
+  // recompiled when the structure's storage (and so its query defines) changed.
+  LdmInspector(const LdmStructure& structure, const BuildInputs& in, uint32_t max_list_length = 0);
   LdmIntegrity check() const;
   // Depth lists, nearest first, of every pixel of one view (index y * R + x).
   std::vector<std::vector<float>> read_back(uint32_t view) const;
@@ -28,9 +31,12 @@ class LdmInspector {
  private:
   void dispatch(const GlProgram& program, uint64_t first, uint64_t count,
                 bool store_lengths) const;
+  void compile_if_stale() const;
   const LdmStructure& structure_;
   const GpuViewSet& views_;
-  GlProgram check_program_, dump_program_;
+  uint32_t max_list_length_;
+  mutable uint64_t generation_ = 0;
+  mutable GlProgram check_program_, dump_program_;
 };
 
 }  // namespace ldm

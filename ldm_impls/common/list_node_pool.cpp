@@ -9,30 +9,48 @@ namespace ldm {
 
 ListNodePool::ListNodePool(const std::string& structure, StructureParams& params)
     : structure_(structure) {
-  const std::string pool = params.get_choice("pool", "counted", {"counted", "grow", "fixed"});
-  policy_ = pool == "grow" ? Policy::Grow : pool == "fixed" ? Policy::Fixed : Policy::Counted;
+  if (params.values().count("pool"))
+    throw UserError("--param " + structure_ +
+                    ":pool is replaced by the sizing policy: --sizing oracle (was pool=counted), "
+                    "--sizing previous_frame (was pool=grow), --sizing budget or " + structure_ +
+                    ":capacity=<nodes> (was pool=fixed)");
   fixed_capacity_ = params.get_uint("capacity", 0, 1, (uint64_t(1) << 31) - 1);
-  if ((policy_ == Policy::Fixed) != (fixed_capacity_ > 0))
-    throw UserError(structure_ + ": capacity=<nodes> goes with pool=fixed, and pool=fixed needs it");
 }
 
 void ListNodePool::prepare(const BuildInputs& in, const std::string& build_shader,
                            ShaderDefines extra_defines) {
   heads_ = in.views.views().total_pixels();
+  plan_ = in.sizing;
   build_shader_ = build_shader;
   defines_ = common_structure_defines(in);
   defines_.values.insert(defines_.values.end(), extra_defines.values.begin(),
                          extra_defines.values.end());
   counters_ = GlBuffer("counters", 2 * sizeof(uint32_t));
-  rebuilds_ = 0;
-  switch (policy_) {
-    case Policy::Counted: allocate(in, in.census.total_fragments); break;
-    case Policy::Grow: allocate(in, heads_); break;
-    case Policy::Fixed: allocate(in, fixed_capacity_); break;
+  fragments_ = &in.fragments;
+  if (fixed_capacity_ > 0) {
+    allocate(fixed_capacity_);
+  } else if (plan_.policy == SizingPolicy::Budget) {
+    const uint64_t fixed = heads_ * sizeof(uint32_t) + counters_.bytes();
+    allocate(budget_after(structure_, plan_, fixed) / (kWordsPerNode * sizeof(uint32_t)));
+  } else {
+    allocate(plan_.initial.fragments);
   }
 }
 
-void ListNodePool::allocate(const BuildInputs& in, uint64_t capacity) {
+SizingNeeds ListNodePool::needed() const {
+  const uint64_t wanted = read_counters()[0];
+  return {wanted, 0, wanted > capacity_};
+}
+
+bool ListNodePool::fits(const SizingNeeds& needs) const {
+  return size_is_fixed() || needs.fragments <= capacity_;
+}
+
+void ListNodePool::resize(const SizingNeeds& needs) {
+  if (!fits(needs)) allocate(needs.fragments);
+}
+
+void ListNodePool::allocate(uint64_t capacity) {
   capacity_ = std::max<uint64_t>(1, capacity);
   const uint64_t words = heads_ + kWordsPerNode * capacity_;
   if (words >= (uint64_t(1) << 32))
@@ -42,7 +60,7 @@ void ListNodePool::allocate(const BuildInputs& in, uint64_t capacity) {
   data_.clear_to_zero();
   ShaderDefines defines = defines_;
   defines.set("LDM_NODE_CAPACITY", std::to_string(capacity_) + "u");
-  build_program_ = in.fragments.build_program(build_shader_, defines);
+  build_program_ = fragments_->build_program(build_shader_, defines);
 }
 
 void ListNodePool::bind() const {
@@ -50,7 +68,7 @@ void ListNodePool::bind() const {
   counters_.bind_atomic_counter(kStructureCounterBinding);
 }
 
-void ListNodePool::construct(const BuildInputs& in, GpuTimer* timer) {
+void ListNodePool::build(const BuildInputs& in, GpuTimer* timer) {
   {
     ScopedSubpass timed(timer, "clear");
     const uint32_t zero = 0;  // only the heads: nodes are written before they are linked
@@ -61,19 +79,6 @@ void ListNodePool::construct(const BuildInputs& in, GpuTimer* timer) {
   ScopedSubpass timed(timer, "construct");
   bind();
   in.fragments.run(build_program_);
-}
-
-void ListNodePool::build(const BuildInputs& in, GpuTimer* timer) {
-  construct(in, timer);
-  if (policy_ != Policy::Grow) return;
-  // The counter tells how many nodes this construction wanted.
-  for (uint64_t wanted = read_counters()[0]; wanted > capacity_; wanted = read_counters()[0]) {
-    uint64_t capacity = capacity_;
-    while (capacity < wanted) capacity *= 2;
-    allocate(in, capacity);
-    ++rebuilds_;
-    construct(in, timer);
-  }
 }
 
 std::array<uint32_t, 2> ListNodePool::read_counters() const {
@@ -89,7 +94,6 @@ BuildStats ListNodePool::stats(const std::array<uint32_t, 2>& counters, uint64_t
   const uint64_t written = std::min<uint64_t>(counters[0], capacity_);
   s.fragments_stored = written - std::min(written, unlinked);
   s.fragments_lost = s.fragments_rasterized - s.fragments_stored;
-  s.counters = {{"pool_rebuilds", double(rebuilds_)}};
   return s;
 }
 
@@ -102,8 +106,7 @@ std::vector<BufferMemory> ListNodePool::memory(uint64_t stored_nodes) const {
 }
 
 std::vector<std::pair<std::string, std::string>> ListNodePool::sizing() const {
-  static const char* const names[] = {"counted", "grow", "fixed"};
-  return {{"pool_policy", names[int(policy_)]},
+  return {{"pool_size_source", size_source(plan_, fixed_capacity_ > 0)},
           {"pool_capacity_nodes", std::to_string(capacity_)},
           {"node_bytes", std::to_string(kWordsPerNode * sizeof(uint32_t))}};
 }

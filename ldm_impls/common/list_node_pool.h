@@ -2,15 +2,14 @@
 // The node pool of the linked-list structures, PPSLL and PSPPSLL (thesis §3.3.4, §3.4.4):
 // one data buffer with every pixel's head index followed by the nodes
 // (shaders/ldm/common/list_nodes.glsl), an atomic counter that allocates nodes, and the
-// policy that sizes the pool. Parameters, read from the structure's:
-//   pool=counted   (default) exactly the census's fragments: nothing wasted, nothing lost
-//   pool=grow      one node per LDM pixel to start, doubled and rebuilt until a
-//                  construction fits (the std::vector policy of §3.4.4); rebuilds counted
-//   pool=fixed     exactly `capacity` nodes, the static memory budget of §3.3.4; fragments
-//                  beyond it are counted as lost and the record says so
-//   capacity=<nodes>  the size for pool=fixed
-// A construction writes no node past the capacity; the counter still counts them, so the
-// host knows exactly how many did not fit.
+// sizing of the pool. The size follows the sizing policy (ldm_impls/common/sizing.h): the
+// plan's fragments (oracle, census, previous_frame; grown by resize() from the node counter
+// or the census), or the budget less the heads (budget). The parameter
+//   capacity=<nodes>  fixes the pool at that many nodes under every policy (the static
+//                     memory budget of §3.3.4 in nodes); fragments beyond it are lost, counted
+// overrides the policy. (The former pool=counted|grow|fixed are the policies oracle,
+// previous_frame and budget/capacity.) A construction writes no node past the capacity;
+// the counter still counts them, so the host knows exactly how many did not fit.
 #include <array>
 #include <memory>
 #include <string>
@@ -26,12 +25,16 @@ class ListNodePool {
 
   ListNodePool(const std::string& structure, StructureParams& params);
 
-  // Sizes the pool by its policy and compiles `build_shader` (a fragment shader of the LDM
-  // geometry pass) with the pool's defines and `extra_defines`.
+  // Sizes the pool by the sizing plan and compiles `build_shader` (a fragment shader of the
+  // LDM geometry pass) with the pool's defines and `extra_defines`.
   void prepare(const BuildInputs& in, const std::string& build_shader, ShaderDefines extra_defines);
-  // The "clear" and "construct" sub-passes; under pool=grow, repeated with a larger pool
-  // until every fragment fitted.
+  // The "clear" and "construct" sub-passes.
   void build(const BuildInputs& in, GpuTimer* timer);
+  // Sizing (LdmStructure::needed/fits/resize): the node counter counts every allocation
+  // attempt, so it says what the pool needed even when it overflowed.
+  SizingNeeds needed() const;
+  bool fits(const SizingNeeds& needs) const;
+  void resize(const SizingNeeds& needs);
   // Binds the data buffer to the structure's first storage binding and the counters.
   void bind() const;
 
@@ -48,20 +51,19 @@ class ListNodePool {
   std::vector<std::pair<std::string, std::string>> sizing() const;
 
  private:
-  enum class Policy { Counted, Grow, Fixed };
-  void allocate(const BuildInputs& in, uint64_t capacity);
-  void construct(const BuildInputs& in, GpuTimer* timer);
+  void allocate(uint64_t capacity);
+  bool size_is_fixed() const { return fixed_capacity_ > 0 || plan_.policy == SizingPolicy::Budget; }
 
   std::string structure_;
-  Policy policy_ = Policy::Counted;
-  uint64_t fixed_capacity_ = 0;
+  SizingPlan plan_;
+  uint64_t fixed_capacity_ = 0;  // the capacity parameter; 0: the policy sizes the pool
   uint64_t heads_ = 0;     // N * R_LDM^2
   uint64_t capacity_ = 0;  // nodes
-  uint64_t rebuilds_ = 0;
   std::string build_shader_;
   ShaderDefines defines_;  // the structure's and the census's, without the capacity
   GlBuffer data_, counters_;
   GlProgram build_program_;
+  const FragmentSource* fragments_ = nullptr;  // from prepare(), for recompiles on resize
 };
 
 }  // namespace ldm

@@ -19,11 +19,17 @@ constexpr uint32_t kMaxSortLocal = 128;
 // The `local` parameter: K, in [1, kMaxSortLocal]; 0 when the user left it unset.
 uint32_t read_sort_local_param(StructureParams& params);
 
-// K for this scene: the requested size, or else the census's maximum depth complexity
-// (model only what the scene requires) capped at kMaxSortLocal; at least 1.
-uint32_t sort_local_size(uint32_t requested, const FragmentCensus& census);
+// K when neither the parameter nor the oracle sets it: a compile-time constant, as in a
+// renderer that does not know the scene's depth complexity; deeper lists are sorted in
+// place (counted).
+constexpr uint32_t kDefaultSortLocal = 64;
 
-// For sizing(): "census" or "user".
-std::string sort_local_policy(uint32_t requested);
+// K: the requested size; else, under the oracle policy, the census's maximum depth
+// complexity (model only what the scene requires) capped at kMaxSortLocal, at least 1;
+// else kDefaultSortLocal.
+uint32_t sort_local_size(uint32_t requested, const SizingPlan& plan);
+
+// For sizing(): "user", "oracle_max_depth_complexity" or "default".
+std::string sort_local_policy(uint32_t requested, const SizingPlan& plan);
 
 }  // namespace ldm

@@ -21,26 +21,60 @@ constexpr uint64_t kUnfilledWord = 3;
 DfBuffer::DfBuffer(StructureParams& params) { requested_local_ = read_sort_local_param(params); }
 
 void DfBuffer::prepare(const BuildInputs& in) {
+  plan_ = in.sizing;
   pixels_ = in.views.views().total_pixels();
-  capacity_ = in.census.total_fragments;
-  local_ = sort_local_size(requested_local_, in.census);
+  local_ = sort_local_size(requested_local_, plan_);
   const auto words = [](uint64_t n) { return n * sizeof(uint32_t); };
   counts_ = GlBuffer("counts", checked_storage_block("dfbuffer", "counts", words(pixels_)));
   offsets_ = GlBuffer("offsets", checked_storage_block("dfbuffer", "offsets", words(pixels_ + 1)));
-  // A zero-sized buffer cannot be created; an empty scene still gets one (unused) slot.
-  const uint64_t depth_words = std::max<uint64_t>(1, capacity_);
-  depths_ = GlBuffer("depths", checked_storage_block("dfbuffer", "depths", words(depth_words)));
   counters_ = GlBuffer("counters", words(kCounterWords));
   scan_ = std::make_unique<PrefixSum>(pixels_);
+  fragments_ = &in.fragments;
+  base_defines_ = common_structure_defines(in);
+  count_program_ = in.fragments.build_program("ldm/dfbuffer/count.frag", base_defines_);
+  if (plan_.policy == SizingPolicy::Budget) {
+    const uint64_t fixed = counts_.bytes() + offsets_.bytes() + scan_->scratch_bytes() +
+                           counters_.bytes();
+    allocate_depths(budget_after("dfbuffer", plan_, fixed) / sizeof(uint32_t));
+  } else {
+    allocate_depths(plan_.initial.fragments);
+  }
+}
 
-  ShaderDefines defines = common_structure_defines(in);
+void DfBuffer::allocate_depths(uint64_t capacity) {
+  capacity_ = capacity;
+  // A zero-sized buffer cannot be created; an empty scene still gets one (unused) slot.
+  const uint64_t depth_words = std::max<uint64_t>(1, capacity_);
+  depths_ = GlBuffer("depths", checked_storage_block("dfbuffer", "depths",
+                                                     depth_words * sizeof(uint32_t)));
+  // The capacity is a compile-time constant of the storing, sorting and query shaders.
+  ShaderDefines defines = base_defines_;
   defines.set("LDM_DF_CAPACITY", std::to_string(capacity_) + "u");
   query_defines_ = defines;
-  count_program_ = in.fragments.build_program("ldm/dfbuffer/count.frag", defines);
-  build_program_ = in.fragments.build_program("ldm/dfbuffer/build.frag", defines);
+  build_program_ = fragments_->build_program("ldm/dfbuffer/build.frag", defines);
   unfilled_program_ = build_compute_program("ldm/dfbuffer/unfilled.comp", defines);
   defines.set("LDM_SORT_LOCAL", std::to_string(local_) + "u");
   sort_program_ = build_compute_program("ldm/dfbuffer/sort.comp", defines);
+  query_defines_changed();
+}
+
+uint64_t DfBuffer::read_scan_total() const {
+  uint32_t scan_total = 0;
+  offsets_.download(&scan_total, sizeof scan_total, pixels_ * sizeof(uint32_t));
+  return scan_total;
+}
+
+SizingNeeds DfBuffer::needed() {
+  const uint64_t total = read_scan_total();
+  return {total, 0, total > capacity_};
+}
+
+bool DfBuffer::fits(const SizingNeeds& needs) const {
+  return plan_.policy == SizingPolicy::Budget || needs.fragments <= capacity_;
+}
+
+void DfBuffer::resize(const SizingNeeds& needs) {
+  if (!fits(needs)) allocate_depths(needs.fragments);
 }
 
 void DfBuffer::clear(GpuTimer* timer) {
@@ -87,6 +121,19 @@ void DfBuffer::build(const BuildInputs& in, GpuTimer* timer) {
   clear(timer);
   count(in, timer);
   prefix_sum(timer);
+  if (plan_.policy == SizingPolicy::Census) {
+    // The count pass and scan are this structure's census: the scan total, read back (a
+    // sync), sizes the depth array before the storing pass, growing it when needed.
+    SizingNeeds needs;
+    {
+      ScopedSubpass timed(timer, "readback");
+      needs = needed();
+    }
+    if (!fits(needs)) {
+      ScopedSubpass timed(timer, "reallocate");
+      resize(needs);
+    }
+  }
   construct(in, timer);
   sort(timer);
 }
@@ -106,8 +153,7 @@ uint64_t DfBuffer::count_unfilled_slots() const {
 }
 
 BuildStats DfBuffer::stats() const {
-  uint32_t scan_total = 0;
-  offsets_.download(&scan_total, sizeof scan_total, pixels_ * sizeof(uint32_t));
+  const uint64_t scan_total = read_scan_total();
   uint32_t c[kCounterWords] = {};
   counters_.download(c, sizeof c);
   const uint64_t lost_beyond_count = c[0], lost_beyond_capacity = c[1];
@@ -147,11 +193,11 @@ std::vector<BufferMemory> DfBuffer::memory() const {
 }
 
 std::vector<std::pair<std::string, std::string>> DfBuffer::sizing() const {
-  return {{"storage_policy", "exact"},
+  return {{"depth_capacity_source", size_source(plan_, false)},
           {"depth_capacity", std::to_string(capacity_)},
           {"scan_levels", std::to_string(scan_ ? scan_->levels() : 0)},
           {"sort_local", std::to_string(local_)},
-          {"sort_local_policy", sort_local_policy(requested_local_)}};
+          {"sort_local_policy", sort_local_policy(requested_local_, plan_)}};
 }
 
 }  // namespace ldm

@@ -6,13 +6,18 @@
 // All views share one set of buffers (layout: shaders/ldm/dfbuffer/layout.glsl).
 //
 // Sub-passes: clear, count, prefix_sum, construct, sort.
-// Sizing: the depth array holds exactly the census's fragment total. stats() reads back the
-// scan's total and flags a build whose total differs ("storage_mismatch"); fragments that
-// find no slot are counted as lost.
+// Sizing: the depth array's capacity follows the sizing policy (ldm_impls/common/sizing.h):
+// oracle: the census's total; census: the count pass and scan are this structure's own
+// census, so no separate census runs: build() reads the scan total back ("readback", a
+// timed sync) and grows the depth array to it ("reallocate") before storing;
+// previous_frame: the last build's scan total (needed()), rebuilt on overflow; budget: what
+// the budget leaves after counts, offsets and scan scratch. stats() reads back the scan's
+// total and flags a build whose total differs from the capacity ("storage_mismatch");
+// fragments that find no slot are counted as lost.
 // Parameters:
-//   local=K   size of the sort's local array, 1..128 (default: the census's maximum depth
-//             complexity, capped at 128); longer ranges are sorted in place in the depth
-//             array and counted as "lists_sorted_in_place".
+//   local=K   size of the sort's local array, 1..128 (default: under the oracle policy the
+//             census's maximum depth complexity capped at 128, else 64); longer ranges are
+//             sorted in place in the depth array and counted as "lists_sorted_in_place".
 #include <memory>
 
 #include "harness/gl/gl_objects.h"
@@ -29,6 +34,10 @@ class DfBuffer final : public LdmStructure {
   void prepare(const BuildInputs& in) override;
   void build(const BuildInputs& in, GpuTimer* timer) override;
   BuildStats stats() const override;
+  SizingNeeds needed() override;
+  bool fits(const SizingNeeds& needs) const override;
+  void resize(const SizingNeeds& needs) override;
+  bool counts_own_fragments() const override { return true; }
   std::vector<std::string> query_sources() const override;
   ShaderDefines query_defines() const override;
   void bind_for_query() const override;
@@ -41,18 +50,22 @@ class DfBuffer final : public LdmStructure {
   void prefix_sum(GpuTimer* timer);
   void construct(const BuildInputs& in, GpuTimer* timer);
   void sort(GpuTimer* timer);
+  void allocate_depths(uint64_t capacity);
+  uint64_t read_scan_total() const;
   uint64_t count_unfilled_slots() const;
 
-  uint32_t requested_local_ = 0;  // 0: from the census
+  SizingPlan plan_;
+  uint32_t requested_local_ = 0;  // 0: from the policy
   uint32_t local_ = 0;            // K of the sort pass
   uint64_t pixels_ = 0;           // N * R_LDM^2
-  uint64_t capacity_ = 0;         // depths: the census's fragment total
-  ShaderDefines query_defines_;
+  uint64_t capacity_ = 0;         // depths, as the sizing policy chose
+  ShaderDefines base_defines_, query_defines_;
   GlBuffer counts_, offsets_, depths_;
   // [0] lost: no slot left in the pixel's range, [1] lost: slot past the depth array,
   // [2] lists sorted in place, [3] unfilled slots (written by stats()).
   GlBuffer counters_;
   std::unique_ptr<PrefixSum> scan_;
+  const FragmentSource* fragments_ = nullptr;  // from prepare(), for recompiles on resize
   GlProgram count_program_, build_program_, sort_program_, unfilled_program_;
 };
 

@@ -9,18 +9,41 @@ namespace ldm {
 Ppfla::Ppfla(StructureParams& params) : requested_k_(read_fixed_array_k(params)) {}
 
 void Ppfla::prepare(const BuildInputs& in) {
-  layout_ = plan_fixed_arrays("ppfla", requested_k_, in);
-  census_fragments_ = in.census.total_fragments;
-  defines_ = fixed_array_defines(layout_, in);
-  entries_ = GlBuffer("entries", layout_.entry_bytes());
-  counts_ = GlBuffer("counts", layout_.pixels * sizeof(uint32_t));
+  pixels_ = in.views.views().total_pixels();
+  counts_ = GlBuffer("counts", pixels_ * sizeof(uint32_t));
   dropped_ = GlBuffer("dropped", sizeof(uint32_t));
-  build_program_ = in.fragments.build_program("ldm/fixed_arrays/ppfla_build.frag", defines_);
+  size_fixed_ = requested_k_ != 0 || in.sizing.policy == SizingPolicy::Budget;
+  fragments_ = &in.fragments;
+  if (!reduction_) reduction_ = std::make_unique<UintReduction>();
+  allocate(plan_fixed_arrays("ppfla", requested_k_, in, counts_.bytes() + dropped_.bytes()));
+}
+
+void Ppfla::allocate(const FixedArrayLayout& layout) {
+  layout_ = layout;
+  defines_ = fixed_array_defines(layout_);
+  entries_ = GlBuffer("entries", layout_.entry_bytes());
+  build_program_ = fragments_->build_program("ldm/fixed_arrays/ppfla_build.frag", defines_);
   ShaderDefines sort_defines = binding_defines();
   sort_defines.values.insert(sort_defines.values.end(), defines_.values.begin(),
                              defines_.values.end());
   sort_program_ =
       build_program({{GL_COMPUTE_SHADER, "ldm/fixed_arrays/ppfla_sort.comp", {}}}, sort_defines);
+  query_defines_changed();
+}
+
+SizingNeeds Ppfla::needed() {
+  // A pixel's count keeps counting past k, so its deepest count is the k the build needed;
+  // reduced on the GPU only when something was dropped (else k sufficed).
+  if (read_dropped(dropped_) == 0) return {0, layout_.k};
+  return {0, reduction_->run(counts_, pixels_).max, true};
+}
+
+bool Ppfla::fits(const SizingNeeds& needs) const {
+  return size_fixed_ || k_for(needs, pixels_) <= layout_.k;
+}
+
+void Ppfla::resize(const SizingNeeds& needs) {
+  if (!fits(needs)) allocate(resized_fixed_arrays("ppfla", layout_, k_for(needs, pixels_)));
 }
 
 void Ppfla::bind_storage() const {
@@ -58,7 +81,9 @@ void Ppfla::build(const BuildInputs& in, GpuTimer* timer) {
 }
 
 BuildStats Ppfla::stats() const {
-  BuildStats s = fixed_array_stats(dropped_, census_fragments_);
+  // Every fragment incremented its pixel's count, stored or not.
+  const uint64_t rasterized = reduction_->run(counts_, pixels_).sum;
+  BuildStats s = fixed_array_stats(rasterized, read_dropped(dropped_));
   return s;
 }
 

@@ -4,12 +4,14 @@
 // pixel's entries. Layout and k policy: fixed_array_layout.h. Shaders: shaders/ldm/fixed_arrays/.
 //
 // Parameters:
-//   k=0|n   entries per pixel; 0 (default): the census's maximum depth complexity (lossless).
-//           Fragments past k are dropped (whichever arrive last) and counted exactly.
+//   k=0|n   entries per pixel; 0 (default): as the sizing policy says (fixed_array_layout.h;
+//           lossless unless the policy is budget). Fragments past k are dropped (whichever
+//           arrive last) and counted exactly.
 // Sub-passes: clear (counts to 0), construct (geometry pass), sort (insertion sort per pixel).
 #include <memory>
 
 #include "harness/gl/gl_objects.h"
+#include "ldm_impls/common/uint_reduction.h"
 #include "ldm_impls/fixed_arrays/fixed_array_layout.h"
 #include "ldm_impls/ldm_structure.h"
 
@@ -23,6 +25,9 @@ class Ppfla final : public LdmStructure {
   void prepare(const BuildInputs& in) override;
   void build(const BuildInputs& in, GpuTimer* timer) override;
   BuildStats stats() const override;
+  SizingNeeds needed() override;
+  bool fits(const SizingNeeds& needs) const override;
+  void resize(const SizingNeeds& needs) override;
   std::vector<std::string> query_sources() const override;
   ShaderDefines query_defines() const override;
   void bind_for_query() const override;
@@ -30,15 +35,19 @@ class Ppfla final : public LdmStructure {
   std::vector<std::pair<std::string, std::string>> sizing() const override;
 
  private:
+  void allocate(const FixedArrayLayout& layout);
   void bind_storage() const;
   void sort_every_pixel() const;
 
   uint32_t requested_k_ = 0;
   FixedArrayLayout layout_;
-  uint64_t census_fragments_ = 0;
+  uint64_t pixels_ = 0;
+  bool size_fixed_ = false;  // k from the parameter or the budget: never resized
   ShaderDefines defines_;
   GlBuffer entries_, counts_, dropped_;
   GlProgram build_program_, sort_program_;
+  const FragmentSource* fragments_ = nullptr;  // from prepare(), for recompiles on resize
+  std::unique_ptr<UintReduction> reduction_;
 };
 
 }  // namespace ldm

@@ -13,12 +13,46 @@ constexpr uint32_t kEmptyEntry = 0xFFFFFFFFu;
 Psppfla::Psppfla(StructureParams& params) : requested_k_(read_fixed_array_k(params)) {}
 
 void Psppfla::prepare(const BuildInputs& in) {
-  layout_ = plan_fixed_arrays("psppfla", requested_k_, in);
-  census_fragments_ = in.census.total_fragments;
-  defines_ = fixed_array_defines(layout_, in);
-  entries_ = GlBuffer("entries", layout_.entry_bytes());
+  pixels_ = in.views.views().total_pixels();
   dropped_ = GlBuffer("dropped", sizeof(uint32_t));
-  build_program_ = in.fragments.build_program("ldm/fixed_arrays/psppfla_build.frag", defines_);
+  size_fixed_ = requested_k_ != 0 || in.sizing.policy == SizingPolicy::Budget;
+  // Only previous_frame asks a build what it needed; the others learn k up front.
+  track_overflow_ = !size_fixed_ && in.sizing.policy == SizingPolicy::PreviousFrame;
+  if (track_overflow_) {
+    overflow_ = GlBuffer("overflow_counts", pixels_ * sizeof(uint32_t));
+    overflow_.clear_to_zero();
+  }
+  fragments_ = &in.fragments;
+  if (!reduction_) reduction_ = std::make_unique<UintReduction>();
+  allocate(plan_fixed_arrays("psppfla", requested_k_, in, dropped_.bytes()));
+}
+
+void Psppfla::allocate(const FixedArrayLayout& layout) {
+  layout_ = layout;
+  defines_ = fixed_array_defines(layout_);
+  entries_ = GlBuffer("entries", layout_.entry_bytes());
+  ShaderDefines build_defines = defines_;
+  build_defines.set("FA_TRACK_OVERFLOW", track_overflow_ ? 1 : 0);
+  build_program_ = fragments_->build_program("ldm/fixed_arrays/psppfla_build.frag", build_defines);
+  query_defines_changed();
+}
+
+SizingNeeds Psppfla::needed() {
+  if (read_dropped(dropped_) == 0) return {0, layout_.k};
+  if (!track_overflow_)  // a fixed k (parameter, budget) or a policy that sizes up front
+    return {0, layout_.k + 1, true};
+  // Cleared only after a build that dropped something, so steady state costs nothing.
+  const uint32_t most_dropped = reduction_->run(overflow_, pixels_).max;
+  overflow_.clear_to_zero();
+  return {0, layout_.k + most_dropped, true};
+}
+
+bool Psppfla::fits(const SizingNeeds& needs) const {
+  return size_fixed_ || k_for(needs, pixels_) <= layout_.k;
+}
+
+void Psppfla::resize(const SizingNeeds& needs) {
+  if (!fits(needs)) allocate(resized_fixed_arrays("psppfla", layout_, k_for(needs, pixels_)));
 }
 
 void Psppfla::build(const BuildInputs& in, GpuTimer* timer) {
@@ -30,13 +64,17 @@ void Psppfla::build(const BuildInputs& in, GpuTimer* timer) {
   {
     ScopedSubpass timed(timer, "construct");
     entries_.bind_storage(kStructureBinding0);
+    if (track_overflow_) overflow_.bind_storage(kStructureBinding0 + 1);
     dropped_.bind_atomic_counter(kStructureCounterBinding);
     in.fragments.run(build_program_);
   }
 }
 
 BuildStats Psppfla::stats() const {
-  BuildStats s = fixed_array_stats(dropped_, census_fragments_);
+  // The entries holding a depth (a GPU count, untimed) plus the fragments dropped.
+  const uint64_t dropped = read_dropped(dropped_);
+  const uint64_t filled = reduction_->run(entries_, layout_.entries(), 1, kEmptyEntry).nonempty;
+  BuildStats s = fixed_array_stats(filled + dropped, dropped);
   return s;
 }
 
@@ -48,8 +86,10 @@ void Psppfla::bind_for_query() const { entries_.bind_storage(kStructureBinding0)
 
 std::vector<BufferMemory> Psppfla::memory() const {
   const uint64_t stored = stats().fragments_stored;
-  return {{"entries", entries_.bytes(), stored * sizeof(uint32_t)},
-          {"dropped_counter", dropped_.bytes(), dropped_.bytes()}};
+  std::vector<BufferMemory> m = {{"entries", entries_.bytes(), stored * sizeof(uint32_t)},
+                                 {"dropped_counter", dropped_.bytes(), dropped_.bytes()}};
+  if (track_overflow_) m.push_back({"overflow_counts", overflow_.bytes(), overflow_.bytes()});
+  return m;
 }
 
 std::vector<std::pair<std::string, std::string>> Psppfla::sizing() const {

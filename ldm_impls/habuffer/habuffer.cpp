@@ -6,6 +6,7 @@
 
 #include "harness/gl/bindings.h"
 #include "harness/util/error.h"
+#include "ldm_impls/common/uint_reduction.h"
 
 namespace ldm {
 
@@ -96,12 +97,19 @@ uint32_t HaBuffer::choose_key_bits() const {
   return has_int64_atomics ? 64 : 32;
 }
 
-void HaBuffer::size_table(const BuildInputs& in) {
-  pixels_ = in.views.views().total_pixels();
-  census_fragments_ = in.census.total_fragments;
-  const double wanted = std::ceil(double(census_fragments_) / load_factor_);
+uint64_t HaBuffer::table_size_for(const SizingNeeds& needs) const {
+  const double wanted = std::ceil(double(needs.fragments) / load_factor_);
   // |H| >= N * R_LDM^2 keeps p = (h - o_a) mod |H| unique: the age equivalence property.
-  table_size_ = std::max<uint64_t>({pixels_, uint64_t(wanted), 1});
+  return std::max<uint64_t>({pixels_, uint64_t(wanted), 1});
+}
+
+uint64_t HaBuffer::fixed_bytes() const {
+  return pixels_ * sizeof(uint32_t) + kCounterWords * sizeof(uint32_t) + sizeof(uint32_t) +
+         (max_age_ + 1) * sizeof(uint32_t);
+}
+
+void HaBuffer::size_table(uint64_t table_size) {
+  table_size_ = table_size;
   // h = p + o_a with p, o_a < |H| must not wrap 32 bits.
   if (table_size_ >= (uint64_t(1) << 31))
     throw UserError("habuffer: a table of " + std::to_string(table_size_) +
@@ -114,17 +122,60 @@ void HaBuffer::upload_offsets() {
 }
 
 void HaBuffer::prepare(const BuildInputs& in) {
+  plan_ = in.sizing;
   key_bits_ = choose_key_bits();
-  size_table(in);
+  pixels_ = in.views.views().total_pixels();
   depth_step_log2_ = quantisation_step_log2(in.views.views());
-  const uint64_t key_bytes = key_bits_ / 8;
-  table_ = GlBuffer("table", checked_storage_block("habuffer", "table", table_size_ * key_bytes));
   age_counts_ = GlBuffer("age_table", pixels_ * sizeof(uint32_t));
   counters_ = GlBuffer("counters", kCounterWords * sizeof(uint32_t));
   age_summary_ = GlBuffer("age_summary", sizeof(uint32_t));
-  upload_offsets();
+  fragments_ = &in.fragments;
+  base_defines_ = common_structure_defines(in);
+  if (plan_.policy == SizingPolicy::Budget) {
+    const uint64_t entries = budget_after("habuffer", plan_, fixed_bytes()) / (key_bits_ / 8);
+    if (entries < pixels_)
+      throw UserError("habuffer: the sizing budget holds " + std::to_string(entries) +
+                      " table entries, fewer than the " + std::to_string(pixels_) +
+                      " LDM pixels that age equivalence needs; raise --sizing-budget-mib");
+    allocate_table(entries);
+  } else {
+    allocate_table(table_size_for(plan_.initial));
+  }
+}
 
-  defines_ = common_structure_defines(in);
+SizingNeeds HaBuffer::needed() {
+  // Every fragment ends stored in one entry, dropped at max age or aborted; the entries are
+  // counted on the GPU, so this is what the table had to hold even when it overflowed.
+  const uint64_t lost = lost_in_last_build();
+  return {stored_entries() + lost, 0, lost > 0};
+}
+
+bool HaBuffer::fits(const SizingNeeds& needs) const {
+  return plan_.policy == SizingPolicy::Budget || table_size_for(needs) <= table_size_;
+}
+
+void HaBuffer::resize(const SizingNeeds& needs) {
+  if (!fits(needs)) allocate_table(table_size_for(needs));
+}
+
+uint64_t HaBuffer::stored_entries() const {
+  return reduction_->run(table_, table_size_, key_bits_ / 32).nonempty;
+}
+
+uint64_t HaBuffer::lost_in_last_build() const {
+  uint32_t counters[kCounterWords] = {0, 0};
+  counters_.download(counters, sizeof counters);
+  return uint64_t(counters[0]) + counters[1];
+}
+
+void HaBuffer::allocate_table(uint64_t table_size) {
+  size_table(table_size);
+  const uint64_t key_bytes = key_bits_ / 8;
+  table_ = GlBuffer("table", checked_storage_block("habuffer", "table", table_size_ * key_bytes));
+  upload_offsets();
+  if (!reduction_) reduction_ = std::make_unique<UintReduction>();
+
+  defines_ = base_defines_;
   defines_.set("HA_KEY_BITS", key_bits_);
   defines_.set("HA_TABLE_SIZE", std::to_string(table_size_) + "u");
   defines_.set("HA_MAX_AGE", std::to_string(max_age_) + "u");
@@ -133,12 +184,13 @@ void HaBuffer::prepare(const BuildInputs& in) {
   // mean a faulty device (see ha_build.frag).
   defines_.set("HA_MAX_INSERT_STEPS", std::to_string(64ull * (max_age_ + 1)) + "u");
 
-  build_program_ = in.fragments.build_program("ldm/habuffer/ha_build.frag", defines_);
+  build_program_ = fragments_->build_program("ldm/habuffer/ha_build.frag", defines_);
   ShaderDefines reduce_defines = binding_defines();
   reduce_defines.values.insert(reduce_defines.values.end(), defines_.values.begin(),
                                defines_.values.end());
   highest_age_program_ =
       build_program({{GL_COMPUTE_SHADER, "ldm/habuffer/ha_highest_age.comp", {}}}, reduce_defines);
+  query_defines_changed();
 }
 
 void HaBuffer::build(const BuildInputs& in, GpuTimer* timer) {
@@ -179,9 +231,10 @@ BuildStats HaBuffer::stats() const {
   const uint64_t dropped = counters[0], aborted = counters[1];
   const uint32_t highest_age_count = read_highest_age_count();
   BuildStats s;
-  s.fragments_rasterized = census_fragments_;  // the census's geometry pass, same fragments
-  s.fragments_lost = std::min(census_fragments_, dropped + aborted);
-  s.fragments_stored = census_fragments_ - s.fragments_lost;
+  // Entries found in the table (a GPU count, untimed) plus the fragments counted as lost.
+  s.fragments_stored = stored_entries();
+  s.fragments_lost = dropped + aborted;
+  s.fragments_rasterized = s.fragments_stored + s.fragments_lost;
   s.overflow = s.fragments_lost > 0;
   s.counters = {{"max_age_used", highest_age_count ? double(highest_age_count - 1) : 0.0},
                 {"dropped_max_age", double(dropped)},
@@ -210,9 +263,12 @@ std::vector<BufferMemory> HaBuffer::memory() const {
 std::vector<std::pair<std::string, std::string>> HaBuffer::sizing() const {
   std::vector<std::pair<std::string, std::string>> s = {
       {"table_entries", std::to_string(table_size_)},
-      {"table_policy", "max(N*R_LDM^2, ceil(census_fragments / load_factor))"},
+      {"table_size_source", size_source(plan_, false)},
+      {"table_policy", plan_.policy == SizingPolicy::Budget
+                           ? "budget / key bytes"
+                           : "max(N*R_LDM^2, ceil(fragments / load_factor))"},
       {"load_factor", format_double(load_factor_)},
-      {"load_factor_actual", format_double(double(census_fragments_) / double(table_size_))},
+      {"load_factor_actual", format_double(double(stats().fragments_rasterized) / double(table_size_))},
       {"max_age", std::to_string(max_age_)},
       {"key_bits", std::to_string(key_bits_)},
       {"key_bits_request", key_bits_request_}};

@@ -5,9 +5,13 @@
 // each pixel's entries by depth during construction. Shaders: shaders/ldm/habuffer/.
 //
 // Parameters:
-//   load_factor=0.75  |H| = max(N * R_LDM^2, ceil(census fragments / load_factor)). The
-//                     lower bound is the age equivalence property (§3.2.13); above it, the
-//                     table is sized from what the scene needs. Lefebvre et al. size tables
+//   load_factor=0.75  |H| = max(N * R_LDM^2, ceil(fragments / load_factor)), the fragments
+//                     being what the sizing policy knows (ldm_impls/common/sizing.h; under
+//                     previous_frame: the entries the last build stored plus those it lost,
+//                     counted on the GPU). The lower bound is the age equivalence property
+//                     (§3.2.13); above it, the table is sized from what the scene needs.
+//                     Under the budget policy |H| = budget (less the age table, offsets and
+//                     counters) / key bytes, and load_factor is not used. Lefebvre et al. size tables
 //                     somewhat above the fragment count: Robin Hood keeps probe sequences
 //                     short up to high loads, and 0.75 (a third more slots than fragments)
 //                     trades memory for collisions the usual way. Values > 1 under-size the
@@ -27,6 +31,7 @@
 #include <memory>
 
 #include "harness/gl/gl_objects.h"
+#include "ldm_impls/common/uint_reduction.h"
 #include "ldm_impls/ldm_structure.h"
 
 namespace ldm {
@@ -39,6 +44,9 @@ class HaBuffer final : public LdmStructure {
   void prepare(const BuildInputs& in) override;
   void build(const BuildInputs& in, GpuTimer* timer) override;
   BuildStats stats() const override;
+  SizingNeeds needed() override;
+  bool fits(const SizingNeeds& needs) const override;
+  void resize(const SizingNeeds& needs) override;
   std::vector<std::string> query_sources() const override;
   ShaderDefines query_defines() const override;
   void bind_for_query() const override;
@@ -50,7 +58,12 @@ class HaBuffer final : public LdmStructure {
 
  private:
   uint32_t choose_key_bits() const;
-  void size_table(const BuildInputs& in);
+  uint64_t table_size_for(const SizingNeeds& needs) const;
+  uint64_t fixed_bytes() const;  // everything but the table (for the budget)
+  void size_table(uint64_t table_size);
+  void allocate_table(uint64_t table_size);
+  uint64_t stored_entries() const;      // non-empty table entries (GPU count)
+  uint64_t lost_in_last_build() const;  // dropped at max age + aborted
   void upload_offsets();
   uint32_t read_highest_age_count() const;
 
@@ -58,12 +71,14 @@ class HaBuffer final : public LdmStructure {
   uint32_t max_age_ = 254;
   std::string key_bits_request_ = "32";
 
+  SizingPlan plan_;
   uint32_t key_bits_ = 32;
   uint64_t pixels_ = 0;      // N * R_LDM^2
   uint64_t table_size_ = 0;  // |H|, entries
   int depth_step_log2_ = 0;  // 32-bit keys: the quantisation step is 2^depth_step_log2_
-  uint64_t census_fragments_ = 0;
-  ShaderDefines defines_;
+  ShaderDefines base_defines_, defines_;
+  std::unique_ptr<UintReduction> reduction_;
+  const FragmentSource* fragments_ = nullptr;  // from prepare(), for recompiles on resize
   GlBuffer table_, offsets_, age_counts_, counters_, age_summary_;
   GlProgram build_program_, highest_age_program_;
 };

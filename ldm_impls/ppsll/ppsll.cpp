@@ -15,7 +15,8 @@ Ppsll::Ppsll(StructureParams& params) : pool_("ppsll", params) {
 }
 
 void Ppsll::prepare(const BuildInputs& in) {
-  local_ = sort_local_size(requested_local_, in.census);
+  plan_ = in.sizing;
+  local_ = sort_local_size(requested_local_, plan_);
   query_defines_ = common_structure_defines(in);
   ShaderDefines sort_defines = common_structure_defines(in);
   sort_defines.set("LDM_SORT_LOCAL", std::to_string(local_) + "u");
@@ -37,6 +38,10 @@ void Ppsll::build(const BuildInputs& in, GpuTimer* timer) {
   sort(timer);
 }
 
+SizingNeeds Ppsll::needed() { return pool_.needed(); }
+bool Ppsll::fits(const SizingNeeds& needs) const { return pool_.fits(needs); }
+void Ppsll::resize(const SizingNeeds& needs) { pool_.resize(needs); }
+
 BuildStats Ppsll::stats() const {
   const auto counters = pool_.read_counters();  // [1]: lists the sort did in place
   BuildStats s = pool_.stats(counters, 0);
@@ -53,7 +58,7 @@ std::vector<BufferMemory> Ppsll::memory() const { return pool_.memory(stats().fr
 std::vector<std::pair<std::string, std::string>> Ppsll::sizing() const {
   auto s = pool_.sizing();
   s.emplace_back("sort_local", std::to_string(local_));
-  s.emplace_back("sort_local_policy", sort_local_policy(requested_local_));
+  s.emplace_back("sort_local_policy", sort_local_policy(requested_local_, plan_));
   return s;
 }
 

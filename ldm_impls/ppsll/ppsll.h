@@ -7,10 +7,11 @@
 //
 // Sub-passes: clear, construct, sort.
 // Parameters:
-//   pool=counted|grow|fixed, capacity=<nodes>   the node pool (common/list_node_pool.h)
-//   local=K             size of the sort's local array, 1..128 (default: the census's
-//                       maximum depth complexity, capped at 128). Longer lists are sorted in
-//                       place in storage memory and counted as "lists_sorted_in_place".
+//   capacity=<nodes>    fixes the node pool (common/list_node_pool.h); else the sizing policy
+//   local=K             size of the sort's local array, 1..128 (default: under the oracle
+//                       policy the census's maximum depth complexity capped at 128, else
+//                       kDefaultSortLocal = 64). Longer lists are sorted in place in storage
+//                       memory and counted as "lists_sorted_in_place".
 #include "ldm_impls/common/list_node_pool.h"
 
 namespace ldm {
@@ -23,6 +24,9 @@ class Ppsll final : public LdmStructure {
   void prepare(const BuildInputs& in) override;
   void build(const BuildInputs& in, GpuTimer* timer) override;
   BuildStats stats() const override;
+  SizingNeeds needed() override;
+  bool fits(const SizingNeeds& needs) const override;
+  void resize(const SizingNeeds& needs) override;
   std::vector<std::string> query_sources() const override;
   ShaderDefines query_defines() const override;
   void bind_for_query() const override;
@@ -33,7 +37,8 @@ class Ppsll final : public LdmStructure {
   void sort(GpuTimer* timer);
 
   ListNodePool pool_;
-  uint32_t requested_local_ = 0;  // 0: from the census
+  SizingPlan plan_;
+  uint32_t requested_local_ = 0;  // 0: from the policy
   uint32_t local_ = 0;            // K of the sort pass
   ShaderDefines query_defines_;
   GlProgram sort_program_;

@@ -10,15 +10,18 @@ void Psppsll::prepare(const BuildInputs& in) {
   query_defines_ = common_structure_defines(in);
   ShaderDefines defines;
   // Each step passes one node or retries after a concurrent insertion, so a conforming
-  // device needs at most about twice the longest list; beyond 4x + 64 an insertion is
-  // abandoned and counted, so that a defective device cannot hang the GPU.
-  defines.set("LDM_MAX_INSERT_STEPS",
-              std::to_string(4ull * in.census.max_depth_complexity + 64) + "u");
+  // device needs at most about twice the longest list; beyond 4x the walk bound + 64 an
+  // insertion is abandoned and counted, so that a defective device cannot hang the GPU. (No
+  // tighter bound is known without the census, which the structure does not see.)
+  defines.set("LDM_MAX_INSERT_STEPS", std::to_string(4ull * kMaxListWalk + 64) + "u");
   defines.set("LDM_ATOMIC_READS", atomic_reads_ ? 1 : 0);
   pool_.prepare(in, "ldm/psppsll/build.frag", defines);
 }
 
 void Psppsll::build(const BuildInputs& in, GpuTimer* timer) { pool_.build(in, timer); }
+SizingNeeds Psppsll::needed() { return pool_.needed(); }
+bool Psppsll::fits(const SizingNeeds& needs) const { return pool_.fits(needs); }
+void Psppsll::resize(const SizingNeeds& needs) { pool_.resize(needs); }
 
 BuildStats Psppsll::stats() const {
   const auto counters = pool_.read_counters();  // [1]: insertions abandoned

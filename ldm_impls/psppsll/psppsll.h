@@ -6,7 +6,7 @@
 //
 // Sub-passes: clear, construct.
 // Parameters:
-//   pool=counted|grow|fixed, capacity=<nodes>   the node pool (common/list_node_pool.h)
+//   capacity=<nodes>    fixes the node pool (common/list_node_pool.h); else the sizing policy
 //   atomic_reads=0|1    read next indices with atomicAdd(x, 0), the driver workaround of
 //                       §3.4.3 (default 0)
 #include "ldm_impls/common/list_node_pool.h"
@@ -21,6 +21,9 @@ class Psppsll final : public LdmStructure {
   void prepare(const BuildInputs& in) override;
   void build(const BuildInputs& in, GpuTimer* timer) override;
   BuildStats stats() const override;
+  SizingNeeds needed() override;
+  bool fits(const SizingNeeds& needs) const override;
+  void resize(const SizingNeeds& needs) override;
   std::vector<std::string> query_sources() const override;
   ShaderDefines query_defines() const override;
   void bind_for_query() const override;

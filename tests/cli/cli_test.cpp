@@ -132,13 +132,43 @@ TEST(Cli, SweepRecordsAFailedConfigurationAndGoesOn) {
 TEST(Cli, LossyConfigurationIsFlaggedNotPassedOff) {
   const fs::path out = fs::path(test::make_temp_dir("ldm-cli")) / "lossy";
   const Outcome o = ldmbench("run --scene cornell -N 4 -R 32 --width 32 --height 32 --frames 1 "
-                             "--warmup 0 --param psppsll:pool=fixed --param psppsll:capacity=1000 "
+                             "--warmup 0 --param psppsll:capacity=1000 "
                              "--no-reference --out " + out.string());
   EXPECT_EQ(o.status, 0) << o.output;
   const auto r = nlohmann::json::parse(read_text(out / "records.json"))["records"][0];
   EXPECT_EQ(r["status"], "lossy");
   EXPECT_TRUE(r["overflow"].get<bool>());
   EXPECT_EQ(r["fragments_lost"].get<int64_t>(), r["fragments"].get<int64_t>() - 1000);
+}
+
+TEST(Cli, RecordsCarryTheSizingPolicyAndWhatItCost) {
+  const fs::path out = fs::path(test::make_temp_dir("ldm-cli")) / "sizing";
+  const Outcome o = ldmbench("run --scene atrium --structure psppsll,dfbuffer -N 4 -R 32 "
+                             "--width 32 --height 32 --frames 2 --warmup 0 --no-reference "
+                             "--no-images --sizing oracle,census,previous_frame,budget "
+                             "--sizing-budget-mib 1 --out " + out.string());
+  ASSERT_EQ(o.status, 0) << o.output;
+  const auto records = nlohmann::json::parse(read_text(out / "records.json"))["records"];
+  ASSERT_EQ(records.size(), 8u);
+  std::set<std::string> ids;
+  for (const auto& r : records) {
+    ids.insert(r["config_id"].get<std::string>());
+    const std::string policy = r["sizing_policy"], structure = r["structure"];
+    const std::string what = structure + " " + policy;
+    EXPECT_EQ(r["status"], "ok") << what;
+    EXPECT_TRUE(r.contains("sizing_rebuilds")) << what;
+    // What each policy costs is in the timing columns, charged to the build.
+    const bool census_pass = policy == "census" && structure == "psppsll";
+    EXPECT_EQ(r.contains("census_ms_median"), census_pass) << what;
+    EXPECT_EQ(r.contains("readback_ms_median"),
+              policy == "previous_frame" || (policy == "census" && structure == "dfbuffer"))
+        << what;
+    if (policy == "oracle") EXPECT_NE(r["sizing_note"].get<std::string>().find("untimed"), std::string::npos);
+    if (policy == "budget") EXPECT_LE(r["bytes_allocated"].get<double>(), double(1 << 20)) << what;
+    if (policy == "previous_frame")  // the atrium has more fragments than LDM pixels
+      EXPECT_EQ(r["sizing_rebuilds"].get<int64_t>(), 1) << what;
+  }
+  EXPECT_EQ(ids.size(), 8u) << "every policy is its own configuration";
 }
 
 TEST(Cli, BadInputIsRejectedBeforeAnythingIsWritten) {
@@ -156,6 +186,9 @@ TEST(Cli, BadInputIsRejectedBeforeAnythingIsWritten) {
   expect_rejected("--scene cornell --pass gi", "gi");
   expect_rejected("--scene cornell --param psppsll", "STRUCTURE:KEY=VALUE");
   expect_rejected("--scene cornell --param psppsll:pool=huge", "pool");
+  expect_rejected("--scene cornell --sizing guess", "--sizing");
+  expect_rejected("--scene cornell --sizing budget", "--sizing-budget-mib");
+  expect_rejected("--scene cornell --sizing census --sizing-budget-mib 4", "--sizing-budget-mib");
   expect_rejected("--scene cornell --param psppsll:colour=red", "colour");
   expect_rejected("--scene cornell --visibility sometimes", "--visibility");
   expect_rejected("--scene nosuchscene", "nosuchscene");

@@ -215,25 +215,12 @@ TEST(Psppsll, RepeatedBuildsGiveIdenticalLists) {
   EXPECT_EQ(LdmInspector(*workaround, *f.inputs).check(), first);
 }
 
-TEST(Psppsll, GrowPolicyRebuildsUntilEverythingFits) {
-  const test::LdmFixture f("atrium", 6, 32);
-  ASSERT_GT(f.census.total_fragments, f.views.total_pixels());  // so that it must grow
-  auto s = f.build("psppsll", {{"pool", "grow"}});
-  const BuildStats stats = s->stats();
-  EXPECT_EQ(stats.fragments_lost, 0u);
-  double rebuilds = 0;
-  for (const auto& [name, value] : stats.counters)
-    if (name == "pool_rebuilds") rebuilds = value;
-  EXPECT_GE(rebuilds, 1.0);
-  EXPECT_EQ(LdmInspector(*s, *f.inputs).check(), LdmInspector(*f.build("psppsll"), *f.inputs).check());
-}
-
 // A fixed pool that is too small: the overflow is flagged and the loss counted exactly;
 // what was stored is still a sorted subset of every list.
 TEST(Psppsll, FixedPoolOverflowIsDetectedAndCountedExactly) {
   const test::LdmFixture f("cornell", 8, 48);
   const uint64_t capacity = f.census.total_fragments / 2;
-  auto s = f.build("psppsll", {{"pool", "fixed"}, {"capacity", std::to_string(capacity)}});
+  auto s = f.build("psppsll", {{"capacity", std::to_string(capacity)}});
   const BuildStats stats = s->stats();
   EXPECT_TRUE(stats.overflow);
   EXPECT_EQ(stats.fragments_stored, capacity);
@@ -248,6 +235,7 @@ TEST(Psppsll, RejectsBadParameters) {
   EXPECT_THROW(make_structure("psppsll", StructureParams(Params{{"pool", "huge"}})), UserError);
   EXPECT_THROW(make_structure("psppsll", StructureParams(Params{{"pol", "grow"}})), UserError);
   EXPECT_THROW(make_structure("psppsll", StructureParams(Params{{"pool", "fixed"}})), UserError);
+  EXPECT_THROW(make_structure("psppsll", StructureParams(Params{{"capacity", "0"}})), UserError);
   EXPECT_THROW(make_structure("nosuch", StructureParams()), UserError);
 }
 

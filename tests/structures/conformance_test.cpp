@@ -39,11 +39,11 @@ lossy_configurations() {
       table = {
           {"psppsll",
            [](const FragmentCensus& c) -> std::optional<Params> {
-             return Params{{"pool", "fixed"}, {"capacity", std::to_string(c.total_fragments / 2)}};
+             return Params{{"capacity", std::to_string(c.total_fragments / 2)}};
            }},
           {"ppsll",
            [](const FragmentCensus& c) -> std::optional<Params> {
-             return Params{{"pool", "fixed"}, {"capacity", std::to_string(c.total_fragments / 2)}};
+             return Params{{"capacity", std::to_string(c.total_fragments / 2)}};
            }},
           {"dfbuffer", [](const FragmentCensus&) -> std::optional<Params> { return std::nullopt; }},
           {"habuffer",

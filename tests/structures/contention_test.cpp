@@ -19,6 +19,7 @@
 
 #include "harness/scene/scene_loader.h"
 #include "ldm_impls/common/ldm_inspector.h"
+#include "ldm_impls/common/sizing_driver.h"
 #include "ldm_impls/common/synthetic_fragments.h"
 #include "support/test_support.h"
 
@@ -90,7 +91,9 @@ struct ContentionSetup {
   ContentionWorkload workload;
   SyntheticFragmentSource source;
   FragmentCensus census;
-  BuildInputs inputs;
+  SizingPlan oracle_plan, previous_frame_plan;
+  BuildInputs inputs;                 // sized from the known census (the oracle policy)
+  BuildInputs previous_frame_inputs;  // grown from one fragment per pixel (previous_frame)
 
   ContentionSetup()
       : scene((test::gl_context(), load_scene("cornell"))),
@@ -100,7 +103,10 @@ struct ContentionSetup {
         workload(make_workload(views)),
         source(views, workload.fragments),
         census(source.expected_census()),
-        inputs{gpu_scene, gpu_views, census, {}, source} {}
+        oracle_plan{SizingPolicy::Oracle, census_needs(census), 0, "known census"},
+        previous_frame_plan(plan_without_census({SizingPolicy::PreviousFrame}, census.total_pixels)),
+        inputs{gpu_scene, gpu_views, oracle_plan, {}, source},
+        previous_frame_inputs{gpu_scene, gpu_views, previous_frame_plan, {}, source} {}
 };
 
 const ContentionSetup& setup() {
@@ -141,9 +147,11 @@ uint64_t pixels_not_matching(const ContentionSetup& s, const LdmStructure& struc
 struct Variant {
   std::string structure;
   std::map<std::string, std::string> params;
+  SizingPolicy sizing = SizingPolicy::Oracle;
   std::string label() const {
     std::string out = structure;
     for (const auto& [key, value] : params) out += "_" + key + "_" + value;
+    if (sizing != SizingPolicy::Oracle) out += std::string("_") + sizing_policy_name(sizing);
     return out;
   }
 };
@@ -165,11 +173,14 @@ TEST_P(Contention, ConcurrentInsertionsStoreExactlyTheKnownDepths) {
   const Variant& variant = GetParam();
   const uint64_t retries_before = s.source.retries();
   auto structure = make_structure(variant.structure, StructureParams(variant.params, "contention test"));
-  structure->prepare(s.inputs);
+  const BuildInputs& inputs =
+      variant.sizing == SizingPolicy::PreviousFrame ? s.previous_frame_inputs : s.inputs;
+  structure->prepare(inputs);
+  SizingDriver driver(*structure, inputs);
   // Repeated builds into the same storage: the clear paths too, and new interleavings.
   for (int build = 0; build < 3; ++build) {
     const std::string what = variant.label() + " build " + std::to_string(build);
-    structure->build(s.inputs, nullptr);
+    driver.build(nullptr);
     const BuildStats stats = structure->stats();
     EXPECT_EQ(stats.fragments_rasterized, s.census.total_fragments) << what;
     EXPECT_EQ(stats.fragments_stored, s.census.total_fragments) << what;
@@ -181,6 +192,8 @@ TEST_P(Contention, ConcurrentInsertionsStoreExactlyTheKnownDepths) {
     EXPECT_EQ(integrity.overlong_pixels, 0u) << what;
     EXPECT_EQ(pixels_not_matching(s, *structure, what), 0u) << what;
   }
+  if (variant.sizing == SizingPolicy::PreviousFrame)  // the first build outgrew the guess
+    EXPECT_EQ(driver.rebuilds(), 1u) << variant.label();
   const uint64_t retries = s.source.retries() - retries_before;
   RecordProperty("retries", std::to_string(retries));
   std::cout << variant.label() << ": " << s.census.total_fragments << " fragments x 3 builds, "
@@ -191,12 +204,12 @@ INSTANTIATE_TEST_SUITE_P(AllStructures, Contention, ::testing::ValuesIn(every_st
                          [](const auto& info) { return info.param.label(); });
 
 // Other paths under the same contention: the §3.4.3 atomic reads, a pool grown and rebuilt
-// from a one-node-per-pixel start, and post-sorts whose local array is shorter than the hot
+// from a one-node-per-pixel start (the previous_frame sizing policy), and post-sorts whose local array is shorter than the hot
 // pixels' lists (sorted in place).
 INSTANTIATE_TEST_SUITE_P(Paths, Contention,
                          ::testing::Values(Variant{"psppsll", {{"atomic_reads", "true"}}},
-                                           Variant{"psppsll", {{"pool", "grow"}}},
-                                           Variant{"ppsll", {{"pool", "grow"}}},
+                                           Variant{"psppsll", {}, SizingPolicy::PreviousFrame},
+                                           Variant{"ppsll", {}, SizingPolicy::PreviousFrame},
                                            Variant{"ppsll", {{"local", "8"}}},
                                            Variant{"dfbuffer", {{"local", "8"}}}),
                          [](const auto& info) { return info.param.label(); });

@@ -74,18 +74,18 @@ TEST(DfBuffer, SmallLocalArraysSortInPlaceAndCountIt) {
   test::expect_in_place_sort_matches_psppsll("dfbuffer", "atrium", 8, 32);
 }
 
-// A DF-buffer prepared from a census that disagrees with the scene by `delta` fragments,
-// as if the scene had changed since the census.
+// A DF-buffer prepared from an oracle plan that disagrees with the scene by `delta`
+// fragments, as if the scene had changed since the census.
 struct MisSizedDfBuffer {
-  FragmentCensus census;
+  SizingPlan plan;
   std::unique_ptr<BuildInputs> inputs;
   std::unique_ptr<LdmStructure> structure;
   BuildStats stats;
 
-  MisSizedDfBuffer(const LdmFixture& f, int64_t delta) : census(f.census) {
-    census.total_fragments = uint64_t(int64_t(census.total_fragments) + delta);
+  MisSizedDfBuffer(const LdmFixture& f, int64_t delta) : plan(f.sizing) {
+    plan.initial.fragments = uint64_t(int64_t(plan.initial.fragments) + delta);
     inputs = std::make_unique<BuildInputs>(
-        BuildInputs{*f.gpu_scene, *f.gpu_views, census, {}, *f.raster});
+        BuildInputs{*f.gpu_scene, *f.gpu_views, plan, {}, *f.raster});
     structure = make_structure("dfbuffer", {});
     structure->prepare(*inputs);
     structure->build(*inputs, nullptr);

@@ -21,7 +21,7 @@ void expect_default_k_is_the_census_maximum(const std::string& structure_name) {
   const LdmFixture f("cornell", 8, 32);
   const auto structure = f.build(structure_name);
   EXPECT_EQ(test::sizing_value(*structure, "k"), std::to_string(f.census.max_depth_complexity));
-  EXPECT_EQ(test::sizing_value(*structure, "k_policy"), "census_max_depth_complexity");
+  EXPECT_EQ(test::sizing_value(*structure, "k_source"), "oracle");
   EXPECT_EQ(structure->stats().fragments_lost, 0u);
 }
 
@@ -116,7 +116,7 @@ TEST(FixedArrays, MemoryIsPixelsTimesKWords) {
   for (const std::string name : {"ppfla", "psppfla"}) {
     const auto structure = f.build(name, {{"k", "5"}});
     EXPECT_EQ(test::sizing_value(*structure, "k"), "5");
-    EXPECT_EQ(test::sizing_value(*structure, "k_policy"), "parameter");
+    EXPECT_EQ(test::sizing_value(*structure, "k_source"), "parameter");
     uint64_t entries = 0, total = 0;
     for (const BufferMemory& m : structure->memory()) {
       if (m.name == "entries") entries = m.allocated;

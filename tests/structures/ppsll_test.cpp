@@ -17,22 +17,10 @@ TEST(Ppsll, SmallLocalArraysSortInPlaceAndCountIt) {
   test::expect_in_place_sort_matches_psppsll("ppsll", "atrium", 8, 32);
 }
 
-TEST(Ppsll, GrowPoolRebuildsUntilTheListsMatchPsppsll) {
-  const LdmFixture f("cornell", 8, 32);
-  // The grow pool starts at one node per pixel; the scene must need more for a rebuild.
-  ASSERT_GT(f.census.total_fragments, f.census.total_pixels);
-  const auto reference = test::build_psppsll_reference(f);
-  test::expect_same_lists_as_psppsll(f, reference, "ppsll", {{"pool", "grow"}},
-                                     f.census.max_depth_complexity);
-  const auto s = f.build("ppsll", {{"pool", "grow"}});
-  EXPECT_GE(test::stats_counter(s->stats(), "pool_rebuilds"), 1.0);
-  EXPECT_EQ(test::sizing_value(*s, "pool_policy"), "grow");
-}
-
 TEST(Ppsll, FixedPoolOverflowIsCountedAndTheStoredListsAreSorted) {
   const LdmFixture f("atrium", 8, 32);
   const uint64_t capacity = f.census.total_fragments / 2;
-  const auto s = f.build("ppsll", {{"pool", "fixed"}, {"capacity", std::to_string(capacity)}});
+  const auto s = f.build("ppsll", {{"capacity", std::to_string(capacity)}});
   const BuildStats stats = s->stats();
   EXPECT_TRUE(stats.overflow);
   EXPECT_EQ(stats.fragments_rasterized, f.census.total_fragments);
@@ -46,10 +34,10 @@ TEST(Ppsll, FixedPoolOverflowIsCountedAndTheStoredListsAreSorted) {
 TEST(Ppsll, MemoryAndSizingFollowTheCensus) {
   const LdmFixture f("cornell", 8, 32);
   const auto s = f.build("ppsll");
-  EXPECT_EQ(test::sizing_value(*s, "pool_policy"), "counted");
+  EXPECT_EQ(test::sizing_value(*s, "pool_size_source"), "oracle");
   EXPECT_EQ(test::sizing_value(*s, "pool_capacity_nodes"),
             std::to_string(f.census.total_fragments));
-  EXPECT_EQ(test::sizing_value(*s, "sort_local_policy"), "census");
+  EXPECT_EQ(test::sizing_value(*s, "sort_local_policy"), "oracle_max_depth_complexity");
   bool found_nodes = false;
   for (const BufferMemory& m : s->memory()) {
     if (m.name == "heads") {
@@ -68,7 +56,7 @@ TEST(Ppsll, OutOfRangeParametersAreUserErrors) {
   EXPECT_THROW(make_structure("ppsll", test::params({{"local", "0"}})), UserError);
   EXPECT_THROW(make_structure("ppsll", test::params({{"local", "129"}})), UserError);
   EXPECT_THROW(make_structure("ppsll", test::params({{"pool", "fixed"}})), UserError);
-  EXPECT_THROW(make_structure("ppsll", test::params({{"capacity", "10"}})), UserError);
+  EXPECT_THROW(make_structure("ppsll", test::params({{"capacity", "0"}})), UserError);
   EXPECT_THROW(make_structure("ppsll", test::params({{"locl", "4"}})), UserError);
   EXPECT_NO_THROW(make_structure("ppsll", test::params({{"local", "128"}})));
 }

@@ -22,6 +22,9 @@ struct LdmFixture : LdmSetup {
       : LdmSetup(std::move(s), with_normals(normals), n, r) {}
   LdmFixture(const std::string& scene_name, uint32_t n, uint32_t r)
       : LdmFixture(load_scene(scene_name), n, r) {}
+  // Structures sized by `sizing` (the census is taken all the same, for checks).
+  LdmFixture(const std::string& scene_name, uint32_t n, uint32_t r, SizingSettings sizing)
+      : LdmSetup(load_scene(scene_name), with_normals(true), n, r, FragmentPayload{}, sizing) {}
 
   // A prepared and built structure.
   std::unique_ptr<LdmStructure> build(const std::string& name,

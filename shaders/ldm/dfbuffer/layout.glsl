@@ -3,8 +3,8 @@
 //   offsets[p]     first slot of pixel p (exclusive prefix sum of counts);
 //                  offsets[LDM_HEADS_TOTAL] = the scan's total
 //   depths[slot]   the pixels' depths (float bits), back to back, ascending after the sort
-// The depth array holds LDM_DF_CAPACITY values, the census's total: a range that would
-// reach past it (the scene changed since the census) is cut there.
+// The depth array holds LDM_DF_CAPACITY values, as the sizing policy chose: a range that
+// would reach past it (a guess or budget too small) is cut there, and counted.
 #ifndef LDM_DFBUFFER_LAYOUT_GLSL
 #define LDM_DFBUFFER_LAYOUT_GLSL
 
