@@ -187,6 +187,7 @@ TEST(Cli, BadInputIsRejectedBeforeAnythingIsWritten) {
   expect_rejected("--scene cornell --param psppsll", "STRUCTURE:KEY=VALUE");
   expect_rejected("--scene cornell --param psppsll:pool=huge", "pool");
   expect_rejected("--scene cornell --sizing guess", "--sizing");
+  expect_rejected("--scene cornell --sizing oracle,,census", "--sizing");
   expect_rejected("--scene cornell --sizing budget", "--sizing-budget-mib");
   expect_rejected("--scene cornell --sizing census --sizing-budget-mib 4", "--sizing-budget-mib");
   expect_rejected("--scene cornell --param psppsll:colour=red", "colour");
