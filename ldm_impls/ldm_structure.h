@@ -70,7 +70,7 @@ struct BuildStats {
   std::vector<std::pair<std::string, double>> counters;
 };
 
-// key=value parameters of a structure (--param psppsll:pool=grow) or of a pass
+// key=value parameters of a structure (--param ppfla:k=4) or of a pass
 // (harness/passes/pass.h). Getters check ranges and remember which keys were read; finish()
 // rejects the rest, so a typo is an error.
 class StructureParams {

@@ -32,7 +32,7 @@ struct RunSettings {
   std::vector<SizingPolicy> sizing = {SizingPolicy::PreviousFrame};
   double sizing_budget_mib = 0;         // budget: required with --sizing budget
   uint32_t sizing_initial_per_pixel = 1;  // previous_frame's first guess
-  // structure name -> key -> value (--param psppsll:pool=grow)
+  // structure name -> key -> value (--param ppfla:k=4)
   std::map<std::string, std::map<std::string, std::string>> structure_params;
   // Shared.
   std::optional<float> normal_offset_pixels;  // empty: the scene's own

@@ -5,7 +5,7 @@
 // that every column of a real run is described here.
 //
 // A name may hold one placeholder in angle brackets standing for a non-empty word:
-// "counter_<name>" describes counter_pool_rebuilds, counter_max_age_used, ...
+// "counter_<name>" describes counter_max_age_used, counter_lists_sorted_in_place, ...
 #include <string>
 #include <vector>
 

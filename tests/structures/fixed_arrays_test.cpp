@@ -1,5 +1,5 @@
 // PPFLA and PSPPFLA (thesis §3.2.6, §3.2.7) against PSPPSLL on the same scene and views:
-// with the default k (the census's maximum depth complexity) both store every fragment and
+// with the default k (under the fixtures' oracle policy, the census's maximum depth complexity) both store every fragment and
 // read back bit-identical lists; with a smaller k the lost fragments are counted exactly,
 // and PSPPFLA keeps each pixel's k nearest.
 #include <gtest/gtest.h>
