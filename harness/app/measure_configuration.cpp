@@ -1,5 +1,7 @@
 #include "harness/app/measure_configuration.h"
 
+#include <filesystem>
+
 #include "harness/app/accuracy.h"
 #include "harness/passes/raster_baseline.h"
 #include "harness/records/output_folder.h"
@@ -141,6 +143,11 @@ Record measure_configuration(const Scene& scene, const Configuration& config,
     add_accuracy(r, pass->reference(scene, image.width, image.height, settings.reference), image,
                  settings.write_images ? &folder : nullptr, stem);
   }
+  // Last, so that a configuration abandoned on the way (an interrupted reference) leaves no
+  // samples behind, as it leaves no record.
+  const OutputFolder samples(paths.out_dir,
+                             (std::filesystem::path(paths.out_dir) / "samples").string());
+  r.set("frame_samples_csv", samples.write_text(config.id() + "-frames.csv", frame_samples_csv(m)));
   return r;
 }
 

@@ -6,6 +6,7 @@
 #include "harness/app/ldm_setup.h"
 #include "harness/metrics/image_checks.h"
 #include "harness/passes/raster_baseline.h"
+#include "harness/records/record.h"
 #include "harness/util/error.h"
 #include "harness/util/hash.h"
 #include "ldm_impls/common/ldm_inspector.h"
@@ -46,6 +47,14 @@ std::vector<TimingSummary> Measurement::summaries() const {
   TimingSeries series;
   for (const auto& frame : frames) series.add_frame(frame);
   return series.summarize();
+}
+
+std::string frame_samples_csv(const Measurement& m) {
+  std::string out = "frame,subpass,ms\n";
+  for (size_t frame = 0; frame < m.frames.size(); ++frame)
+    for (const auto& [name, ms] : m.frames[frame])
+      out += std::to_string(frame) + "," + name + "," + format_csv_value(ms) + "\n";
+  return out;
 }
 
 uint64_t Measurement::bytes_allocated() const {

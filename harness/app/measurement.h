@@ -90,6 +90,10 @@ struct Measurement {
   uint64_t bytes_used() const;
 };
 
+// Every measured frame's times as a tidy CSV: "frame,subpass,ms", one row per sub-pass and
+// sum of each frame, in order (for statistical comparisons of runs, beyond the summaries).
+std::string frame_samples_csv(const Measurement& measurement);
+
 // Throws UserError (bad parameters, a configuration the device cannot hold) or GpuError; a
 // build that is merely wrong is not an exception but an "invalid" status.
 Measurement measure(const Scene& scene, const MeasurementRequest& request);

@@ -65,6 +65,7 @@ const std::vector<ColumnSpec>& record_columns() {
       {"time", "build_vs_raster_touch", "", "build median over raster_touch median (every fragment shaded, one atomicAdd each)"},
       {"time", "raster_touch_fragments", "fragments", "fragments the raster_touch baseline shaded (checked against the census)"},
       {"time", "fragments_per_second", "1/s", "census fragments over the build median"},
+      {"time", "frame_samples_csv", "", "every measured frame's time of every sub-pass (frame, subpass, ms), path relative to the records"},
       {"time", "wall_seconds", "s", "wall time of the whole configuration, reference included"},
       {"memory", "mem_<buffer>_allocated", "bytes", "bytes reserved for one of the structure's buffers"},
       {"memory", "mem_<buffer>_used", "bytes", "bytes of that buffer holding data after the last build"},

@@ -2,6 +2,8 @@
 
 #include <filesystem>
 
+#include "harness/util/files.h"
+
 namespace ldm {
 
 OutputFolder::OutputFolder(std::string records_dir, std::string images_dir)
@@ -13,6 +15,11 @@ std::string OutputFolder::file(const std::string& file_name) const {
 
 std::string OutputFolder::record_path(const std::string& file_name) const {
   return (std::filesystem::relative(images_dir_, records_dir_) / file_name).string();
+}
+
+std::string OutputFolder::write_text(const std::string& file_name, const std::string& text) const {
+  write_text_atomically(file(file_name), text);
+  return record_path(file_name);
 }
 
 bool OutputFolder::contains(const std::string& file_name) const {

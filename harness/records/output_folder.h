@@ -15,6 +15,8 @@ class OutputFolder {
   // <images_dir>/<file_name> written as linear EXR or sRGB PNG; returns its record path.
   std::string write_exr(const std::string& file_name, const Image& image) const;
   std::string write_png(const std::string& file_name, const Image& image) const;
+  // A text file (e.g. CSV); the folder is created when missing.
+  std::string write_text(const std::string& file_name, const std::string& text) const;
   bool contains(const std::string& file_name) const;
   // The record path of <images_dir>/<file_name>.
   std::string record_path(const std::string& file_name) const;

@@ -64,11 +64,13 @@ void prepare_run_folder(const std::string& out_dir, const RunFolderPlan& plan) {
   if (plan.state == RunFolderState::Replace) {
     for (const char* name : {kJournalFile, "records.csv", "records.json"}) fs::remove(dir / name, error);
     fs::remove_all(dir / "images", error);
+    fs::remove_all(dir / "samples", error);
   }
   fs::create_directories(dir / "images", error);
   if (error) throw UserError("--out: cannot create '" + (dir / "images").string() + "': " + error.message());
   remove_temporaries(dir);
   remove_temporaries(dir / "images");
+  remove_temporaries(dir / "samples");
 }
 
 void remove_configuration_images(const std::string& images_dir, const std::string& image_stem) {

@@ -62,6 +62,13 @@ TEST(Columns, EveryColumnOfARunIsDescribed) {
     ++described;
   }
   EXPECT_GT(described, 80);
+  // Each record's per-frame samples lie beside the records (one file per configuration).
+  int records = 0, sample_files = 0;
+  for (std::string row; std::getline(csv, row);) records += !row.empty();
+  for (const auto& entry : fs::directory_iterator(dir / "run" / "samples"))
+    sample_files += entry.path().extension() == ".csv";
+  EXPECT_EQ(sample_files, records);
+  EXPECT_EQ(records, 6);
 }
 
 }  // namespace

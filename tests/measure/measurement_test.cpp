@@ -146,6 +146,14 @@ TEST(Measurement, KeepsEveryFrameAndSplitsBuildFromThePass) {
   }
   EXPECT_EQ(m.raster_touch_fragments, m.census.fragments);
   EXPECT_EQ(m.summaries().front().samples, 3u);
+  // Every frame's every time, one CSV row each, in order.
+  const std::string csv = frame_samples_csv(m);
+  size_t rows = 0, expected_rows = 1;
+  for (char c : csv) rows += c == '\n';
+  for (const FrameTimes& frame : m.frames) expected_rows += frame.size();
+  EXPECT_EQ(rows, expected_rows);
+  EXPECT_EQ(csv.rfind("frame,subpass,ms\n0,", 0), 0u) << csv.substr(0, 40);
+  EXPECT_NE(csv.find("\n2,frame,"), std::string::npos);
   ASSERT_EQ(m.images.size(), 1u);
   EXPECT_EQ(m.images[0].name, "ao");
   EXPECT_EQ(m.images[0].image.width, 32);
