@@ -16,4 +16,4 @@ export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 # TBB's worker threads keep their arenas until exit; Embree's device caches likewise.
 export LSAN_OPTIONS="suppressions=$PWD/tests/sanitizer/lsan.supp:print_suppressions=0"
 ctest --test-dir build-asan --output-on-failure -j "$(nproc)" --timeout 600 \
-  -R '^(scene|metrics|reference|views)\.|^extremes\.(ExtremesScene|ExtremesReference|FuzzCorpus)\.'
+  -R '^(scene|metrics|reference|views)\.|^extremes\.(ExtremesScene|ExtremesReference|ExtremesJournal|FuzzCorpus)\.'
