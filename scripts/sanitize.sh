@@ -2,9 +2,9 @@
 # AddressSanitizer + UndefinedBehaviorSanitizer build of the test suites into build-asan/
 # (-O1: sanitizer-friendly and quick to compile), then runs the suites that do not need the
 # GPU path: scene, metrics, reference, views and the CPU-only extremes tests (scene parsing,
-# the reference far from the origin, the journal, the fuzz corpus). The GL suites are left out: Mesa's
-# llvmpipe is not instrumented, and its shader compiles under ASan take longer than the CI
-# budget. UB is fatal (-fno-sanitize-recover); leaks are reported.
+# the reference far from the origin, the journal, the fuzz corpus). The GL suites are left
+# out: Mesa's llvmpipe is not instrumented, and its shader compiles under ASan take longer
+# than the CI budget. UB is fatal (-fno-sanitize-recover); leaks are reported.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 suites=(scene metrics reference views extremes)
