@@ -2,8 +2,9 @@
 // Post-sorting, shared by PPSLL and the DF-buffer (thesis §3.2.8 "Sorting", §3.3.3): a pass
 // over every pixel copies its fragments into a shader-local array of fixed size K, sorts it
 // with insertion sort and writes the depths back in order. A pixel with more than K
-// fragments is sorted in place in storage memory instead, which §3.3.3 calls detrimental to
-// performance; the sort passes count those pixels ("lists_sorted_in_place").
+// fragments is sorted in place in storage memory instead (PPSLL: merge sort relinking the
+// nodes; DF-buffer: heap sort, shaders/ldm/common/heap_sort.glsl), which §3.3.3 calls
+// detrimental to performance; the sort passes count those pixels ("lists_sorted_in_place").
 // GLSL side: shaders/ldm/common/post_sort.glsl.
 #include <cstdint>
 #include <string>

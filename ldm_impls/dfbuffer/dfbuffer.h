@@ -17,7 +17,7 @@
 // Parameters:
 //   local=K   size of the sort's local array, 1..128 (default: under the oracle policy the
 //             census's maximum depth complexity capped at 128, else 64); longer ranges are
-//             sorted in place in the depth array and counted as "lists_sorted_in_place".
+//             heap-sorted in place in the depth array and counted as "lists_sorted_in_place".
 #include <memory>
 
 #include "harness/gl/gl_objects.h"

@@ -10,8 +10,8 @@
 //   capacity=<nodes>    fixes the node pool (common/list_node_pool.h); else the sizing policy
 //   local=K             size of the sort's local array, 1..128 (default: under the oracle
 //                       policy the census's maximum depth complexity capped at 128, else
-//                       kDefaultSortLocal = 64). Longer lists are sorted in place in storage
-//                       memory and counted as "lists_sorted_in_place".
+//                       kDefaultSortLocal = 64). Longer lists are merge-sorted in place by
+//                       relinking their nodes and counted as "lists_sorted_in_place".
 #include "ldm_impls/common/list_node_pool.h"
 
 namespace ldm {

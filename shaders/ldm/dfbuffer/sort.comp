@@ -1,6 +1,6 @@
 // DF-buffer step 4, sorting (thesis §3.2.10, §3.3.3): one invocation per LDM pixel of all
 // views sorts the pixel's contiguous range: through the local array when it fits, else by
-// insertion sort in place in the depth array (counted).
+// heap sort in place in the depth array (counted; ldm/common/heap_sort.glsl says why heap sort).
 layout(local_size_x = 64) in;
 
 #include "ldm/common/compute_grid.glsl"
@@ -15,18 +15,11 @@ layout(std430, binding = DF_DEPTHS_BINDING) restrict buffer DfDepths {
 };
 layout(binding = LDM_COUNTER_BINDING, offset = 8) uniform atomic_uint lists_sorted_in_place;
 
-// Insertion sort of df_depths[first .. end) in storage memory: the slow path. Depths move
-// as bits (see post_sort.glsl).
-void sort_range_in_place(uint first, uint end) {
-  for (uint i = first + 1u; i < end; ++i) {
-    const uint bits = df_depths[i];
-    const float depth = uintBitsToFloat(bits);
-    uint j = i;
-    for (; j > first && uintBitsToFloat(df_depths[j - 1u]) > depth; --j)
-      df_depths[j] = df_depths[j - 1u];
-    df_depths[j] = bits;
-  }
-}
+// The pixel's range, first .. end, for the in-place heap sort (the slow path).
+uint heap_first;
+uint heap_load(uint i) { return df_depths[heap_first + i]; }
+void heap_store(uint i, uint bits) { df_depths[heap_first + i] = bits; }
+#include "ldm/common/heap_sort.glsl"
 
 void main() {
   const uint pixel = linear_invocation_index();
@@ -36,7 +29,8 @@ void main() {
   if (end <= first + 1u) return;  // empty or one fragment: sorted already
   const uint count = end - first;
   if (count > LDM_SORT_LOCAL) {
-    sort_range_in_place(first, end);
+    heap_first = first;
+    heap_sort_in_place(count);
     atomicCounterIncrement(lists_sorted_in_place);
     return;
   }
