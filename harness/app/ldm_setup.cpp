@@ -17,7 +17,7 @@ SizingPlan make_sizing_plan(const SizingSettings& settings, const FragmentCensus
 
 LdmSetup::LdmSetup(Scene s, AttributeSet attributes, uint32_t view_count, uint32_t resolution,
                    FragmentPayload payload, SizingSettings sizing_settings)
-    : scene(std::move(s)) {
+    : scene(centred_on_bounding_sphere(s)) {
   gpu_scene = std::make_unique<GpuScene>(scene, attributes);
   views = make_view_set(scene.bounding_sphere(), view_count, resolution);
   gpu_views = std::make_unique<GpuViewSet>(views);

@@ -15,6 +15,10 @@
 namespace ldm {
 
 struct LdmSetup {
+  // The scene in its centred frame (centred_on_bounding_sphere): the geometry, the LDM views
+  // and every pass (camera, light, G-buffer positions) use it, so that depths and positions
+  // are computed in coordinates of the scene's extent, whatever its distance from the world
+  // origin. Add scene.frame_origin to a position read back to get world coordinates.
   Scene scene;
   std::unique_ptr<GpuScene> gpu_scene;
   ViewSet views;

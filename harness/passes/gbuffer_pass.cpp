@@ -25,6 +25,10 @@ GBufferPass::GBufferPass(int width, int height)
 
 void GBufferPass::render(const GpuScene& scene, const Scene& description, GpuTimer* timer) {
   if (!scene.attributes().normals) throw GpuError("G-buffer pass needs scene normals uploaded");
+  // A world-frame camera over centred geometry would render a plausible but wrong image.
+  if (scene.frame_origin() != description.frame_origin)
+    throw GpuError("G-buffer pass: the camera's scene and the uploaded geometry are in "
+                   "different frames (pass LdmSetup::scene, not the scene as loaded)");
   ScopedSubpass timed(timer, "gbuffer");
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
   glViewport(0, 0, width_, height_);

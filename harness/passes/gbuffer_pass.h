@@ -1,5 +1,6 @@
 #pragma once
-// Rasterises the scene from the user's camera into world positions and camera-facing
+// Rasterises the scene from the user's camera into positions (in the scene's frame,
+// Scene::frame_origin: centred for LdmSetup's scene) and camera-facing
 // normals, one sample per pixel centre (the points the AO pass and the reference shade).
 #include "harness/gl/gl_objects.h"
 #include "harness/image/image.h"

@@ -55,7 +55,7 @@ Image render_half_with(const EmbreeScene& embree, const AoSettings& ao, int widt
 constexpr double kMaterialOffsetFraction = 1e-3;
 
 void annotate_ray_offset(ReferenceResult& result, const Scene& scene, const AoSettings& ao) {
-  result.ray_offset = AoEstimator::max_ray_offset(scene_centred_for_tracing(scene));
+  result.ray_offset = AoEstimator::max_ray_offset(centred_on_bounding_sphere(scene));
   const double radius = scene.bounding_sphere().radius;
   const char* scale = ao.attenuated && result.ray_offset > kMaterialOffsetFraction * ao.d_max
                           ? "d_max"
@@ -73,20 +73,10 @@ void annotate_ray_offset(ReferenceResult& result, const Scene& scene, const AoSe
 
 }  // namespace
 
-Scene scene_centred_for_tracing(const Scene& scene) {
-  Scene centred = scene;
-  const glm::vec3 centre = scene.bounding_sphere().centre;
-  for (glm::vec3& p : centred.mesh.positions) p -= centre;
-  centred.camera.eye -= centre;
-  centred.camera.target -= centre;
-  centred.light.position -= centre;
-  return centred;
-}
-
 Image render_ao_half(const Scene& scene, const AoSettings& ao, int width, int height,
                      uint32_t spp, uint64_t seed, uint32_t pass, int threads, bool progress) {
   scene.validate();
-  const Scene centred = scene_centred_for_tracing(scene);
+  const Scene centred = centred_on_bounding_sphere(scene);
   const EmbreeScene embree(centred);
   return render_half_with(embree, ao, width, height, spp, seed, pass, threads, progress);
 }
@@ -97,7 +87,7 @@ ReferenceResult render_ao_reference(const Scene& scene, const AoReferenceRequest
   validate_spp_rule(rule);
   scene.validate();
   const AoSettings ao = settings_used(scene, request);
-  const Scene centred = scene_centred_for_tracing(scene);
+  const Scene centred = centred_on_bounding_sphere(scene);
   const EmbreeScene embree(centred);  // one BVH for every pass of both halves
   ReferenceResult result = render_reference_pair(
       [&](uint64_t seed, uint32_t spp, uint32_t pass) {

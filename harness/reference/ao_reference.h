@@ -29,11 +29,6 @@ struct AoReferenceRequest {
   bool progress = true;
 };
 
-// The scene translated so that its bounding sphere is centred on the origin (camera and light
-// with it). The reference traces this copy: float precision then depends on the scene's
-// extent, not on its distance from the world origin (AO is translation invariant).
-Scene scene_centred_for_tracing(const Scene& scene);
-
 // One half image: `spp` samples per pixel with seed `seed`, independent pass `pass`.
 Image render_ao_half(const Scene& scene, const AoSettings& ao, int width, int height,
                      uint32_t spp, uint64_t seed, uint32_t pass = 0, int threads = 0,

@@ -10,7 +10,9 @@ std::string AttributeSet::describe() const {
 }
 
 GpuScene::GpuScene(const Scene& scene, AttributeSet attributes)
-    : attributes_(attributes), triangle_count_(scene.mesh.triangles.size()) {
+    : attributes_(attributes),
+      frame_origin_(scene.frame_origin),
+      triangle_count_(scene.mesh.triangles.size()) {
   const auto& mesh = scene.mesh;
   positions_ = GlBuffer("scene_positions", mesh.positions.size() * sizeof(glm::vec3),
                         mesh.positions.data(), 0);

@@ -30,12 +30,16 @@ class GpuScene {
   // Draws every triangle `instances` times in one call (gl_InstanceID 0 .. instances - 1).
   void draw_instanced(uint32_t instances) const;
   const AttributeSet& attributes() const { return attributes_; }
+  // The frame the positions were uploaded in (Scene::frame_origin): a pass that draws this
+  // geometry with a camera must take the camera from a scene in the same frame.
+  glm::vec3 frame_origin() const { return frame_origin_; }
   uint64_t triangle_count() const { return triangle_count_; }
   uint64_t bytes() const;  // all geometry buffers
   std::vector<const GlBuffer*> buffers() const;
 
  private:
   AttributeSet attributes_;
+  glm::vec3 frame_origin_{0.0f};
   uint64_t triangle_count_ = 0;
   GlVertexArray vao_;
   GlBuffer positions_, normals_, indices_, triangle_materials_, albedo_;

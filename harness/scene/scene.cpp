@@ -53,6 +53,17 @@ BoundingSphere Scene::bounding_sphere() const {
   return s;
 }
 
+Scene centred_on_bounding_sphere(const Scene& scene) {
+  Scene centred = scene;
+  const glm::vec3 centre = scene.bounding_sphere().centre;
+  for (glm::vec3& p : centred.mesh.positions) p -= centre;
+  centred.camera.eye -= centre;
+  centred.camera.target -= centre;
+  centred.light.position -= centre;
+  centred.frame_origin += centre;
+  return centred;
+}
+
 uint64_t Scene::content_hash() const {
   Fnv1a h;
   h.add_vector(mesh.positions);

@@ -100,6 +100,10 @@ struct Scene {
   Camera camera;
   SpotLight light;
   AoSettings ao;
+  // World position of this scene's coordinate origin: zero for a scene as loaded, the
+  // bounding-sphere centre for the centred copy that the GPU and the reference compute in
+  // (centred_on_bounding_sphere). World point = scene point + frame_origin.
+  glm::vec3 frame_origin{0.0f};
 
   Bounds bounds() const;
   // Centre of the bounds and the largest vertex distance from it: every vertex lies inside.
@@ -110,5 +114,13 @@ struct Scene {
   // Throws UserError (naming the scene) on empty geometry, NaN coordinates, bad indices.
   void validate() const;
 };
+
+// The one frame every computation on a scene works in: the scene translated so that its
+// bounding sphere is centred on the origin (camera and light with it; frame_origin records
+// the shift). AO is translation invariant, and in this frame float precision depends on the
+// scene's extent, not on its distance from the world origin (32-bit floats 1e5 from the
+// origin are 0.008 apart). The GPU (LdmSetup: geometry, LDM views, G-buffer camera) and the
+// reference (render_ao_half) both use it.
+Scene centred_on_bounding_sphere(const Scene& scene);
 
 }  // namespace ldm

@@ -198,12 +198,14 @@ void expect_gpu_within_ldm_bounds(const AnalyticCase& ac, uint32_t n, uint32_t r
   const int size = 48;
   GBufferPass gbuffer(size, size);
   AoPass ao(*structure, *f.inputs, size, size, settings);
-  gbuffer.render(*f.gpu_scene, scene, nullptr);
+  gbuffer.render(*f.gpu_scene, f.scene, nullptr);
   ao.render(gbuffer, nullptr);
   const Image image = ao.read_image();
   const Image positions = gbuffer.read_positions();
   const Image normals = gbuffer.read_normals();
-  const auto rects = analytic_rects(ac.scene, ac.half, ac.h, ac.height);
+  // The generators' rectangles, moved into the frame the GPU computed in (LdmSetup::scene).
+  auto rects = analytic_rects(ac.scene, ac.half, ac.h, ac.height);
+  for (Rect& rect : rects) rect.o -= glm::dvec3(f.scene.frame_origin);
 
   int covered = 0, outside = 0;
   double width_sum = 0, error_sum = 0;
@@ -377,7 +379,7 @@ Image ao_image(const Scene& scene, const std::string& structure, uint32_t n, uin
   auto s = f.build(structure);
   GBufferPass gbuffer(size, size);
   AoPass ao(*s, *f.inputs, size, size, scene.ao);
-  gbuffer.render(*f.gpu_scene, scene, nullptr);
+  gbuffer.render(*f.gpu_scene, f.scene, nullptr);
   ao.render(gbuffer, nullptr);
   return ao.read_image();
 }
@@ -424,7 +426,7 @@ TEST(AoEstimatorChoice, NormalizedIsExactlyOneOnAnOpenPlaneWhereEq13IsTheQuadrat
   auto structure = f.build("psppsll");
   const int size = 32;
   GBufferPass gbuffer(size, size);
-  gbuffer.render(*f.gpu_scene, scene, nullptr);
+  gbuffer.render(*f.gpu_scene, f.scene, nullptr);
   const Image positions = gbuffer.read_positions();
   const Image normals = gbuffer.read_normals();
   for (AoTrace trace : {AoTrace::Listing5, AoTrace::Interval, AoTrace::Plane}) {

@@ -28,7 +28,7 @@ TEST(AoConvergence, ErrorAgainstTheReferenceFallsAsNGrows) {
     auto structure = f.build("psppsll");
     GBufferPass gbuffer(width, height);
     AoPass ao(*structure, *f.inputs, width, height, scene.ao);
-    gbuffer.render(*f.gpu_scene, scene, nullptr);
+    gbuffer.render(*f.gpu_scene, f.scene, nullptr);
     ao.render(gbuffer, nullptr);
     const ImageComparison m = compare_images(reference.image, ao.read_image(), {});
     std::printf("cornell N=%u R=256 %dx%d: MSE %.4e, MSSIM %.4f (reference noise MSE %.1e)\n", n,
@@ -54,7 +54,7 @@ double trace_mse(const test::LdmFixture& f, const LdmStructure& structure, const
   settings.trace = trace;
   settings.normal_offset_pixels = normal_offset;
   AoPass ao(structure, *f.inputs, reference.width, reference.height, settings);
-  gbuffer.render(*f.gpu_scene, scene, nullptr);
+  gbuffer.render(*f.gpu_scene, f.scene, nullptr);
   ao.render(gbuffer, nullptr);
   return compare_images(reference, ao.read_image(), {}).mse;
 }

@@ -75,9 +75,9 @@ TEST(ExtremesReference, TinyAndHugeScenesHaveTheSameAo) {
 
 TEST(ExtremesReference, RayOffsetScalesWithTheSceneNotItsPosition) {
   const Scene unit = dyadic_planes();
-  const float at_origin = AoEstimator::max_ray_offset(scene_centred_for_tracing(unit));
+  const float at_origin = AoEstimator::max_ray_offset(centred_on_bounding_sphere(unit));
   const float far = AoEstimator::max_ray_offset(
-      scene_centred_for_tracing(transformed(unit, 1.0f, glm::vec3(1e6f))));
+      centred_on_bounding_sphere(transformed(unit, 1.0f, glm::vec3(1e6f))));
   EXPECT_GT(at_origin, 0.0f);
   EXPECT_EQ(far, at_origin);
   // A small fraction of the scene: the floor's half size is 4.

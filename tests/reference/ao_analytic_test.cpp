@@ -133,7 +133,7 @@ glm::dvec3 floor_point(const Scene& scene, int x, int y) {
 }
 
 float ray_offset(const Scene& scene) {
-  const Scene centred = scene_centred_for_tracing(scene);  // EmbreeScene keeps a reference
+  const Scene centred = centred_on_bounding_sphere(scene);  // EmbreeScene keeps a reference
   const EmbreeScene embree(centred);
   return AoEstimator(embree, scene.ao, kSize, kSize).ray_offset();
 }
