@@ -20,7 +20,7 @@ import sys
 
 # Columns that differ between two runs of the same build, or between two builds by design.
 VOLATILE = re.compile(
-    r"^(.*_ms_(median|min|max|stddev|samples)|wall_seconds|build_vs_raster\w*|fragments_per_second|"
+    r"^(.*_ms_(median|min|max|stddev)|wall_seconds|build_vs_raster\w*|fragments_per_second|"
     r"ref_render_seconds|ref_from_cache|git_commit|ldmbench_version)$")
 
 

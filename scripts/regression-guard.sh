@@ -40,6 +40,8 @@ fi
 
 if [ "$update" -eq 1 ]; then
   cp "$work/run/records.json" "$work/run/records.csv" "$baseline/"
+  rm -rf "$baseline/samples"
+  [ ! -d "$work/run/samples" ] || cp -r "$work/run/samples" "$baseline/samples"  # named by the records
   echo "regression-guard: baseline $baseline updated"
   exit 0
 fi

@@ -3,7 +3,6 @@
 #include <filesystem>
 
 #include "harness/app/accuracy.h"
-#include "harness/compare/samples.h"
 #include "harness/passes/raster_baseline.h"
 #include "harness/records/output_folder.h"
 #include "harness/util/error.h"
@@ -19,15 +18,12 @@ TimerSource timer_source(const std::string& option, const DeviceInfo& device) {
   return default_timer_source(device.gl_renderer);
 }
 
-void add_timings(Record& r, const std::vector<TimingSummary>& summaries,
-                 const std::vector<FrameTimes>& frames) {
+void add_timings(Record& r, const std::vector<TimingSummary>& summaries) {
   for (const auto& s : summaries) {
     r.set(s.subpass + "_ms_median", s.median);
     r.set(s.subpass + "_ms_min", s.min);
     r.set(s.subpass + "_ms_max", s.max);
     r.set(s.subpass + "_ms_stddev", s.stddev);
-    // Every frame's time, so `ldmbench compare` can test a change (harness/compare).
-    r.set(s.subpass + "_ms_samples", format_samples(frame_samples(frames, s.subpass)));
   }
 }
 
@@ -107,7 +103,7 @@ void add_measurement(Record& r, const Measurement& m) {
   r.set("sizing_reallocations", m.sizing_reallocations);
 
   const auto summaries = m.summaries();
-  add_timings(r, summaries, m.frames);
+  add_timings(r, summaries);
   const TimingSummary* build = find_summary(summaries, "build");
   const TimingSummary* raster = find_summary(summaries, kRasterBaselineSubpass);
   if (build && raster && raster->median > 0)

@@ -54,7 +54,7 @@ Runner add_compare_runs_command(CLI::App& app) {
                   "of time, memory, accuracy, status (or none)")
       ->capture_default_str();
   cmd->add_option("--time-subpasses", o->thresholds.time_subpasses,
-                  "Sub-passes whose per-frame times are compared (their <subpass>_ms_samples)")
+                  "Sub-passes whose per-frame times are compared (from the frame_samples_csv files)")
       ->delimiter(',')
       ->capture_default_str();
   cmd->add_option("--alpha", o->thresholds.alpha, "Significance level of the U test")

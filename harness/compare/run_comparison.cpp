@@ -86,8 +86,15 @@ TimeChange compare_time(const std::string& subpass, const std::vector<double>& a
   return c;
 }
 
-void compare_pair(ConfigChange& c, const json& a, const json& b, bool same_device,
-                  const CompareThresholds& t) {
+// The record's per-frame samples; empty when it names none (failed, or an older run).
+FrameSamples samples_of(const RunRecords& run, const json& record) {
+  const std::string file = text(record, "frame_samples_csv");
+  if (file.empty()) return {};
+  return load_frame_samples((std::filesystem::path(run.dir) / file).string());
+}
+
+void compare_pair(ConfigChange& c, const RunRecords& base, const json& a, const RunRecords& next,
+                  const json& b, bool same_device, const CompareThresholds& t) {
   c.new_status = text(b, "status");
   c.status_worse = status_rank(c.new_status) > status_rank(c.base_status);
 
@@ -96,17 +103,17 @@ void compare_pair(ConfigChange& c, const json& a, const json& b, bool same_devic
     c.time_note = "devices differ (" + text(a, "device") + " vs " + text(b, "device") + ")";
   else if (timer_a != timer_b)
     c.time_note = "timers differ (" + timer_a + " vs " + timer_b + ")";
-  else
+  else {
+    const FrameSamples sa = samples_of(base, a), sb = samples_of(next, b);
     for (const std::string& subpass : t.time_subpasses) {
-      const std::string column = subpass + "_ms_samples";
-      const std::vector<double> sa = parse_samples(text(a, column.c_str()), c.config_id + " " + column);
-      const std::vector<double> sb = parse_samples(text(b, column.c_str()), c.config_id + " " + column);
-      if (sa.empty() || sb.empty()) {
-        if (c.time_note.empty()) c.time_note = "no " + column + " in both";
+      auto ia = sa.find(subpass), ib = sb.find(subpass);
+      if (ia == sa.end() || ib == sb.end()) {
+        c.time_note += (c.time_note.empty() ? "" : ", ") + subpass + " samples not in both";
         continue;
       }
-      c.times.push_back(compare_time(subpass, sa, sb, t));
+      c.times.push_back(compare_time(subpass, ia->second, ib->second, t));
     }
+  }
 
   c.base_allocated = number(a, "bytes_allocated");
   c.new_allocated = number(b, "bytes_allocated");
@@ -149,6 +156,7 @@ RunRecords load_run_records(const std::string& folder_or_file) {
   if (!in) throw UserError(path.string() + ": cannot read (expected a run folder or its records.json)");
   RunRecords run;
   run.path = path.string();
+  run.dir = path.parent_path().string();
   json root;
   try {
     root = json::parse(in);
@@ -204,7 +212,7 @@ RunComparison compare_runs(const RunRecords& base, const RunRecords& next, const
       c.time_note = "not in NEW";
     } else {
       used.insert(b);
-      compare_pair(c, a, *b, same_device, t);
+      compare_pair(c, base, a, next, *b, same_device, t);
     }
     out.matched.push_back(std::move(c));
   }

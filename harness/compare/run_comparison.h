@@ -2,7 +2,7 @@
 // `ldmbench compare BASE NEW`: what changed between two runs, configuration by configuration.
 // Configurations are matched by identity (config_id and device; a configuration found only
 // on another device is still matched, but its times are not compared). Per configuration:
-//   time      each chosen sub-pass's per-frame samples (<subpass>_ms_samples) under the
+//   time      each chosen sub-pass's per-frame samples (the record's frame_samples_csv) under the
 //             Mann-Whitney U test; FAST/SLOW need significance AND a minimum relative change
 //             of the median (nvbench's rule), SAME is a change below that minimum, UNSURE a
 //             large change the samples cannot confirm. Refused across devices or timers.
@@ -21,6 +21,7 @@ namespace ldm {
 
 struct RunRecords {
   std::string path;  // the records.json read
+  std::string dir;   // its folder: frame_samples_csv paths are relative to it
   nlohmann::json run;
   std::vector<nlohmann::json> records;
 };

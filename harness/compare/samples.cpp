@@ -1,50 +1,41 @@
 #include "harness/compare/samples.h"
 
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
+#include <fstream>
+#include <sstream>
 
 #include "harness/util/error.h"
 
 namespace ldm {
 
-std::vector<double> frame_samples(const std::vector<FrameTimes>& frames, const std::string& subpass) {
-  std::vector<double> samples;
-  for (const FrameTimes& frame : frames)
-    for (const auto& [name, ms] : frame)
-      if (name == subpass) {
-        samples.push_back(ms);
-        break;
-      }
-  return samples;
-}
-
-std::string format_samples(const std::vector<double>& samples) {
-  std::string text;
-  char buffer[32];
-  for (double v : samples) {
-    std::snprintf(buffer, sizeof buffer, "%.6g", v);
-    text += (text.empty() ? "" : ";") + std::string(buffer);
-  }
-  return text;
-}
-
-std::vector<double> parse_samples(const std::string& text, const std::string& where) {
-  std::vector<double> samples;
-  if (text.empty()) return samples;
-  size_t start = 0;
-  while (true) {
-    const size_t end = text.find(';', start);
-    const std::string item = text.substr(start, end == std::string::npos ? std::string::npos : end - start);
+FrameSamples parse_frame_samples(const std::string& csv, const std::string& where) {
+  std::stringstream in(csv);
+  std::string line;
+  if (!std::getline(in, line) || line != "frame,subpass,ms")
+    throw UserError(where + ":1: expected the header 'frame,subpass,ms'");
+  FrameSamples samples;
+  for (int number = 2; std::getline(in, line); ++number) {
+    const size_t a = line.find(','), b = a == std::string::npos ? a : line.find(',', a + 1);
+    const std::string bad = where + ":" + std::to_string(number) + ": ";
+    if (b == std::string::npos || line.find(',', b + 1) != std::string::npos)
+      throw UserError(bad + "expected 'frame,subpass,ms', got '" + line + "'");
+    const std::string ms = line.substr(b + 1);
     char* stop = nullptr;
-    const double v = item.empty() ? NAN : std::strtod(item.c_str(), &stop);
-    if (item.empty() || *stop != '\0' || !std::isfinite(v))
-      throw UserError(where + ": '" + item + "' is not a time in ms (expected 'ms;ms;...')");
-    samples.push_back(v);
-    if (end == std::string::npos) break;
-    start = end + 1;
+    const double value = std::strtod(ms.c_str(), &stop);
+    if (ms.empty() || *stop != '\0' || !std::isfinite(value) || value < 0)
+      throw UserError(bad + "'" + ms + "' is not a time in ms");
+    samples[line.substr(a + 1, b - a - 1)].push_back(value);
   }
   return samples;
+}
+
+FrameSamples load_frame_samples(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw UserError(path + ": cannot read the per-frame samples the record names");
+  std::stringstream text;
+  text << in.rdbuf();
+  return parse_frame_samples(text.str(), path);
 }
 
 }  // namespace ldm

@@ -1,18 +1,20 @@
 #pragma once
-// Per-frame times in a record: `<subpass>_ms_samples` holds every measured frame's
-// milliseconds as one text value, "1.2345;1.3012;..." (6 significant digits, frame order),
-// compact enough for records.csv and what `ldmbench compare` tests a time change on.
+// The per-frame times of a configuration, as `ldmbench run` writes them next to its records
+// (samples/<config_id>-frames.csv, named by the record's frame_samples_csv column; see
+// frame_samples_csv() in harness/app/measurement.h): "frame,subpass,ms", one row per
+// sub-pass of each measured frame. What `ldmbench compare` tests a time change on.
+#include <map>
 #include <string>
 #include <vector>
 
-#include "harness/measure/gpu_timer.h"
-
 namespace ldm {
 
-// The times of `subpass` over `frames`, in order; frames without it are skipped.
-std::vector<double> frame_samples(const std::vector<FrameTimes>& frames, const std::string& subpass);
-std::string format_samples(const std::vector<double>& samples);
-// Throws UserError naming `where` for anything but ';'-separated finite numbers.
-std::vector<double> parse_samples(const std::string& text, const std::string& where);
+// Sub-pass -> its milliseconds, frame order.
+using FrameSamples = std::map<std::string, std::vector<double>>;
+
+// Throws UserError naming `where` and the line for anything but that CSV.
+FrameSamples parse_frame_samples(const std::string& csv, const std::string& where);
+// Reads and parses the file; throws UserError naming it when it cannot be read.
+FrameSamples load_frame_samples(const std::string& path);
 
 }  // namespace ldm

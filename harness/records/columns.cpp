@@ -61,7 +61,6 @@ const std::vector<ColumnSpec>& record_columns() {
       {"time", "<subpass>_ms_min", "ms", "minimum over the measured frames"},
       {"time", "<subpass>_ms_max", "ms", "maximum over the measured frames"},
       {"time", "<subpass>_ms_stddev", "ms", "sample standard deviation over the measured frames"},
-      {"time", "<subpass>_ms_samples", "ms", "every measured frame's time in order, \"t1;t2;...\" (6 significant digits): what ldmbench compare tests"},
       {"time", "build_vs_raster", "", "build median over raster_baseline median (the empty raster pass)"},
       {"time", "build_vs_raster_touch", "", "build median over raster_touch median (every fragment shaded, one atomicAdd each)"},
       {"time", "raster_touch_fragments", "fragments", "fragments the raster_touch baseline shaded (checked against the census)"},

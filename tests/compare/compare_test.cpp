@@ -1,4 +1,4 @@
-// `ldmbench compare`: the U test against SciPy, the per-frame samples column, each verdict
+// `ldmbench compare`: the U test against SciPy, the per-frame samples files, each verdict
 // on synthetic records, and the command's exit codes.
 #include <gtest/gtest.h>
 
@@ -31,33 +31,43 @@ TEST(MannWhitney, MatchesScipyAsymptotic) {
   EXPECT_THROW(mann_whitney_u({}, {1}), std::invalid_argument);
 }
 
-TEST(Samples, RoundTripAndRejectGarbage) {
-  const std::vector<FrameTimes> frames = {{{"clear", 0.5}, {"build", 1.25}},
-                                          {{"build", 2.0}},
-                                          {{"clear", 0.75}}};
-  EXPECT_EQ(frame_samples(frames, "build"), (std::vector<double>{1.25, 2.0}));
-  EXPECT_EQ(format_samples({1.25, 2.0, 1.0 / 3}), "1.25;2;0.333333");
-  EXPECT_EQ(parse_samples("1.25;2;0.333333", "x"), (std::vector<double>{1.25, 2, 0.333333}));
-  EXPECT_TRUE(parse_samples("", "x").empty());
-  for (const char* bad : {"1;;2", "1;x", "1;", "nan", "1,2"}) {
+TEST(Samples, ParseTheRunsFramesCsvAndRejectGarbage) {
+  const FrameSamples s = parse_frame_samples("frame,subpass,ms\n0,clear,0.5\n0,build,1.25\n1,build,2\n", "f.csv");
+  EXPECT_EQ(s.at("build"), (std::vector<double>{1.25, 2.0}));
+  EXPECT_EQ(s.at("clear"), (std::vector<double>{0.5}));
+  EXPECT_TRUE(parse_frame_samples("frame,subpass,ms\n", "f.csv").empty());
+  for (const char* bad : {"frame,ms\n", "frame,subpass,ms\n0,build\n", "frame,subpass,ms\n0,build,x\n",
+                          "frame,subpass,ms\n0,build,nan\n", "frame,subpass,ms\n0,build,1,2\n"}) {
     try {
-      parse_samples(bad, "cfg build_ms_samples");
+      parse_frame_samples(bad, "cfg-frames.csv");
       ADD_FAILURE() << bad << " was accepted";
     } catch (const UserError& e) {
-      EXPECT_NE(std::string(e.what()).find("cfg build_ms_samples"), std::string::npos);
+      EXPECT_NE(std::string(e.what()).find("cfg-frames.csv:"), std::string::npos) << e.what();
     }
   }
+  EXPECT_THROW(load_frame_samples("/nonexistent/x-frames.csv"), UserError);
 }
 
-std::string samples(double base, double step, int n) {
+// A samples file as `ldmbench run` writes it, holding `frame` times, in a fresh folder.
+std::string frames_file(const std::vector<double>& times) {
+  static const fs::path dir = test::make_temp_dir("ldm-compare-samples");
+  static int count = 0;
+  const fs::path file = dir / ("c" + std::to_string(count++) + "-frames.csv");
+  std::ofstream out(file);
+  out << "frame,subpass,ms\n";
+  for (size_t i = 0; i < times.size(); ++i) out << i << ",frame," << times[i] << "\n";
+  return file.string();  // absolute: joined to the run folder, stays itself
+}
+
+std::vector<double> samples(double base, double step, int n) {
   std::vector<double> v;
   for (int i = 0; i < n; ++i) v.push_back(base + step * ((i * 7) % n));  // spread, unsorted
-  return format_samples(v);
+  return v;
 }
 
-json record(const std::string& id, const std::string& frame_samples) {
+json record(const std::string& id, const std::vector<double>& frame_times) {
   return {{"config_id", id}, {"status", "ok"}, {"device", "gpu A"}, {"timer", "gl_timestamp"},
-          {"structure_params", ""}, {"frame_ms_samples", frame_samples},
+          {"structure_params", ""}, {"frame_samples_csv", frame_times.empty() ? "" : frames_file(frame_times)},
           {"bytes_allocated", 1000}, {"bytes_used", 800},
           {"mse", 0.010}, {"mssim", 0.9}, {"ref_noise_mse", 0.001}};
 }
@@ -97,11 +107,11 @@ TEST(CompareRuns, TimeVerdictsNeedSignificanceAndSize) {
   EXPECT_EQ(compare_one(record("c", samples(10, 0.001, 12)), record("c", samples(10.2, 0.001, 12)),
                         sensitive).times[0].verdict, "SLOW");
   // A large median change the samples cannot confirm: three frames with a wide spread.
-  auto unsure = compare_one(record("c", "10;20;30"), record("c", "15;25;12"));
+  auto unsure = compare_one(record("c", {10, 20, 30}), record("c", {15, 25, 12}));
   EXPECT_EQ(unsure.times[0].verdict, "UNSURE");
   EXPECT_NE(unsure.times[0].warning.find("fewer than 9"), std::string::npos);
   // One frame each: not tested.
-  auto one = compare_one(record("c", "10"), record("c", "20"));
+  auto one = compare_one(record("c", {10}), record("c", {20}));
   EXPECT_EQ(one.times[0].verdict, "UNSURE");
   EXPECT_LT(one.times[0].p_value, 0);
 }
@@ -122,7 +132,7 @@ TEST(CompareRuns, RefusesTimeAcrossDevicesAndTimers) {
 }
 
 TEST(CompareRuns, MemoryIsExactUnlessToleranceAllows) {
-  const json base = record("c", "");
+  const json base = record("c", {});
   json more = base;
   more["bytes_used"] = 801;
   EXPECT_EQ(compare_one(base, more).memory_verdict, "MORE");
@@ -136,7 +146,7 @@ TEST(CompareRuns, MemoryIsExactUnlessToleranceAllows) {
 }
 
 TEST(CompareRuns, AccuracyIsJudgedAgainstTheReferenceNoise) {
-  const json base = record("c", "");
+  const json base = record("c", {});
   json within = base, worse = base, better = base, no_reference = base;
   within["mse"] = 0.0109;  // +0.9 x ref_noise_mse
   worse["mse"] = 0.0111;   // +1.1 x
@@ -153,7 +163,7 @@ TEST(CompareRuns, AccuracyIsJudgedAgainstTheReferenceNoise) {
 }
 
 TEST(CompareRuns, StatusWorseningsAndMissingConfigurations) {
-  json ok = record("c", ""), lossy = ok, invalid = ok;
+  json ok = record("c", {}), lossy = ok, invalid = ok;
   lossy["status"] = "lossy";
   invalid["status"] = "invalid";
   EXPECT_TRUE(compare_one(ok, lossy).status_worse);
@@ -161,8 +171,8 @@ TEST(CompareRuns, StatusWorseningsAndMissingConfigurations) {
   EXPECT_FALSE(compare_one(lossy, ok).status_worse);
   EXPECT_FALSE(compare_one(ok, ok).status_worse);
 
-  const RunComparison c = compare_runs(run_of({record("a", ""), record("b", "")}),
-                                       run_of({record("b", ""), record("new", "")}), {});
+  const RunComparison c = compare_runs(run_of({record("a", {}), record("b", {})}),
+                                       run_of({record("b", {}), record("new", {})}), {});
   ASSERT_EQ(c.matched.size(), 2u);
   EXPECT_EQ(c.matched[0].new_status, "missing");
   EXPECT_EQ(count_regressions(c, "status"), 1u);
@@ -170,7 +180,7 @@ TEST(CompareRuns, StatusWorseningsAndMissingConfigurations) {
 }
 
 TEST(CompareRuns, IgnoredParameterLeavesTheIdentity) {
-  json a = record("cornell-ppfla-ao-n4-r32-plane-k=8", ""), b = a;
+  json a = record("cornell-ppfla-ao-n4-r32-plane-k=8", {}), b = a;
   a["structure_params"] = "k=8";
   b["config_id"] = "cornell-ppfla-ao-n4-r32-plane-k=1";
   b["structure_params"] = "k=1";

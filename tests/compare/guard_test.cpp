@@ -1,7 +1,7 @@
 // The CI regression guard (scripts/regression-guard.sh) against the committed baseline
 // results/baselines/ci-small: today's build passes it, and a configuration degraded on
 // purpose fails it, by status (a fixed array too short: lossy) and by memory (one too long).
-// And the per-frame samples the comparison tests are really in a run's records.
+// And the per-frame samples the comparison tests are really where a run's records say.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "harness/compare/run_comparison.h"
 #include "harness/compare/samples.h"
 #include "support/test_support.h"
 
@@ -55,23 +56,23 @@ TEST(RegressionGuard, FailsOnAMemoryRegression) {
   EXPECT_NE(o.output.find("memory 2 accuracy 0 status 0"), std::string::npos) << o.output;
 }
 
-TEST(RunRecords, CarryEveryFramesSamples) {
+TEST(RunRecords, NameEveryFramesSamples) {
   const fs::path out = fs::path(test::make_temp_dir("ldm-samples")) / "run";
   std::string output;
   const int status = test::run_command(
       std::string(LDM_BINARY_PATH) + " run --scene cornell --structure psppsll -N 2 -R 32 "
       "--width 32 --height 32 --frames 4 --warmup 1 --no-images --out " + out.string(), &output);
   ASSERT_EQ(status, 0) << output;
-  std::ifstream in(out / "records.json");
-  const auto r = nlohmann::json::parse(in)["records"][0];
+  const RunRecords run = load_run_records(out.string());
+  ASSERT_EQ(run.records.size(), 1u);
+  const auto& r = run.records[0];
+  const FrameSamples samples = load_frame_samples((out / r["frame_samples_csv"].get<std::string>()).string());
   for (const char* subpass : {"build", "frame"}) {
-    const std::string column = std::string(subpass) + "_ms_samples";
-    ASSERT_TRUE(r.contains(column)) << column;
-    std::vector<double> samples = parse_samples(r[column].get<std::string>(), column);
-    ASSERT_EQ(samples.size(), 4u) << column;
-    std::sort(samples.begin(), samples.end());
-    const double median = (samples[1] + samples[2]) / 2;
-    EXPECT_NEAR(median, r[std::string(subpass) + "_ms_median"].get<double>(), 1e-5 * median) << column;
+    ASSERT_TRUE(samples.count(subpass)) << subpass;
+    std::vector<double> times = samples.at(subpass);
+    ASSERT_EQ(times.size(), 4u) << subpass;
+    std::sort(times.begin(), times.end());
+    EXPECT_DOUBLE_EQ((times[1] + times[2]) / 2, r[std::string(subpass) + "_ms_median"].get<double>()) << subpass;
   }
 }
 
