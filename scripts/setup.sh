@@ -14,6 +14,8 @@ packages=(
   libglm-dev libopenimageio-dev libembree-dev libtbb-dev
   nlohmann-json3-dev libcli11-dev libtinyobjloader-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  # Google Benchmark's compare.py (/usr/share/benchmark/compare.py) for ldmbench_gbench JSON
+  libbenchmark-tools
   # independent metric oracle (skimage) and report plots
   python3 python3-numpy python3-scipy python3-skimage python3-matplotlib python3-pandas
 )

@@ -15,6 +15,7 @@ Runner add_run_command(CLI::App& app, const std::string& command_line);
 void reject_empty_list_items(int argc, const char* const* argv);
 Runner add_reference_command(CLI::App& app);
 Runner add_compare_command(CLI::App& app);
+Runner add_compare_runs_command(CLI::App& app);  // ldmbench compare BASE NEW
 Runner add_listing_commands(CLI::App& app);  // scenes, structures, passes, columns, info
 
 }  // namespace ldm::cli

@@ -2,6 +2,7 @@
 //   ldmbench run             measure structures x passes x parameters: records and images
 //   ldmbench reference       render a path-traced reference image
 //   ldmbench compare-images  error metrics between two images
+//   ldmbench compare         regressions between two runs (time, memory, accuracy, status)
 //   ldmbench scenes | structures | passes | columns | info
 #include <CLI/CLI.hpp>
 
@@ -22,6 +23,7 @@ int main(int argc, char** argv) {
       {"run", ldm::cli::add_run_command(app, command_line)},
       {"reference", ldm::cli::add_reference_command(app)},
       {"compare-images", ldm::cli::add_compare_command(app)},
+      {"compare", ldm::cli::add_compare_runs_command(app)},
       {"listing", ldm::cli::add_listing_commands(app)},
   };
   try {
