@@ -46,7 +46,7 @@ AoSettings Hbao::settings_for(const Scene& scene) const {
 
 PassRequirements Hbao::requirements() const {
   PassRequirements r;
-  r.scene_attributes.normals = true;  // the G-buffer's normals give the tangent angle
+  r.scene_attributes.normals = true;  // the G-buffer pass draws them (HBAO reads positions)
   r.needs_structure = false;
   return r;
 }
@@ -104,11 +104,9 @@ void Hbao::prepare(const PassInputs& in) {
   const GlProgram& p = gpu_->program;
   p.set("camera_eye", camera.eye.x, camera.eye.y, camera.eye.z);
   p.set("camera_forward", camera.forward.x, camera.forward.y, camera.forward.z);
-  p.set("camera_right", camera.right.x, camera.right.y, camera.right.z);
-  p.set("camera_up", camera.up.x, camera.up.y, camera.up.z);
   p.set("focal_pixels", 0.5f * float(in.height) / camera.tan_half_fov_y);
   p.set("hbao_radius", ao.d_max);
-  p.set("hbao_tan_bias", std::tan(hbao_.angle_bias));
+  p.set("hbao_angle_bias", hbao_.angle_bias);
   const std::array<glm::vec2, 16> table = jitter_table();
   glProgramUniform2fv(p.id(), p.uniform("hbao_jitter"), GLsizei(table.size()), &table[0].x);
   check_gl("HBAO uniforms");
