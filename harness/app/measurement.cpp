@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "harness/app/ldm_setup.h"
+#include "harness/app/measure_peer.h"
 #include "harness/metrics/image_checks.h"
 #include "harness/passes/raster_baseline.h"
 #include "harness/records/record.h"
@@ -72,9 +73,7 @@ uint64_t Measurement::bytes_used() const {
 Measurement measure(const Scene& scene, const MeasurementRequest& request) {
   auto pass = make_pass(request.pass, StructureParams(request.pass_params, "--pass " + request.pass));
   const PassRequirements needs = pass->requirements();
-  if (!needs.needs_structure)
-    throw UserError("--pass " + request.pass +
-                    ": passes without an LDM structure are not measured yet");
+  if (!needs.needs_structure) return measure_peer(scene, request, std::move(pass));
 
   Measurement m;
   m.scene_name = scene.name;

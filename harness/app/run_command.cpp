@@ -39,14 +39,17 @@ std::string timestamp(const char* format) {
 // Everything the user can get wrong is checked here, before any GPU work or file output.
 void validate_axes(const RunSettings& s) {
   for (const auto& config : expand_configurations(s)) {
-    make_structure(config.structure, StructureParams(config.params, "--param " + config.structure));
+    if (config.structure != kNoStructure)
+      make_structure(config.structure, StructureParams(config.params, "--param " + config.structure));
     make_pass(config.pass, StructureParams(config.pass_params, "--pass " + config.pass));
   }
   for (const auto& [structure, params] : s.structure_params) {
     (void)params;
-    if (std::find(s.structures.begin(), s.structures.end(), structure) == s.structures.end())
+    // A pass's own parameters go the same way: --param hbao:steps=16.
+    if (std::find(s.structures.begin(), s.structures.end(), structure) == s.structures.end() &&
+        std::find(s.passes.begin(), s.passes.end(), structure) == s.passes.end())
       throw UserError("--param " + structure + ":...: structure '" + structure +
-                      "' is not among --structure");
+                      "' is not among --structure or --pass");
   }
   const bool budget = std::find(s.sizing.begin(), s.sizing.end(), SizingPolicy::Budget) != s.sizing.end();
   if (budget && s.sizing_budget_mib <= 0)

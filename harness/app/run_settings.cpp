@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "harness/passes/pass.h"
+
 namespace ldm {
 
 std::string visibility_name(Visibility v) {
@@ -25,7 +27,7 @@ std::string Configuration::id() const {
   }
   if (visibility == Visibility::Attenuated) id += "-att";
   if (visibility == Visibility::Unattenuated) id += "-unatt";
-  id += "-" + ao_trace_name(trace);
+  if (structure != kNoStructure) id += "-" + ao_trace_name(trace);  // LDM AO only
   if (estimator != AoEstimatorChoice::Eq13) id += "-" + ao_estimator_name(estimator);
   for (const auto& [key, value] : params) id += "-" + key + "=" + value;
   switch (sizing.policy) {
@@ -65,7 +67,28 @@ std::vector<Configuration> expand_configurations(const RunSettings& s) {
       s.d_max.empty() ? std::vector<std::optional<float>>{std::nullopt}
                       : std::vector<std::optional<float>>(s.d_max.begin(), s.d_max.end());
   for (const auto& scene : s.scenes)
-    for (const auto& pass : s.passes)
+    for (const auto& pass : s.passes) {
+      // A peer that reads no LDM (HBAO) is one configuration per scene and AO setting: the
+      // structure, N, R_LDM, trace and estimator axes do not apply to it.
+      if (!make_pass(pass, StructureParams())->requirements().needs_structure) {
+        for (const auto& d : d_values)
+          for (Visibility v : s.visibility) {
+            Configuration c;
+            c.scene = scene;
+            c.structure = kNoStructure;
+            c.pass = pass;
+            c.views = 0;
+            c.resolution = 0;
+            c.d_max = d;
+            c.visibility = v;
+            auto params = s.structure_params.find(pass);  // --param hbao:steps=16
+            if (params != s.structure_params.end()) c.params = c.pass_params = params->second;
+            if (d) c.pass_params["d_max"] = float_text(*d);
+            if (v != Visibility::Scene) c.pass_params["visibility"] = visibility_name(v);
+            out.push_back(c);
+          }
+        continue;
+      }
       for (const auto& structure : s.structures)
         for (uint32_t n : s.views)
           for (uint32_t r : s.resolutions)
@@ -97,6 +120,7 @@ std::vector<Configuration> expand_configurations(const RunSettings& s) {
                     c.sizing.initial_per_pixel = s.sizing_initial_per_pixel;
                     out.push_back(c);
                   }
+    }
   return out;
 }
 

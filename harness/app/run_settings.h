@@ -46,6 +46,9 @@ struct RunSettings {
   ReferenceSettings reference;
 };
 
+// The structure of a configuration whose pass reads no LDM (Pass requirements).
+inline constexpr const char* kNoStructure = "none";
+
 struct Configuration {
   std::string scene;  // spec as given (name or path)
   std::string structure;

@@ -2,6 +2,7 @@
 #include <functional>
 
 #include "harness/passes/ambient_occlusion.h"
+#include "harness/passes/hbao.h"
 #include "harness/passes/pass.h"
 #include "harness/util/error.h"
 
@@ -16,6 +17,7 @@ struct Entry {
 const std::vector<Entry>& registry() {
   static const std::vector<Entry> entries = {
       {"ao", [](StructureParams& p) { return std::make_unique<AmbientOcclusion>(p); }},
+      {"hbao", [](StructureParams& p) { return std::make_unique<Hbao>(p); }},
   };
   return entries;
 }

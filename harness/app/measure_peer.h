@@ -1,0 +1,15 @@
+#pragma once
+// measure() for a pass that reads no LDM structure (a screen-space or ray-traced peer such
+// as HBAO): the scene uploaded with the attributes the pass asks for, then frames of the
+// pass alone, every sub-pass timed. No census, views, baselines or build: the record's
+// structure is "none" and its "frame" time is the pass's whole cost.
+#include <memory>
+
+#include "harness/app/measurement.h"
+
+namespace ldm {
+
+Measurement measure_peer(const Scene& scene, const MeasurementRequest& request,
+                         std::unique_ptr<Pass> pass);
+
+}  // namespace ldm

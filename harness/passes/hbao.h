@@ -1,0 +1,66 @@
+#pragma once
+// Horizon-based ambient occlusion (Bavoil, Sainz and Dimitrov 2008; thesis §4.2.3 and
+// Listing 15) as a measured peer of the LDM AO: it reads no LDM structure, only the camera's
+// G-buffer (shaders/passes/hbao.frag), and is scored against the same Embree AO reference.
+//
+// Parameters (--param hbao:KEY=VALUE; d_max and visibility also from --d-max/--visibility):
+//   directions   N_HBAO, screen-space directions per pixel (1..256, default 8)
+//   steps        S_HBAO, ray-marching steps per direction (1..512, default 8)
+//   d_max        the radius R in scene units (> 0; default the scene's AO d_max)
+//   visibility   scene | attenuated (W = 1 - r^2/R^2) | unattenuated (W = 1 within R)
+//   angle_bias   added to the tangent angle, radians (0..1.5, default 0.1)
+//   jitter       off | on: per-pixel rotation and step offset from a tiled 4x4 random table
+//                (off, the default, uses the same directions everywhere, as the thesis does)
+#include <array>
+#include <memory>
+
+#include <glm/glm.hpp>
+
+#include "harness/passes/gbuffer_pass.h"
+#include "harness/passes/pass.h"
+
+namespace ldm {
+
+struct HbaoSettings {
+  uint32_t directions = 8, steps = 8;
+  float angle_bias = 0.1f;
+  bool jitter = false;
+};
+
+class Hbao : public Pass {
+ public:
+  explicit Hbao(StructureParams& params);
+  ~Hbao() override;
+
+  std::string name() const override { return "hbao"; }
+  PassRequirements requirements() const override;
+  std::vector<TimedSubpass> subpasses() const override;
+  std::vector<std::pair<std::string, RecordValue>> describe(const Scene& scene) const override;
+  void prepare(const PassInputs& in) override;
+  void render(GpuTimer* timer) override;
+  std::vector<PassImage> images() const override;
+  std::vector<std::pair<std::string, RecordValue>> results() const override;
+  ReferenceResult reference(const Scene& scene, int width, int height,
+                            const ReferenceSettings& settings) const override;
+
+  // The scene's AO settings (d_max, visibility) with this pass's overrides applied.
+  AoSettings settings_for(const Scene& scene) const;
+  const HbaoSettings& hbao() const { return hbao_; }
+
+ private:
+  // The tiled random table: per entry a rotation (radians) and a step offset in (0, 1].
+  std::array<glm::vec2, 16> jitter_table() const;
+
+  HbaoSettings hbao_;
+  AoOverrides overrides_;
+  const Scene* scene_ = nullptr;
+  const GpuScene* gpu_scene_ = nullptr;
+  int width_ = 0, height_ = 0;
+  // GL objects, created by prepare(): a pass is also constructed without a GL context
+  // (argument checks, `ldmbench passes`).
+  struct Gpu;
+  std::unique_ptr<GBufferPass> gbuffer_;
+  std::unique_ptr<Gpu> gpu_;
+};
+
+}  // namespace ldm
