@@ -86,12 +86,14 @@ ObjSyntax check_obj_syntax(const std::string& text, const std::string& path) {
   std::vector<IndexReference> forward;  // checked once every list's length is known
   size_t line_number = 0, begin = 0;
   while (begin <= text.size()) {
-    size_t end = text.find('\n', begin);
+    // Lines end at \n, \r\n or a lone \r, as tinyobjloader splits them: a lone \r must
+    // end a line here too, or a line it reads as a vertex would pass unchecked.
+    size_t end = text.find_first_of("\r\n", begin);
     if (end == std::string::npos) end = text.size();
     std::string_view line(text.data() + begin, end - begin);
     begin = end + 1;
+    if (end + 1 < text.size() && text[end] == '\r' && text[end + 1] == '\n') ++begin;
     ++line_number;
-    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
     if (const auto hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
     const auto tokens = split_whitespace(line);
     if (tokens.empty()) continue;
