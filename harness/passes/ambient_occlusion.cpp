@@ -89,16 +89,7 @@ std::vector<std::pair<std::string, RecordValue>> AmbientOcclusion::results() con
 
 ReferenceResult AmbientOcclusion::reference(const Scene& scene, int width, int height,
                                             const ReferenceSettings& settings) const {
-  AoReferenceRequest request;
-  request.width = width;
-  request.height = height;
-  request.ao = settings_for(scene);
-  request.spp = settings.spp;
-  request.seed = settings.seed;
-  request.progress = settings.progress;
-  if (!settings.use_cache) return render_ao_reference(scene, request);
-  return cached_ao_reference(
-      scene, request, settings.cache_dir.empty() ? kDefaultReferenceCacheDir : settings.cache_dir);
+  return ao_reference_for_run(scene, settings_for(scene), width, height, settings);
 }
 
 }  // namespace ldm

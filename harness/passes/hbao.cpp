@@ -138,16 +138,7 @@ std::vector<std::pair<std::string, RecordValue>> Hbao::results() const {
 ReferenceResult Hbao::reference(const Scene& scene, int width, int height,
                                 const ReferenceSettings& settings) const {
   // The same converged AO as the LDM pass's (the same key: one cache entry serves both).
-  AoReferenceRequest request;
-  request.width = width;
-  request.height = height;
-  request.ao = settings_for(scene);
-  request.spp = settings.spp;
-  request.seed = settings.seed;
-  request.progress = settings.progress;
-  if (!settings.use_cache) return render_ao_reference(scene, request);
-  return cached_ao_reference(
-      scene, request, settings.cache_dir.empty() ? kDefaultReferenceCacheDir : settings.cache_dir);
+  return ao_reference_for_run(scene, settings_for(scene), width, height, settings);
 }
 
 }  // namespace ldm

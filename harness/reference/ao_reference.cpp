@@ -137,4 +137,18 @@ ReferenceResult cached_ao_reference(const Scene& scene, const AoReferenceRequest
   return result;
 }
 
+ReferenceResult ao_reference_for_run(const Scene& scene, const AoSettings& ao, int width,
+                                     int height, const ReferenceSettings& settings) {
+  AoReferenceRequest request;
+  request.width = width;
+  request.height = height;
+  request.ao = ao;
+  request.spp = settings.spp;
+  request.seed = settings.seed;
+  request.progress = settings.progress;
+  if (!settings.use_cache) return render_ao_reference(scene, request);
+  return cached_ao_reference(
+      scene, request, settings.cache_dir.empty() ? kDefaultReferenceCacheDir : settings.cache_dir);
+}
+
 }  // namespace ldm

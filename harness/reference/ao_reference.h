@@ -11,6 +11,7 @@
 
 #include "harness/reference/reference_cache.h"
 #include "harness/reference/reference_image.h"
+#include "harness/reference/reference_settings.h"
 #include "harness/scene/scene.h"
 
 namespace ldm {
@@ -39,6 +40,11 @@ ReferenceResult render_ao_reference(const Scene& scene, const AoReferenceRequest
 // As render_ao_reference, through the disk cache (reference_cache.h).
 ReferenceResult cached_ao_reference(const Scene& scene, const AoReferenceRequest& request,
                                     const std::string& cache_dir = kDefaultReferenceCacheDir);
+// The AO reference a run's records are scored against: `ao` at width x height under the
+// run's reference settings, through the cache unless they say otherwise. Every AO-like pass
+// (the LDM AO, HBAO) calls this, so one cache entry serves them all.
+ReferenceResult ao_reference_for_run(const Scene& scene, const AoSettings& ao, int width,
+                                     int height, const ReferenceSettings& settings);
 // Everything that determines the reference image, as stored in the cache sidecar.
 nlohmann::json ao_reference_inputs(const Scene& scene, const AoReferenceRequest& request);
 
