@@ -177,10 +177,14 @@ int run_benchmark(const RunSettings& settings, const std::string& command_line, 
     record.set("wall_seconds", seconds);
     const std::string status = std::get<std::string>(*record.get("status"));
     log << status;
-    if (const RecordValue* build = record.get("build_ms_median"))
-      log << "  build " << format_csv_value(*build) << " ms";
-    if (const RecordValue* ao = record.get("ao_ms_median"))
-      log << "  ao " << format_csv_value(*ao) << " ms";
+    // Medians to 4 significant digits: a progress line, not the record (which keeps all).
+    for (const char* subpass : {"build", "frame"})
+      if (const RecordValue* ms = record.get(std::string(subpass) + "_ms_median"))
+        if (const double* value = std::get_if<double>(ms)) {
+          std::ostringstream text;  // leaves the log stream's own precision alone
+          text << std::setprecision(4) << *value;
+          log << "  " << subpass << " " << text.str() << " ms";
+        }
     if (status != "ok") log << "  (" << std::get<std::string>(*record.get("status_detail")) << ")";
     log << "\n";
     journal.append_record(record);  // durable before the tables change
