@@ -1,0 +1,362 @@
+"""The report's plots, each drawn from the tidy table alone (matplotlib, Agg backend).
+
+Every function takes the Table and a Canvas (which names, saves and lists figures and
+collects notes) and draws what the data supports; a plot whose x axis has fewer than two
+distinct values is skipped with a note, never drawn empty. Records that are not `ok`
+(lossy, invalid, failed) are drawn hollow, hatched or faded, stay off Pareto fronts and out
+of fitted slopes."""
+import math
+import os
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.ticker  # noqa: E402
+import numpy as np  # noqa: E402
+
+from .table import axis_label, describe, sort_key  # noqa: E402
+
+MIB = float(1 << 20)
+MARKERS = "osD^vP*Xph<>"
+HOLLOW_NOTE = "hollow markers: lossy / invalid / failed (not ranked, off the front and fits)"
+
+
+class Canvas:
+    """Where figures go: <out>/figures/<name>.png (and .svg), listed for the pages."""
+
+    def __init__(self, out_dir, svg=False):
+        self.out_dir, self.svg = out_dir, svg
+        self.figures, self.notes = [], []
+        os.makedirs(os.path.join(out_dir, "figures"), exist_ok=True)
+
+    def save(self, fig, name, title, caption, section):
+        files = []
+        for ext in ("png", "svg") if self.svg else ("png",):
+            rel = f"figures/{name}.{ext}"
+            fig.savefig(os.path.join(self.out_dir, rel), dpi=100, bbox_inches="tight")
+            files.append(rel)
+        plt.close(fig)
+        self.figures.append({"section": section, "name": name, "title": title,
+                             "caption": caption, "files": files})
+
+    def note(self, text):
+        self.notes.append(text)
+
+
+def method_styles(table):
+    """One colour and marker per method, the same in every figure."""
+    cmap = plt.get_cmap("tab10")
+    methods = sorted(set(table.methods()))
+    return {m: (cmap(i % 10), MARKERS[i % len(MARKERS)]) for i, m in enumerate(methods)}
+
+
+def series_colours(n):
+    cmap = plt.get_cmap("tab10" if n <= 10 else "tab20")
+    return [cmap(i % cmap.N) for i in range(n)]
+
+
+def subplot_grid(count, width=5.2, height=3.8, max_columns=3):
+    columns = min(count, max_columns)
+    rows = math.ceil(count / columns)
+    fig, axes = plt.subplots(rows, columns, figsize=(width * columns, height * rows),
+                             squeeze=False)
+    for extra in axes.flat[count:]:
+        extra.set_visible(False)
+    return fig, list(axes.flat[:count])
+
+
+def plain_log_ticks(ax, axis_values=None):
+    """Tick labels as plain numbers on log axes (8, 16, 32 rather than 8x10^0), at the data's
+    own x values where there are few."""
+    formatter = matplotlib.ticker.FuncFormatter(lambda v, _: f"{v:g}")
+    for axis, limits in ((ax.xaxis, ax.get_xlim()), (ax.yaxis, ax.get_ylim())):
+        if axis.get_scale() == "log":
+            axis.set_major_formatter(formatter)
+            # within a decade the minor ticks are the only ones: label them
+            narrow = limits[0] > 0 and limits[1] / limits[0] < 10
+            axis.set_minor_formatter(matplotlib.ticker.FuncFormatter(lambda v, _: f"{v:.2g}")
+                                     if narrow else matplotlib.ticker.NullFormatter())
+    if axis_values is not None and ax.xaxis.get_scale() == "log":
+        values = sorted(set(v for v in axis_values if np.isfinite(v) and v > 0))
+        if len(values) <= 8:
+            ax.set_xticks(values)
+            ax.xaxis.set_minor_locator(matplotlib.ticker.NullLocator())
+
+
+def wide_span(values):
+    """Whether positive values span enough for a log axis to read better."""
+    values = values[np.isfinite(values) & (values > 0)]
+    return len(values) > 1 and values.max() / values.min() > 30
+
+
+def scatter(ax, x, y, colour, marker, measured, label):
+    ax.scatter(x[measured], y[measured], color=colour, marker=marker, s=36, label=label,
+               zorder=3)
+    if (~measured).any():
+        ax.scatter(x[~measured], y[~measured], facecolors="none", edgecolors=[colour],
+                   marker=marker, s=36, zorder=3,
+                   label=None if measured.any() else f"{label} (not ok)")
+
+
+def pareto_front(x, y, higher_is_better):
+    """Indices of the points no other point beats in both time (lower) and the metric."""
+    order = sorted(range(len(x)), key=lambda i: (x[i], -y[i] if higher_is_better else y[i]))
+    front, best = [], None
+    for i in order:
+        if best is None or (y[i] > best if higher_is_better else y[i] < best):
+            front.append(i)
+            best = y[i]
+    return front
+
+
+def comparable_groups(table, prefix, column):
+    """Rows scored against one reference, per scene: their errors compare. Returns
+    [(title, mask)]."""
+    scored = table.num(column).notna() & np.isfinite(table.num("frame_ms_median"))
+    key_column = table.reference_key_column(prefix)
+    keys = table.text("scene") + "|" + (table.text(key_column) if key_column else
+                                        table.text("width") + "x" + table.text("height"))
+    masks = [scored & (keys == k) for k in dict.fromkeys(keys[scored])]
+    firsts = [m[m].index[0] for m in masks]
+    candidates = ["scene", "width", "height", "visibility", "d_max"] + table.extra_axes
+    differing = [a for a in candidates
+                 if len({table.axis_values(a)[i] for i in firsts}) > 1]
+    return [(describe({a: table.axis_values(a)[i] for a in differing}) or
+             table.text("scene")[i], m) for i, m in zip(firsts, masks)]
+
+
+def draw_tradeoffs(table, canvas):
+    """Time per frame against each image metric, per method, with the Pareto front of the
+    ok records (faster and better)."""
+    styles = method_styles(table)
+    methods = table.methods()
+    measured = table.measured().to_numpy()
+    time = table.num("frame_ms_median")
+    for prefix, metric, column in table.metric_columns():
+        groups = comparable_groups(table, prefix, column)
+        if not groups:
+            canvas.note(f"time vs {column}: skipped, no record has both a frame time and {column}")
+            continue
+        higher = metric == "mssim"
+        fig, axes = subplot_grid(len(groups))
+        for ax, (title, mask) in zip(axes, groups):
+            x, y = time[mask].to_numpy(), table.num(column)[mask].to_numpy()
+            ok, m = measured[mask.to_numpy()], methods[mask].to_numpy()
+            for method in sorted(set(m)):
+                colour, marker = styles[method]
+                sel = m == method
+                scatter(ax, x[sel], y[sel], colour, marker, ok[sel], method)
+            fx, fy = x[ok], y[ok]
+            if len(fx):
+                front = pareto_front(list(fx), list(fy), higher)
+                px, py = fx[front], fy[front]
+                ax.step(px, py, where="post", color="black", linestyle="--", linewidth=1,
+                        label="Pareto front (ok)", zorder=2)
+                ax.scatter(px, py, s=110, facecolors="none", edgecolors="black",
+                           linewidths=1, zorder=4)
+            if wide_span(x):
+                ax.set_xscale("log")
+            if metric == "mse" and wide_span(y):
+                ax.set_yscale("log")
+            plain_log_ticks(ax)
+            ax.set_xlabel("frame time, median (ms)")
+            ax.set_ylabel(column + (" (higher is better)" if higher else " (lower is better)"))
+            ax.set_title(title, fontsize=10)
+            ax.grid(alpha=0.3)
+            ax.legend(fontsize=7)
+        name = f"tradeoff-time-vs-{column}"
+        canvas.save(fig, name, f"Frame time vs {column}",
+                    f"Per method; the dashed line is the Pareto front of the ok records "
+                    f"(nothing is both faster and better); {HOLLOW_NOTE}.", "Trade-offs")
+
+
+def series_masks(table, rows, series_axes):
+    """Split `rows` into series by method and the axes among `series_axes` that vary there:
+    [(label, mask)] in a stable order."""
+    methods = table.methods()
+    varying = table.varying(rows, series_axes)
+    keys = methods.copy()
+    for a in varying:
+        keys = keys + "|" + table.axis_values(a)
+    out = []
+    for key in sorted(set(keys[rows]), key=lambda k: [sort_key(p) for p in k.split("|")]):
+        mask = rows & (keys == key)
+        first = mask[mask].index[0]
+        values = {a: table.axis_values(a)[first] for a in varying}
+        text = describe(values)
+        out.append((methods[first] + (f" ({text})" if text else ""), mask))
+    return out
+
+
+def x_is_a_range(table, canvas, rows, x_column, what):
+    """Whether `x_column` takes two or more values over `rows`; else a note."""
+    values = sorted(set(table.num(x_column)[rows].dropna()))
+    if len(values) >= 2:
+        return True
+    shown = ", ".join(f"{v:g}" for v in values) or "none"
+    canvas.note(f"{what}: skipped, {axis_label(x_column)} takes fewer than two values "
+                f"({shown})")
+    return False
+
+
+def draw_memory(table, canvas):
+    """Bytes allocated (solid) and used (dashed) by the structures against N and R_LDM."""
+    allocated, used = table.num("bytes_allocated") / MIB, table.num("bytes_used") / MIB
+    measured = table.measured()
+    for x_column, other in (("n_views", "r_ldm"), ("r_ldm", "n_views")):
+        what = f"memory vs {axis_label(x_column)}"
+        rows = table.has_structure() & (table.num(x_column) > 0) & allocated.notna()
+        if not x_is_a_range(table, canvas, rows, x_column, what):
+            continue
+        scenes = list(dict.fromkeys(table.text("scene")[rows]))
+        fig, axes = subplot_grid(len(scenes))
+        for ax, scene in zip(axes, scenes):
+            in_scene = rows & (table.text("scene") == scene)
+            series = series_masks(table, in_scene, [other, "structure_params", "sizing_policy",
+                                                    "payload", "run"])
+            for colour, (label, mask) in zip(series_colours(len(series)), series):
+                x = table.num(x_column)[mask]
+                first = ~x.duplicated()  # memory does not depend on the pass's settings
+                order = np.argsort(x[first].to_numpy())
+                xs = x[first].to_numpy()[order]
+                ok = measured[mask][first].to_numpy()[order]
+                for values, style in ((allocated, "-"), (used, "--")):
+                    ys = values[mask][first].to_numpy()[order]
+                    ax.plot(xs, ys, style, color=colour, linewidth=1.2,
+                            label=label if style == "-" else None)
+                    ax.scatter(xs[ok], ys[ok], color=colour, s=20, zorder=3)
+                    ax.scatter(xs[~ok], ys[~ok], facecolors="none", edgecolors=[colour],
+                               s=20, zorder=3)
+            if wide_span(table.num(x_column)[in_scene].to_numpy()):
+                ax.set_xscale("log", base=2)
+            if wide_span(allocated[in_scene].to_numpy()):
+                ax.set_yscale("log")
+            plain_log_ticks(ax, table.num(x_column)[in_scene].to_numpy())
+            ax.set_xlabel(axis_label(x_column))
+            ax.set_ylabel("MiB (solid allocated, dashed used)")
+            ax.set_title(scene, fontsize=10)
+            ax.grid(alpha=0.3)
+            ax.legend(fontsize=7)
+        canvas.save(fig, f"memory-vs-{x_column}", f"Memory vs {axis_label(x_column)}",
+                    f"Bytes allocated (solid) and used after the build (dashed) per structure; "
+                    f"{HOLLOW_NOTE}.", "Memory")
+
+
+def fitted_slope(x, y):
+    """Least-squares slope of log y over log x, or None with fewer than two distinct x."""
+    keep = np.isfinite(x) & np.isfinite(y) & (x > 0) & (y > 0)
+    x, y = x[keep], y[keep]
+    if len(set(x)) < 2:
+        return None, None
+    slope, intercept = np.polyfit(np.log(x), np.log(y), 1)
+    return slope, intercept
+
+
+SCALING_SERIES = {
+    # x axis: the axes that split series (the others generate the x values or are the x)
+    "n_views": ["scene", "r_ldm", "structure_params", "sizing_policy", "trace", "ao_estimator",
+                "d_max", "width", "height", "run"],
+    "r_ldm": ["scene", "n_views", "structure_params", "sizing_policy", "trace",
+              "ao_estimator", "d_max", "width", "height", "run"],
+    "fragments": ["structure_params", "sizing_policy", "trace", "ao_estimator", "run"],
+}
+
+
+def draw_scaling(table, canvas):
+    """Build and query cost against N, R_LDM and the census's fragments on log-log axes,
+    each series with its fitted slope (cost ~ work^slope) in the legend."""
+    costs = [("build", table.num("build_ms_median"), "build median (ms)"),
+             ("query", table.query_ms(), "query: frame - build, median (ms)")]
+    measured = table.measured()
+    for x_column, series_axes in SCALING_SERIES.items():
+        what = f"cost vs {axis_label(x_column)}"
+        x_all = table.num(x_column)
+        rows = (x_all > 0) & table.has_structure()
+        if not x_is_a_range(table, canvas, rows, x_column, what):
+            continue
+        fig, axes = subplot_grid(len(costs), width=6.0, height=4.4)
+        for ax, (cost_name, cost, ylabel) in zip(axes, costs):
+            in_plot = rows & (cost > 0)
+            series = series_masks(table, in_plot, series_axes + table.extra_axes)
+            for colour, (label, mask) in zip(series_colours(len(series)), series):
+                x, y = x_all[mask].to_numpy(), cost[mask].to_numpy()
+                ok = measured[mask].to_numpy()
+                slope, intercept = fitted_slope(x[ok], y[ok])
+                text = f"{label}: slope {slope:.2f}" if slope is not None else \
+                    f"{label}: no slope (<2 ok points)"
+                order = np.argsort(x)
+                ax.plot(x[order], y[order], color=colour, linewidth=0.8, alpha=0.6)
+                ax.scatter(x[ok], y[ok], color=colour, s=22, zorder=3,
+                           label=text if ok.any() else None)
+                ax.scatter(x[~ok], y[~ok], facecolors="none", edgecolors=[colour], s=22,
+                           zorder=3, label=None if ok.any() else text)
+                if slope is not None:
+                    xs = np.array([x[ok].min(), x[ok].max()])
+                    ax.plot(xs, np.exp(intercept) * xs ** slope, ":", color=colour,
+                            linewidth=1.5)
+            ax.set_xscale("log")
+            ax.set_yscale("log")
+            plain_log_ticks(ax, x_all[in_plot].to_numpy())
+            ax.set_xlabel(axis_label(x_column))
+            ax.set_ylabel(ylabel)
+            ax.set_title(f"{cost_name} cost vs {axis_label(x_column)}", fontsize=10)
+            ax.grid(alpha=0.3, which="both")
+            ax.legend(fontsize=7)
+        canvas.save(fig, f"cost-vs-{x_column}", f"Cost vs {axis_label(x_column)} (log-log)",
+                    "Medians per configuration; dotted: least-squares fit in log space over "
+                    f"the ok records, its slope in the legend; {HOLLOW_NOTE}.", "Scaling")
+
+
+def draw_subpass_bars(table, canvas, per_figure=60):
+    """Each configuration's frame as stacked sub-pass medians (every <subpass>_ms_median
+    column but the sums and the raster baselines), one figure per scene."""
+    subpasses = [s for s in table.subpasses() if table.num(f"{s}_ms_median").notna().any()]
+    if not subpasses:
+        canvas.note("sub-pass bars: skipped, no record has sub-pass times")
+        return
+    colours = dict(zip(subpasses, series_colours(len(subpasses))))
+    timed = table.num("frame_ms_median").notna()
+    several_runs = table.text("run").nunique() > 1
+    status = table.status()
+    for scene in dict.fromkeys(table.text("scene")[timed]):
+        index = table.df.index[timed & (table.text("scene") == scene)]
+        for part, start in enumerate(range(0, len(index), per_figure)):
+            chunk = index[start:start + per_figure]
+            fig, ax = plt.subplots(figsize=(9, 1.2 + 0.28 * len(chunk)))
+            labels = []
+            for row, i in enumerate(chunk):
+                left = 0.0
+                ok = status[i] == "ok"
+                for s in subpasses:
+                    value = table.num(f"{s}_ms_median")[i]
+                    if not np.isfinite(value) or value <= 0:
+                        continue
+                    ax.barh(row, value, left=left, color=colours[s], alpha=1 if ok else 0.45,
+                            hatch=None if ok else "//", edgecolor="white" if ok else "black",
+                            linewidth=0.3)
+                    left += value
+                build = table.num("build_ms_median")[i]
+                if np.isfinite(build):  # where the structure's build ends and the pass begins
+                    ax.plot([build, build], [row - 0.45, row + 0.45], color="black", linewidth=1)
+                label = (table.text("run")[i] + ": " if several_runs else "") + \
+                    table.text("config_id")[i]
+                labels.append(label if ok else f"{label} [{status[i]}]")
+            ax.set_yticks(range(len(chunk)))
+            ax.set_yticklabels(labels, fontsize=7)
+            ax.invert_yaxis()
+            ax.set_xlabel("median time per frame (ms), stacked by sub-pass")
+            handles = [plt.Rectangle((0, 0), 1, 1, color=colours[s]) for s in subpasses]
+            ax.legend(handles, subpasses, fontsize=7, loc="lower right")
+            ax.grid(alpha=0.3, axis="x")
+            suffix = f"-{part + 1}" if len(index) > per_figure else ""
+            canvas.save(fig, f"subpasses-{safe_name(scene)}{suffix}",
+                        f"Sub-pass times, {scene}{suffix.replace('-', ' part ')}",
+                        "Median of every timed sub-pass per configuration, the structure's "
+                        "build first (the black tick marks the build median), then the "
+                        "pass's; the raster baselines are timed beside the frame and not "
+                        "stacked; hatched: lossy / invalid / failed.", "Sub-passes")
+
+
+def safe_name(text):
+    return "".join(c if c.isalnum() or c in "-_" else "_" for c in text)[:60] or "scene"

@@ -1,0 +1,193 @@
+"""The report's tables and its two pages, summary.md and index.html (relative links only).
+
+Only `ok` records are ranked; lossy, invalid and failed ones are listed as flagged, never as
+measurements."""
+import html
+import math
+
+import numpy as np
+
+
+
+MIB = float(1 << 20)
+
+
+def fmt(value, digits=4):
+    """A number to `digits` significant digits ("–" for none), text unchanged."""
+    if isinstance(value, str):
+        return value
+    if value is None or not np.isfinite(value):
+        return "–"
+    if value == 0:
+        return "0"
+    magnitude = math.floor(math.log10(abs(value)))
+    if magnitude < -3 or magnitude >= 6:
+        return f"{value:.{digits - 1}e}"
+    return f"{value:.{max(digits - 1 - magnitude, 0)}f}"
+
+
+def ranking_groups(table):
+    """Rows whose times compare: per scene, and per device when the runs span several."""
+    keys = table.text("scene")
+    if table.text("device").nunique() > 1:
+        keys = keys + " on " + table.text("device")
+    return [(k, keys == k) for k in dict.fromkeys(keys)]
+
+
+def best_rows(table):
+    """The best-per-criterion table: [criterion, group, configuration, run, value]."""
+    measured = table.measured()
+    structure = table.has_structure()
+    criteria = [
+        ("fastest build", table.num("build_ms_median"), structure, min, "ms"),
+        ("fastest query", table.query_ms(), None, min, "ms"),
+        ("fastest frame", table.num("frame_ms_median"), None, min, "ms"),
+        ("least memory allocated", table.num("bytes_allocated") / MIB, structure, min, "MiB"),
+        ("least memory used", table.num("bytes_used") / MIB, structure, min, "MiB"),
+    ]
+    for prefix, metric, column in table.metric_columns():
+        better = max if metric == "mssim" else min
+        criteria.append((("best " if metric == "mssim" else "lowest ") + column,
+                         table.num(column), None, better, ""))
+    rows = []
+    for group, in_group in ranking_groups(table):
+        for name, values, restrict, better, unit in criteria:
+            mask = in_group & measured & values.notna()
+            if restrict is not None:
+                mask &= restrict
+            if not mask.any():
+                continue
+            candidates = values[mask]
+            i = candidates.idxmin() if better is min else candidates.idxmax()
+            ties = int((candidates == candidates[i]).sum()) - 1
+            rows.append([name, group, table.text("config_id")[i] +
+                         (f" (and {ties} more equal)" if ties else ""),
+                         table.text("run")[i], f"{fmt(values[i])} {unit}".strip()])
+    return rows
+
+
+def flagged_rows(table):
+    status = table.status()
+    return [[table.text("run")[i], table.text("config_id")[i], status[i],
+             table.text("status_detail")[i]] for i in table.df.index if status[i] != "ok"]
+
+
+def configuration_rows(table):
+    """Every configuration: the compact columns of the end-of-run table."""
+    metric_columns = [c for _, _, c in table.metric_columns()]
+    header = ["run", "configuration", "status", "build ms", "query ms", "frame ms",
+              "MiB allocated", "MiB used"] + metric_columns
+    rows = []
+    build, query, frame = table.num("build_ms_median"), table.query_ms(), table.num("frame_ms_median")
+    allocated, used = table.num("bytes_allocated") / MIB, table.num("bytes_used") / MIB
+    for i in table.df.index:
+        status = table.status()[i]
+        rows.append([table.text("run")[i], table.text("config_id")[i],
+                     status if status == "ok" else f"⚠ {status}",
+                     fmt(build[i]), fmt(query[i]), fmt(frame[i]), fmt(allocated[i]),
+                     fmt(used[i])] + [fmt(table.num(c)[i]) for c in metric_columns])
+    return header, rows
+
+
+def runs_rows(runs_info):
+    return [[r["label"], r["records_file"], str(r["records"]), r.get("device", ""),
+             r.get("git_commit", ""), r.get("command", "")] for r in runs_info]
+
+
+RUNS_HEADER = ["run", "records", "configurations", "device", "commit", "command"]
+BEST_HEADER = ["criterion", "compared within", "configuration", "run", "value"]
+FLAGGED_HEADER = ["run", "configuration", "status", "why"]
+
+
+def markdown_table(header, rows):
+    def cell(text):
+        return str(text).replace("|", "\\|").replace("\n", " ")
+    lines = ["| " + " | ".join(cell(h) for h in header) + " |",
+             "| " + " | ".join("---" for _ in header) + " |"]
+    lines += ["| " + " | ".join(cell(c) for c in row) + " |" for row in rows]
+    return "\n".join(lines)
+
+
+def html_table(header, rows, flag_column=None):
+    out = ["<table>", "<tr>" + "".join(f"<th>{html.escape(h)}</th>" for h in header) + "</tr>"]
+    for row in rows:
+        flagged = flag_column is not None and str(row[flag_column]).startswith("⚠")
+        cls = ' class="flagged"' if flagged else ""
+        out.append(f"<tr{cls}>" + "".join(f"<td>{html.escape(str(c))}</td>" for c in row) + "</tr>")
+    out.append("</table>")
+    return "\n".join(out)
+
+
+def sections(figures):
+    order = []
+    for f in figures:
+        if f["section"] not in order:
+            order.append(f["section"])
+    return [(s, [f for f in figures if f["section"] == s]) for s in order]
+
+
+def write_markdown(path, title, runs_info, table, figures, notes):
+    header, config_rows = configuration_rows(table)
+    flagged = flagged_rows(table)
+    parts = [f"# {title}", "",
+             "Generated by `ldmbench report`; every figure regenerates from `tidy.csv` "
+             "(`scripts/report/ldmbench_report.py --from-csv tidy.csv --out DIR`). "
+             "Only `ok` records are ranked; lossy, invalid and failed ones are flagged.", "",
+             "## Runs", "", markdown_table(RUNS_HEADER, runs_rows(runs_info)), "",
+             "## Best per criterion (ok records only)", "",
+             markdown_table(BEST_HEADER, best_rows(table)) if best_rows(table) else
+             "No ok record to rank.", "",
+             f"## Flagged configurations ({len(flagged)}: not ranked)", ""]
+    parts += [markdown_table(FLAGGED_HEADER, flagged) if flagged else "None.", ""]
+    parts += ["## Notes", ""] + ([f"- {n}" for n in notes] or ["None."]) + [""]
+    for section, figs in sections(figures):
+        parts += [f"## {section}", ""]
+        for f in figs:
+            parts += [f"### {f['title']}", "", f"![{f['title']}]({f['files'][0]})", "",
+                      f["caption"], ""]
+    parts += ["## All configurations", "", markdown_table(header, config_rows), ""]
+    with open(path, "w") as out:
+        out.write("\n".join(parts))
+
+
+STYLE = """body{font-family:sans-serif;margin:2em;max-width:1400px}
+table{border-collapse:collapse;font-size:12px;margin-bottom:1em}
+td,th{border:1px solid #ccc;padding:2px 6px;text-align:left}
+tr.flagged td{background:#fde8e8}
+img{max-width:100%;border:1px solid #eee}
+figure{margin:1em 0 2em 0}figcaption{font-size:12px;color:#444}"""
+
+
+def write_html(path, title, runs_info, table, figures, notes):
+    header, config_rows = configuration_rows(table)
+    flagged = flagged_rows(table)
+    best = best_rows(table)
+    e = html.escape
+    parts = ["<!DOCTYPE html>", "<html><head><meta charset=\"utf-8\">",
+             f"<title>{e(title)}</title><style>{STYLE}</style></head><body>",
+             f"<h1>{e(title)}</h1>",
+             "<p>Generated by <code>ldmbench report</code>. Data: <a href=\"tidy.csv\">tidy.csv</a> "
+             "(every figure regenerates from it); summary: <a href=\"summary.md\">summary.md</a>. "
+             "Only <code>ok</code> records are ranked; lossy, invalid and failed ones are "
+             "flagged (hollow markers, hatched bars, red rows).</p>",
+             "<h2>Runs</h2>", html_table(RUNS_HEADER, runs_rows(runs_info)),
+             "<h2>Best per criterion (ok records only)</h2>",
+             html_table(BEST_HEADER, best) if best else "<p>No ok record to rank.</p>",
+             f"<h2>Flagged configurations ({len(flagged)}: not ranked)</h2>",
+             html_table(FLAGGED_HEADER, flagged) if flagged else "<p>None.</p>",
+             "<h2>Notes</h2>",
+             "<ul>" + "".join(f"<li>{e(n)}</li>" for n in notes) + "</ul>" if notes else "<p>None.</p>"]
+    for section, figs in sections(figures):
+        parts.append(f"<h2>{e(section)}</h2>")
+        for f in figs:
+            links = " ".join(f'<a href="{e(p)}">{e(p.rsplit(".", 1)[1])}</a>' for p in f["files"])
+            parts.append(f'<figure><img src="{e(f["files"][0])}" alt="{e(f["title"])}">'
+                         f'<figcaption><b>{e(f["title"])}</b>: {e(f["caption"])} {links}'
+                         "</figcaption></figure>")
+    parts += ["<h2>All configurations</h2>", html_table(header, config_rows, flag_column=2),
+              "</body></html>"]
+    with open(path, "w") as out:
+        out.write("\n".join(parts) + "\n")
+
+
+

@@ -1,0 +1,150 @@
+"""Typed views of the tidy table (kept as text, as ldmbench writes it): numbers, statuses,
+methods, the axes a sweep varies, the metric columns and the sub-passes a run timed.
+
+Everything is discovered from the columns, so that a new pass, its sub-passes
+(`<subpass>_ms_median`) and its prefixed metrics (`<prefix>_mse`, `<prefix>_mssim`) appear in
+the report without a change here."""
+import re
+
+import numpy as np
+import pandas as pd
+
+MEASURED_STATUS = "ok"  # lossy, invalid and failed are flagged, never ranked
+
+# The record schema's identity and pass-setting columns (harness/records/columns.cpp) that
+# tell configurations apart; `sweep` is a sweep's name where a run records one. Other
+# settings join with --axis.
+KNOWN_AXES = ["run", "sweep", "scene", "structure", "pass", "n_views", "r_ldm", "width",
+              "height", "structure_params", "sizing_policy", "visibility", "d_max",
+              "falloff_exponent", "normal_offset_pixels", "trace", "ao_estimator",
+              "hbao_directions", "hbao_steps", "hbao_angle_bias", "hbao_jitter", "frames"]
+# Axes that belong to an LDM structure: a pass without one (structure "none") has no value.
+STRUCTURE_AXES = {"n_views", "r_ldm", "structure_params", "sizing_policy"}
+AXIS_LABELS = {"n_views": "N", "r_ldm": "R_LDM", "d_max": "d_max", "fragments": "fragments"}
+# <subpass>_ms_median columns that are not sub-passes of a frame: the sums, and the raster
+# baselines (timed beside the frame, not part of it).
+NOT_STACKED = {"build", "frame", "raster_baseline", "raster_touch"}
+# The structures' and sizing policies' sub-passes (README, Records), stacked first in this
+# order so that a bar reads build, then pass; any other sub-pass (a pass's) follows in
+# column order.
+BUILD_SUBPASSES = ["census", "readback", "reallocate", "clear", "count", "prefix_sum",
+                   "construct", "sort", "rebuild"]
+NO_STRUCTURE = ("", "none")
+METRIC = re.compile(r"^(?:(?P<prefix>.+)_)?(?P<metric>mse|mssim)$")
+NOT_METRICS = {"ref_noise_mse", "ref_noise_mssim"}
+
+
+def axis_label(column):
+    return AXIS_LABELS.get(column, column)
+
+
+class Table:
+    """The tidy rows as a DataFrame of text, with typed accessors."""
+
+    def __init__(self, columns, rows, extra_axes=()):
+        self.columns = list(columns)
+        self.df = pd.DataFrame(rows, columns=self.columns).fillna("")
+        self.extra_axes = [a for a in extra_axes if a not in KNOWN_AXES]
+
+    def __len__(self):
+        return len(self.df)
+
+    def has(self, column):
+        return column in self.df.columns
+
+    def text(self, column):
+        if not self.has(column):
+            return pd.Series([""] * len(self.df), index=self.df.index, dtype=object)
+        return self.df[column].astype(str)
+
+    def num(self, column):
+        """The column as floats: NaN where absent, empty or not a number."""
+        if not self.has(column):
+            return pd.Series(np.nan, index=self.df.index)
+        return pd.to_numeric(self.df[column], errors="coerce")
+
+    def status(self):
+        return self.text("status")
+
+    def measured(self):
+        """Rows that may be ranked and put on a Pareto front: status ok."""
+        return self.status() == MEASURED_STATUS
+
+    def has_structure(self):
+        return ~self.text("structure").isin(NO_STRUCTURE)
+
+    def query_ms(self):
+        """The pass's share of a frame: frame minus build (a pass without a structure has no
+        build, so its whole frame)."""
+        return self.num("frame_ms_median") - self.num("build_ms_median").fillna(0)
+
+    def methods(self):
+        """structure/pass per row ("psppsll/ao"), the pass alone for a pass without a
+        structure ("hbao"), the structure alone when every structure ran one pass."""
+        structure, pass_ = self.text("structure"), self.text("pass")
+        with_structure = self.has_structure()
+        one_pass = pass_[with_structure].nunique() <= 1
+        labels = []
+        for s, p, w in zip(structure, pass_, with_structure):
+            labels.append((s if one_pass else f"{s}/{p}") if w else (p or "?"))
+        return pd.Series(labels, index=self.df.index)
+
+    def axes(self):
+        return [a for a in KNOWN_AXES + self.extra_axes if self.has(a)]
+
+    def axis_values(self, column):
+        """An axis's value per row, "" where it does not apply (structure axes of a pass
+        without a structure)."""
+        values = self.text(column)
+        if column in STRUCTURE_AXES:
+            values = values.where(self.has_structure(), "")
+        return values
+
+    def varying(self, rows, candidates):
+        """The candidate axes taking more than one value over `rows` (a boolean mask)."""
+        return [a for a in candidates if self.has(a) and self.axis_values(a)[rows].nunique() > 1]
+
+    def subpasses(self):
+        """Timed sub-passes of a frame: every <name>_ms_median column but the sums and the
+        raster baselines; the known build sub-passes first, the rest in column order."""
+        names = []
+        for c in self.columns:
+            if c.endswith("_ms_median"):
+                name = c[: -len("_ms_median")]
+                if name not in NOT_STACKED:
+                    names.append(name)
+        known = [n for n in BUILD_SUBPASSES if n in names]
+        return known + [n for n in names if n not in known]
+
+    def metric_columns(self):
+        """[(prefix, metric, column)] for every image metric a pass scored: mse and mssim
+        against the pass's reference, <prefix>_mse / <prefix>_mssim against other ones."""
+        found = []
+        for c in self.columns:
+            m = METRIC.match(c)
+            if m and c not in NOT_METRICS:
+                found.append((m.group("prefix") or "", m.group("metric"), c))
+        return found
+
+    def reference_key_column(self, prefix):
+        """The column naming the reference a metric was scored against, if the run wrote one."""
+        for c in ([f"{prefix}_ref_cache_key", f"ref_{prefix}_cache_key"] if prefix else []) + \
+                ["ref_cache_key"]:
+            if self.has(c):
+                return c
+        return None
+
+
+def sort_key(value):
+    """Axis values in numeric order where they are numbers, else text order."""
+    try:
+        return (0, float(value), "")
+    except (TypeError, ValueError):
+        return (1, 0.0, str(value))
+
+
+def describe(values):
+    """k=v pairs of a dict of axis values, for legends and titles (a structure's parameters
+    as they are: "k=3")."""
+    return ", ".join(v if k == "structure_params" else f"{axis_label(k)}={v}"
+                     for k, v in values.items() if v != "")
