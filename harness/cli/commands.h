@@ -16,6 +16,7 @@ void reject_empty_list_items(int argc, const char* const* argv);
 Runner add_reference_command(CLI::App& app);
 Runner add_compare_command(CLI::App& app);
 Runner add_compare_runs_command(CLI::App& app);  // ldmbench compare BASE NEW
+Runner add_report_command(CLI::App& app);        // ldmbench report RUN... (plots, pages)
 Runner add_listing_commands(CLI::App& app);  // scenes, structures, passes, columns, info
 
 }  // namespace ldm::cli

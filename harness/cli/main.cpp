@@ -3,6 +3,7 @@
 //   ldmbench reference       render a path-traced reference image
 //   ldmbench compare-images  error metrics between two images
 //   ldmbench compare         regressions between two runs (time, memory, accuracy, status)
+//   ldmbench report          tables, plots and pages from runs (scripts/report/)
 //   ldmbench scenes | structures | passes | columns | info
 #include <CLI/CLI.hpp>
 
@@ -24,6 +25,7 @@ int main(int argc, char** argv) {
       {"reference", ldm::cli::add_reference_command(app)},
       {"compare-images", ldm::cli::add_compare_command(app)},
       {"compare", ldm::cli::add_compare_runs_command(app)},
+      {"report", ldm::cli::add_report_command(app)},
       {"listing", ldm::cli::add_listing_commands(app)},
   };
   try {

@@ -1,0 +1,185 @@
+// `ldmbench report RUN... [--out DIR]`: a folder of tables, plots and pages from runs. The
+// work is done by the Python script scripts/report/ldmbench_report.py (matplotlib and
+// pandas); this command checks every argument first, so that bad input exits 2 with
+// nothing written and no Python started, then finds the script and a Python that has the
+// plotting packages, and runs it.
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "harness/app/run_command.h"
+#include "harness/cli/commands.h"
+#include "harness/compare/run_comparison.h"
+#include "harness/util/error.h"
+#include "harness/util/process.h"
+
+namespace ldm::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kScriptEnv = "LDMBENCH_REPORT_SCRIPT";
+constexpr const char* kPythonEnv = "LDMBENCH_PYTHON";
+constexpr const char* kScriptName = "ldmbench_report.py";
+constexpr const char* kManifest = "manifest.json";  // what marks a folder as a report
+constexpr const char* kPythonModules = "matplotlib, pandas, numpy";
+
+struct ReportOptions {
+  std::vector<std::string> runs, axes;
+  std::string out, title;
+  bool svg = false;
+};
+
+// A records.csv must at least name its configurations and their status.
+void check_csv_header(const fs::path& path) {
+  std::ifstream in(path);
+  std::string header;
+  if (!in || !std::getline(in, header))
+    throw UserError(path.string() + ": cannot read, or empty (expected ldmbench records)");
+  std::vector<std::string> names;
+  std::stringstream s(header);
+  for (std::string name; std::getline(s, name, ',');) names.push_back(name);
+  for (const char* needed : {"config_id", "status"})
+    if (std::find(names.begin(), names.end(), needed) == names.end())
+      throw UserError(path.string() + ": not ldmbench records (no column " + needed + ")");
+}
+
+// The records file a RUN argument names; throws UserError naming the path otherwise.
+fs::path records_file_of(const std::string& run) {
+  const fs::path path(run);
+  if (fs::is_directory(path)) {
+    if (fs::is_regular_file(path / "records.csv")) return path / "records.csv";
+    if (fs::is_regular_file(path / "records.json")) return path / "records.json";
+    throw UserError(run + ": a folder without records.csv or records.json (expected an "
+                    "ldmbench run folder)");
+  }
+  if (!fs::exists(path)) throw UserError(run + ": no such file or folder");
+  if (path.extension() != ".csv" && path.extension() != ".json")
+    throw UserError(run + ": expected a run folder, a records.csv or a records.json");
+  return path;
+}
+
+void check_run(const std::string& run) {
+  const fs::path records = records_file_of(run);
+  if (records.extension() == ".csv")
+    check_csv_header(records);
+  else
+    load_run_records(records.string());  // throws UserError naming the file
+}
+
+// --out: a new or empty folder, or an earlier report (replaced); never a run's own folder.
+void check_out_folder(const std::string& out, const std::vector<std::string>& runs) {
+  const fs::path target = fs::weakly_canonical(fs::absolute(out));
+  for (const std::string& run : runs) {
+    const fs::path folder = fs::weakly_canonical(fs::absolute(records_file_of(run)).parent_path());
+    if (target == folder) throw UserError("--out: '" + out + "' is the folder of " + run + "; choose another");
+  }
+  if (!fs::exists(target)) return;
+  if (!fs::is_directory(target)) throw UserError("--out: '" + out + "' exists and is not a folder");
+  if (fs::is_empty(target)) return;
+  std::ifstream manifest(target / kManifest);
+  bool is_report = false;
+  if (manifest) {
+    const auto root = nlohmann::json::parse(manifest, nullptr, /*allow_exceptions=*/false);
+    is_report = root.is_object() && root.contains("ldmbench_report");
+  }
+  if (!is_report)
+    throw UserError("--out: '" + out + "' is not empty and holds no earlier report (" +
+                    kManifest + "); choose an empty or new folder");
+}
+
+std::string default_out(const std::vector<std::string>& runs) {
+  if (runs.size() != 1) throw UserError("--out: needed when reporting several runs");
+  return (fs::path(records_file_of(runs[0])).parent_path() / "report").string();
+}
+
+// The script: $LDMBENCH_REPORT_SCRIPT, else installed beside the binary
+// (<bin>/report/, <prefix>/share/ldmbench/report/), else the source tree it was built from.
+std::string find_script() {
+  if (const char* env = std::getenv(kScriptEnv); env && *env) {
+    if (!fs::is_regular_file(env))
+      throw UserError(std::string(kScriptEnv) + "=" + env + ": no such file");
+    return env;
+  }
+  std::vector<fs::path> candidates;
+  if (const std::string exe = executable_path(); !exe.empty()) {
+    const fs::path bin = fs::path(exe).parent_path();
+    candidates.push_back(bin / "report" / kScriptName);
+    candidates.push_back(bin.parent_path() / "share" / "ldmbench" / "report" / kScriptName);
+  }
+  candidates.push_back(fs::path(LDM_SOURCE_DIR) / "scripts" / "report" / kScriptName);
+  std::string tried;
+  for (const fs::path& c : candidates) {
+    if (fs::is_regular_file(c)) return c.string();
+    tried += "\n  " + c.string();
+  }
+  throw UserError(std::string("the report script ") + kScriptName + " is not installed; looked in:" +
+                  tried + "\nset " + kScriptEnv + " to its path (scripts/report/ in the sources)");
+}
+
+// A Python that imports the plotting packages: $LDMBENCH_PYTHON, else python3 on PATH,
+// else /usr/bin/python3 (Debian's, where scripts/setup.sh installs them).
+std::string find_python() {
+  std::vector<std::string> candidates;
+  if (const char* env = std::getenv(kPythonEnv); env && *env)
+    candidates = {env};
+  else
+    candidates = {"python3", "/usr/bin/python3"};
+  std::string tried;
+  for (const std::string& python : candidates) {
+    const ProcessResult probe =
+        run_process({python, "-c", std::string("import ") + kPythonModules}, /*capture=*/true);
+    if (probe.started && probe.status == 0) return python;
+    std::string why = probe.output;
+    if (const size_t last = why.find_last_not_of("\n"); last != std::string::npos)
+      why = why.substr(why.rfind('\n', last) + 1, last - why.rfind('\n', last));
+    tried += "\n  " + python + ": " +
+             (probe.started ? (why.empty() ? "exit " + std::to_string(probe.status) : why)
+                            : "cannot run (" + probe.output + ")");
+  }
+  throw UserError(std::string("ldmbench report needs python3 with ") + kPythonModules + "; tried:" +
+                  tried + "\nrun scripts/setup.sh (Debian: python3-matplotlib python3-pandas), "
+                  "or set " + kPythonEnv + " to a python that has them");
+}
+
+}  // namespace
+
+Runner add_report_command(CLI::App& app) {
+  auto o = std::make_shared<ReportOptions>();
+  auto* cmd = app.add_subcommand(
+      "report", "Tables, plots (trade-offs with Pareto fronts, memory, sub-pass bars, "
+                "scaling slopes, image grids) and pages (index.html, summary.md) from runs");
+  cmd->add_option("runs", o->runs, "Run folders, or their records.csv / records.json")
+      ->required()
+      ->expected(1, -1);
+  cmd->add_option("--out", o->out,
+                  "Report folder: new, empty, or an earlier report (replaced). Default: "
+                  "RUN/report for one run");
+  cmd->add_flag("--svg", o->svg, "Also write every figure as SVG");
+  cmd->add_option("--title", o->title, "Title of the pages");
+  cmd->add_option("--axis", o->axes,
+                  "A further record column that tells configurations apart (a new pass's "
+                  "setting), repeatable");
+  return [o]() {
+    for (const std::string& run : o->runs) check_run(run);
+    const std::string out = o->out.empty() ? default_out(o->runs) : o->out;
+    check_out_folder(out, o->runs);
+    const std::string script = find_script();
+    const std::string python = find_python();
+    std::vector<std::string> argv = {python, script};
+    argv.insert(argv.end(), o->runs.begin(), o->runs.end());
+    argv.insert(argv.end(), {"--out", out});
+    if (o->svg) argv.push_back("--svg");
+    if (!o->title.empty()) argv.insert(argv.end(), {"--title", o->title});
+    for (const std::string& axis : o->axes) argv.insert(argv.end(), {"--axis", axis});
+    const ProcessResult result = run_process(argv, /*capture=*/false);
+    if (!result.started) throw UserError(python + ": cannot run: " + result.output);
+    return result.status;
+  };
+}
+
+}  // namespace ldm::cli
