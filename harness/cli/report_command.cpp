@@ -27,6 +27,11 @@ constexpr const char* kPythonEnv = "LDMBENCH_PYTHON";
 constexpr const char* kScriptName = "ldmbench_report.py";
 constexpr const char* kManifest = "manifest.json";  // what marks a folder as a report
 constexpr const char* kPythonModules = "matplotlib, pandas, numpy";
+// Finds the modules without importing them (an import of matplotlib takes a second).
+constexpr const char* kPythonProbe =
+    "import importlib.util, sys\n"
+    "missing = [m for m in ('matplotlib', 'pandas', 'numpy') if importlib.util.find_spec(m) is None]\n"
+    "sys.exit('No module named ' + ', '.join(missing) if missing else 0)\n";
 
 struct ReportOptions {
   std::vector<std::string> runs, axes;
@@ -132,7 +137,7 @@ std::string find_python() {
   std::string tried;
   for (const std::string& python : candidates) {
     const ProcessResult probe =
-        run_process({python, "-c", std::string("import ") + kPythonModules}, /*capture=*/true);
+        run_process({python, "-c", kPythonProbe}, /*capture=*/true);
     if (probe.started && probe.status == 0) return python;
     std::string why = probe.output;
     if (const size_t last = why.find_last_not_of("\n"); last != std::string::npos)

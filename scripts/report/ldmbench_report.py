@@ -128,9 +128,7 @@ def runs_info_from_table(table, tidy_path):
 
 def main(argv):
     args = parse_arguments(argv)
-    import_plotting()
-    from ldmreport import figures, grids, pages, runs
-    from ldmreport.table import Table
+    from ldmreport import runs  # the standard library only: checks need no plotting
 
     inputs = [args.from_csv] if args.from_csv else args.runs
     try:
@@ -145,6 +143,9 @@ def main(argv):
     except runs.InputError as e:
         fail(str(e))
     earlier = check_out_folder(args.out, inputs)
+    import_plotting()
+    from ldmreport import figures, grids, pages
+    from ldmreport.table import Table
 
     os.makedirs(args.out, exist_ok=True)
     remove_earlier_report(args.out, earlier)
