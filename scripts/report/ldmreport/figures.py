@@ -91,8 +91,8 @@ def wide_span(values):
 
 
 def scatter(ax, x, y, colour, marker, measured, label):
-    ax.scatter(x[measured], y[measured], color=colour, marker=marker, s=36, label=label,
-               zorder=3)
+    ax.scatter(x[measured], y[measured], color=colour, marker=marker, s=36, zorder=3,
+               label=label if measured.any() else None)
     if (~measured).any():
         ax.scatter(x[~measured], y[~measured], facecolors="none", edgecolors=[colour],
                    marker=marker, s=36, zorder=3,

@@ -15,8 +15,11 @@ from .figures import safe_name  # noqa: E402
 from .runs import RUN_DIR_COLUMN  # noqa: E402
 from .table import axis_label, describe, sort_key  # noqa: E402
 
-# Axes a grid's rows may run over: the ones that change an image (not the run or size).
-GRID_AXES_EXCLUDED = {"run", "sweep", "structure", "pass", "width", "height", "frames"}
+# Axes that are columns (structure, pass) or change no image (frames); the rest are held
+# or run down the rows.
+NOT_HELD = {"structure", "pass", "frames"}
+# Axes held but never run down the rows (a grid compares images of one size and run).
+NOT_ROWS = {"run", "sweep", "width", "height"}
 CELL_INCHES = 1.5
 
 
@@ -120,7 +123,8 @@ def render_grid(table, canvas, scene, row_axis, values, cells, held):
         axes[r][0].set_ylabel(f"{axis_label(row_axis)} = {value}", fontsize=8)
     for c, title in enumerate(columns):
         axes[0][c].set_title(textwrap.fill(title, 22), fontsize=7)
-    held_text = describe({k: v for k, v in held.items() if k != "scene"})
+    held_text = describe({k: v for k, v in held.items() if k != "scene" and
+                          (k != "run" or table.text("run").nunique() > 1)})
     fig.suptitle(textwrap.fill(f"{scene}: rows {axis_label(row_axis)}" +
                                (f"; held: {held_text}" if held_text else ""),
                                int(CELL_INCHES * len(columns) * 12)), fontsize=8)
@@ -141,14 +145,14 @@ def draw_image_grids(table, canvas):
         canvas.note("image grids: skipped, the runs' images are not there (a report from "
                     "tidy.csv alone has no images; keep the run folders beside it)")
         return
-    axes = [a for a in table.axes() if a not in GRID_AXES_EXCLUDED]
+    axes = [a for a in table.axes() if a not in NOT_HELD]
     scenes = list(dict.fromkeys(table.text("scene")[present]))
     for scene in scenes:
         in_scene = [i for i in present if table.text("scene")[i] == scene]
         drawn = 0
         mask = table.df.index.isin(in_scene)
         for row_axis in table.varying(mask, axes):
-            if row_axis == "scene":
+            if row_axis == "scene" or row_axis in NOT_ROWS:
                 continue
             plan = plan_grid(table, in_scene, axes, row_axis)
             if plan:
