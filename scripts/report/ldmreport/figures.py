@@ -133,6 +133,9 @@ def draw_tradeoffs(table, canvas):
     methods = table.methods()
     measured = table.measured().to_numpy()
     time = table.num("frame_ms_median")
+    if not table.metric_columns():
+        canvas.note("time vs image metrics: skipped, the records hold no mse or mssim "
+                    "(a run with --no-reference)")
     for prefix, metric, column in table.metric_columns():
         groups = comparable_groups(table, prefix, column)
         if not groups:

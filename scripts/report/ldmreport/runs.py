@@ -52,8 +52,21 @@ def json_value_text(value):
     if isinstance(value, bool):
         return "true" if value else "false"
     if isinstance(value, float):
-        return repr(value)
+        return format_double(value)
     return str(value)
+
+
+def format_double(x):
+    """As ldmbench's format_double: the shortest %.Ng (N >= 6) that reads back to x."""
+    if x != x:
+        return "nan"
+    if x in (float("inf"), float("-inf")):
+        return "inf" if x > 0 else "-inf"
+    for precision in range(6, 18):
+        text = "%.*g" % (precision, x)
+        if float(text) == x:
+            return text
+    return text
 
 
 def read_csv_records(path):
