@@ -350,7 +350,7 @@ def draw_subpass_bars(table, canvas, per_figure=60):
             ax.invert_yaxis()
             ax.set_xlabel("median time per frame (ms), stacked by sub-pass")
             handles = [plt.Rectangle((0, 0), 1, 1, color=colours[s]) for s in subpasses]
-            ax.legend(handles, subpasses, fontsize=7, loc="lower right")
+            ax.legend(handles, subpasses, fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1))
             ax.grid(alpha=0.3, axis="x")
             suffix = f"-{part + 1}" if len(index) > per_figure else ""
             canvas.save(fig, f"subpasses-{safe_name(scene)}{suffix}",

@@ -27,8 +27,8 @@ NOT_STACKED = {"build", "frame", "raster_baseline", "raster_touch"}
 # The structures' and sizing policies' sub-passes (README, Records), stacked first in this
 # order so that a bar reads build, then pass; any other sub-pass (a pass's) follows in
 # column order.
-BUILD_SUBPASSES = ["census", "readback", "reallocate", "clear", "count", "prefix_sum",
-                   "construct", "sort", "rebuild"]
+BUILD_SUBPASSES = ["census", "clear", "count", "prefix_sum", "construct", "sort", "readback",
+                   "reallocate", "rebuild"]
 NO_STRUCTURE = ("", "none")
 METRIC = re.compile(r"^(?:(?P<prefix>.+)_)?(?P<metric>mse|mssim)$")
 NOT_METRICS = {"ref_noise_mse", "ref_noise_mssim"}
