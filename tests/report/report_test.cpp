@@ -74,11 +74,11 @@ struct Report {
   }
 };
 
-Report small_report() {
+Report small_report(const std::string& options = "") {
   Report r;
   r.run = small_run();
   r.dir = fs::path(test::make_temp_dir("ldm-report")) / "report";
-  const Outcome o = ldmbench("report " + r.run.string() + " --out " + r.dir.string());
+  const Outcome o = ldmbench("report " + r.run.string() + " --out " + r.dir.string() + " " + options);
   EXPECT_EQ(o.status, 0) << o.output;
   r.manifest = nlohmann::json::parse(read_text(r.dir / "manifest.json"));
   return r;
@@ -88,20 +88,23 @@ const std::set<std::string> kExpectedFigures = {
     "tradeoff-time-vs-mse", "tradeoff-time-vs-mssim", "memory-vs-n_views", "subpasses-cornell",
     "cost-vs-n_views",      "cost-vs-fragments",      "grid-cornell-n_views"};
 
-void expect_non_empty_pngs(const fs::path& dir, const nlohmann::json& manifest) {
+void expect_non_empty_figures(const fs::path& dir, const nlohmann::json& manifest) {
   for (const auto& figure : manifest["figures"])
     for (const auto& file : figure["files"]) {
       const fs::path path = dir / file.get<std::string>();
       ASSERT_TRUE(fs::is_regular_file(path)) << path;
       EXPECT_GT(fs::file_size(path), 1000u) << path;
-      EXPECT_EQ(read_text(path).substr(0, 8), "\x89PNG\r\n\x1a\n") << path;
+      if (path.extension() == ".svg")
+        EXPECT_NE(read_text(path).find("<svg"), std::string::npos) << path;
+      else
+        EXPECT_EQ(read_text(path).substr(0, 8), "\x89PNG\r\n\x1a\n") << path;
     }
 }
 
 void expect_every_plot(const Report& r) {
   SCOPED_TRACE("every plot the data supports, each a non-empty PNG");
   EXPECT_EQ(r.figure_names(), kExpectedFigures);
-  expect_non_empty_pngs(r.dir, r.manifest);
+  expect_non_empty_figures(r.dir, r.manifest);
   size_t pngs = 0;
   for (const auto& entry : fs::directory_iterator(r.dir / "figures"))
     pngs += entry.path().extension() == ".png";
@@ -137,6 +140,9 @@ void expect_links_to_existing_files_only(const Report& r) {
   }
   EXPECT_GE(images, kExpectedFigures.size()) << "every figure is shown";
   EXPECT_GE(links, images + 2);  // tidy.csv and summary.md
+  for (const auto& figure : r.manifest["figures"])
+    for (const auto& file : figure["files"])
+      EXPECT_NE(html.find("\"" + file.get<std::string>() + "\""), std::string::npos) << "not linked: " << file;
   const std::string md = read_text(r.dir / "summary.md");
   const std::regex md_image(R"(!\[[^\]]*\]\(([^)]*)\))");
   size_t md_images = 0;
@@ -186,7 +192,8 @@ TEST(Report, OfASmallRunHoldsEveryPlotAndEveryRecord) {
 }
 
 TEST(Report, PagesLinkOnlyExistingFilesAndNoteSkippedPlots) {
-  const Report r = small_report();
+  const Report r = small_report("--svg");  // the pages link the SVGs too
+  expect_non_empty_figures(r.dir, r.manifest);
   expect_links_to_existing_files_only(r);
   expect_skipped_plots_noted(r);
 }
@@ -207,7 +214,7 @@ TEST(Report, RegeneratesEveryFigureFromTheTidyCsvAlone) {
   std::set<std::string> expected = kExpectedFigures;
   expected.erase("grid-cornell-n_views");
   EXPECT_EQ(names, expected);
-  expect_non_empty_pngs(again, manifest);
+  expect_non_empty_figures(again, manifest);
   EXPECT_NE(read_text(again / "summary.md").find("image grids: skipped, the runs' images are not there"),
             std::string::npos);
   EXPECT_EQ(lines_of(read_text(again / "tidy.csv")).size(), 6u);
