@@ -31,6 +31,7 @@ class Canvas:
         os.makedirs(os.path.join(out_dir, "figures"), exist_ok=True)
 
     def save(self, fig, name, title, caption, section):
+        fig.tight_layout()  # titles and labels of stacked panels must not overlap
         files = []
         for ext in ("png", "svg") if self.svg else ("png",):
             rel = f"figures/{name}.{ext}"
@@ -84,6 +85,16 @@ def plain_log_ticks(ax, axis_values=None):
             ax.xaxis.set_minor_locator(matplotlib.ticker.NullLocator())
 
 
+def place_legend(ax, inside=8):
+    """A legend inside the axes when short, beside them when long, so that it never hides
+    the data (figures whose legends may be long stack their panels in one column)."""
+    entries = len(ax.get_legend_handles_labels()[1])
+    if entries <= inside:
+        ax.legend(fontsize=7)
+    else:
+        ax.legend(fontsize=6, loc="upper left", bbox_to_anchor=(1.01, 1))
+
+
 def wide_span(values):
     """Whether positive values span enough for a log axis to read better."""
     values = values[np.isfinite(values) & (values > 0)]
@@ -122,8 +133,12 @@ def comparable_groups(table, prefix, column):
     candidates = ["scene", "width", "height", "visibility", "d_max"] + table.extra_axes
     differing = [a for a in candidates
                  if len({table.axis_values(a)[i] for i in firsts}) > 1]
-    return [(describe({a: table.axis_values(a)[i] for a in differing}) or
-             table.text("scene")[i], m) for i, m in zip(firsts, masks)]
+    passes = [", ".join(dict.fromkeys(table.text("pass")[m])) for m in masks]
+    titles = []
+    for i, m, p in zip(firsts, masks, passes):
+        title = describe({a: table.axis_values(a)[i] for a in differing}) or table.text("scene")[i]
+        titles.append(title + (f"; {p}" if len(set(passes)) > 1 else ""))
+    return list(zip(titles, masks))
 
 
 def draw_tradeoffs(table, canvas):
@@ -167,7 +182,7 @@ def draw_tradeoffs(table, canvas):
             ax.set_ylabel(column + (" (higher is better)" if higher else " (lower is better)"))
             ax.set_title(title, fontsize=10)
             ax.grid(alpha=0.3)
-            ax.legend(fontsize=7)
+            place_legend(ax)
         name = f"tradeoff-time-vs-{column}"
         canvas.save(fig, name, f"Frame time vs {column}",
                     f"Per method; the dashed line is the Pareto front of the ok records "
@@ -213,7 +228,7 @@ def draw_memory(table, canvas):
         if not x_is_a_range(table, canvas, rows, x_column, what):
             continue
         scenes = list(dict.fromkeys(table.text("scene")[rows]))
-        fig, axes = subplot_grid(len(scenes))
+        fig, axes = subplot_grid(len(scenes), max_columns=1)
         for ax, scene in zip(axes, scenes):
             in_scene = rows & (table.text("scene") == scene)
             series = series_masks(table, in_scene, [other, "structure_params", "sizing_policy",
@@ -240,7 +255,7 @@ def draw_memory(table, canvas):
             ax.set_ylabel("MiB (solid allocated, dashed used)")
             ax.set_title(scene, fontsize=10)
             ax.grid(alpha=0.3)
-            ax.legend(fontsize=7)
+            place_legend(ax)
         canvas.save(fig, f"memory-vs-{x_column}", f"Memory vs {axis_label(x_column)}",
                     f"Bytes allocated (solid) and used after the build (dashed) per structure; "
                     f"{HOLLOW_NOTE}.", "Memory")
@@ -263,6 +278,9 @@ SCALING_SERIES = {
     "r_ldm": ["scene", "n_views", "structure_params", "sizing_policy", "trace",
               "ao_estimator", "d_max", "width", "height", "run"],
     "fragments": ["structure_params", "sizing_policy", "trace", "ao_estimator", "run"],
+    # the indirect pass's light resolution, where a run has it
+    "r_light": ["scene", "n_views", "r_ldm", "structure_params", "sizing_policy",
+                "splat_scale", "topological_bias", "width", "height", "run"],
 }
 
 
@@ -273,12 +291,14 @@ def draw_scaling(table, canvas):
              ("query", table.query_ms(), "query: frame - build, median (ms)")]
     measured = table.measured()
     for x_column, series_axes in SCALING_SERIES.items():
+        if x_column == "r_light" and not table.has(x_column):
+            continue
         what = f"cost vs {axis_label(x_column)}"
         x_all = table.num(x_column)
         rows = (x_all > 0) & table.has_structure()
         if not x_is_a_range(table, canvas, rows, x_column, what):
             continue
-        fig, axes = subplot_grid(len(costs), width=6.0, height=4.4)
+        fig, axes = subplot_grid(len(costs), width=6.0, height=4.4, max_columns=1)
         for ax, (cost_name, cost, ylabel) in zip(axes, costs):
             in_plot = rows & (cost > 0)
             series = series_masks(table, in_plot, series_axes + table.extra_axes)
@@ -286,7 +306,7 @@ def draw_scaling(table, canvas):
                 x, y = x_all[mask].to_numpy(), cost[mask].to_numpy()
                 ok = measured[mask].to_numpy()
                 slope, intercept = fitted_slope(x[ok], y[ok])
-                text = f"{label}: slope {slope:.2f}" if slope is not None else \
+                text = f"{label}: slope {round(slope, 2) + 0:.2f}" if slope is not None else \
                     f"{label}: no slope (<2 ok points)"
                 order = np.argsort(x)
                 ax.plot(x[order], y[order], color=colour, linewidth=0.8, alpha=0.6)
@@ -305,7 +325,7 @@ def draw_scaling(table, canvas):
             ax.set_ylabel(ylabel)
             ax.set_title(f"{cost_name} cost vs {axis_label(x_column)}", fontsize=10)
             ax.grid(alpha=0.3, which="both")
-            ax.legend(fontsize=7)
+            place_legend(ax)
         canvas.save(fig, f"cost-vs-{x_column}", f"Cost vs {axis_label(x_column)} (log-log)",
                     "Medians per configuration; dotted: least-squares fit in log space over "
                     f"the ok records, its slope in the legend; {HOLLOW_NOTE}.", "Scaling")

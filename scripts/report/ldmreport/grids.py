@@ -128,7 +128,6 @@ def render_grid(table, canvas, scene, row_axis, values, cells, held):
     fig.suptitle(textwrap.fill(f"{scene}: rows {axis_label(row_axis)}" +
                                (f"; held: {held_text}" if held_text else ""),
                                int(CELL_INCHES * len(columns) * 12)), fontsize=8)
-    fig.tight_layout()
     name = f"grid-{safe_name(scene)}-{safe_name(row_axis)}"
     canvas.save(fig, name, f"Images, {scene}, by {axis_label(row_axis)}",
                 "Columns: each method's image, the reference, each method's error "
@@ -143,7 +142,7 @@ def draw_image_grids(table, canvas):
     present = [i for i in table.df.index if image_path(table, i, "image_png")]
     if not present:
         canvas.note("image grids: skipped, the runs' images are not there (a report from "
-                    "tidy.csv alone has no images; keep the run folders beside it)")
+                    "tidy.csv alone, whose run folders are gone or moved, has none)")
         return
     axes = [a for a in table.axes() if a not in NOT_HELD]
     scenes = list(dict.fromkeys(table.text("scene")[present]))

@@ -17,10 +17,13 @@ MEASURED_STATUS = "ok"  # lossy, invalid and failed are flagged, never ranked
 KNOWN_AXES = ["run", "sweep", "scene", "structure", "pass", "n_views", "r_ldm", "width",
               "height", "structure_params", "sizing_policy", "visibility", "d_max",
               "falloff_exponent", "normal_offset_pixels", "trace", "ao_estimator",
-              "hbao_directions", "hbao_steps", "hbao_angle_bias", "hbao_jitter", "frames"]
+              # the peers' and the indirect pass's settings (issues 9, 10)
+              "hbao_directions", "hbao_steps", "hbao_angle_bias", "hbao_jitter", "hbao_blur",
+              "rtao_spp", "rtao_seed", "rtao_threads", "r_light", "splat_scale",
+              "topological_bias", "footprint_threshold", "frames"]
 # Axes that belong to an LDM structure: a pass without one (structure "none") has no value.
 STRUCTURE_AXES = {"n_views", "r_ldm", "structure_params", "sizing_policy"}
-AXIS_LABELS = {"n_views": "N", "r_ldm": "R_LDM", "d_max": "d_max", "fragments": "fragments"}
+AXIS_LABELS = {"n_views": "N", "r_ldm": "R_LDM", "r_light": "R_light", "fragments": "fragments"}
 # <subpass>_ms_median columns that are not sub-passes of a frame: the sums, and the raster
 # baselines (timed beside the frame, not part of it).
 NOT_STACKED = {"build", "frame", "raster_baseline", "raster_touch"}
@@ -31,7 +34,7 @@ BUILD_SUBPASSES = ["census", "clear", "count", "prefix_sum", "construct", "sort"
                    "reallocate", "rebuild"]
 NO_STRUCTURE = ("", "none")
 METRIC = re.compile(r"^(?:(?P<prefix>.+)_)?(?P<metric>mse|mssim)$")
-NOT_METRICS = {"ref_noise_mse", "ref_noise_mssim"}
+NOT_METRIC = re.compile(r"(^|_)ref_noise_")  # a reference's own noise, <prefix>_ref_noise_mse
 
 
 def axis_label(column):
@@ -122,7 +125,7 @@ class Table:
         found = []
         for c in self.columns:
             m = METRIC.match(c)
-            if m and c not in NOT_METRICS:
+            if m and not NOT_METRIC.search(c):
                 found.append((m.group("prefix") or "", m.group("metric"), c))
         return found
 
