@@ -14,9 +14,9 @@ Runner add_run_command(CLI::App& app, const std::string& command_line);
 // comma lists of `run` are checked on the raw arguments first. Throws UserError.
 void reject_empty_list_items(int argc, const char* const* argv);
 Runner add_reference_command(CLI::App& app);
+Runner add_report_command(CLI::App& app);  // ldmbench report RUN... (plots, pages)
 Runner add_compare_command(CLI::App& app);
 Runner add_compare_runs_command(CLI::App& app);  // ldmbench compare BASE NEW
-Runner add_report_command(CLI::App& app);        // ldmbench report RUN... (plots, pages)
 Runner add_listing_commands(CLI::App& app);  // scenes, structures, passes, columns, info
 
 }  // namespace ldm::cli

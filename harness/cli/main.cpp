@@ -2,8 +2,8 @@
 //   ldmbench run             measure structures x passes x parameters: records and images
 //   ldmbench reference       render a path-traced reference image
 //   ldmbench compare-images  error metrics between two images
-//   ldmbench compare         regressions between two runs (time, memory, accuracy, status)
 //   ldmbench report          tables, plots and pages from runs (scripts/report/)
+//   ldmbench compare         regressions between two runs (time, memory, accuracy, status)
 //   ldmbench scenes | structures | passes | columns | info
 #include <CLI/CLI.hpp>
 
@@ -24,8 +24,8 @@ int main(int argc, char** argv) {
       {"run", ldm::cli::add_run_command(app, command_line)},
       {"reference", ldm::cli::add_reference_command(app)},
       {"compare-images", ldm::cli::add_compare_command(app)},
-      {"compare", ldm::cli::add_compare_runs_command(app)},
       {"report", ldm::cli::add_report_command(app)},
+      {"compare", ldm::cli::add_compare_runs_command(app)},
       {"listing", ldm::cli::add_listing_commands(app)},
   };
   try {
