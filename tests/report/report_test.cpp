@@ -218,6 +218,20 @@ TEST(Report, RegeneratesEveryFigureFromTheTidyCsvAlone) {
   EXPECT_NE(read_text(again / "summary.md").find("image grids: skipped, the runs' images are not there"),
             std::string::npos);
   EXPECT_EQ(lines_of(read_text(again / "tidy.csv")).size(), 6u);
+
+  // Into the same folder again: the earlier report is replaced (what its manifest lists,
+  // e.g. a figure no longer drawn, goes), anything else there stays.
+  auto earlier = manifest;
+  earlier["files"].push_back("figures/dropped.png");
+  std::ofstream(again / "manifest.json") << earlier.dump();
+  std::ofstream(again / "figures" / "dropped.png") << "old";
+  std::ofstream(again / "mine.txt") << "not the report's";
+  const Outcome replaced = shell(std::string(LDM_PYTHON) + " " + script() + " --from-csv " +
+                                 (alone / "tidy.csv").string() + " --out " + again.string());
+  ASSERT_EQ(replaced.status, 0) << replaced.output;
+  EXPECT_FALSE(fs::exists(again / "figures" / "dropped.png"));
+  EXPECT_TRUE(fs::exists(again / "mine.txt"));
+  EXPECT_TRUE(fs::is_regular_file(again / "index.html"));
 }
 
 // Bad input: exit 2, a message naming the culprit, `out` not created.
