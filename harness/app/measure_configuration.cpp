@@ -44,7 +44,9 @@ void describe_configuration(Record& r, const Configuration& config, const RunSet
   std::string params;
   for (const auto& [key, value] : config.params) params += (params.empty() ? "" : ";") + key + "=" + value;
   r.set("structure_params", params);
-  r.set("sizing_policy", sizing_policy_name(config.sizing.policy));
+  // A pass that reads no LDM sizes no structure.
+  r.set("sizing_policy", config.structure == kNoStructure ? std::string(kNoStructure)
+                                                          : sizing_policy_name(config.sizing.policy));
   r.set("frames", settings.frames);
   r.set("warmup", settings.warmup);
   r.set("device", device.gl_renderer);
@@ -88,6 +90,7 @@ void add_measurement(Record& r, const Measurement& m) {
   r.set("mean_depth_complexity", m.census.mean_depth_complexity);
   r.set("nonempty_pixel_fraction", m.census.nonempty_pixel_fraction);
   r.set("timer", timer_source_name(m.timer));
+  if (!m.device.empty()) r.set("device", m.device);  // a CPU pass: the CPU, not GL_RENDERER
 
   r.set("status", build_status_name(m.status));
   r.set("status_detail", m.status_detail);

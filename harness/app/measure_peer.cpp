@@ -1,12 +1,27 @@
 #include "harness/app/measure_peer.h"
 
+#include <fstream>
 #include <stdexcept>
+#include <thread>
 
-#include "harness/metrics/image_checks.h"
-#include "harness/util/error.h"
+#include "harness/app/frame_loop.h"
 #include "harness/util/hash.h"
 
 namespace ldm {
+
+std::string cpu_model_name() {
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(cpuinfo, line)) {
+    if (line.rfind("model name", 0) != 0) continue;
+    const auto colon = line.find(':');
+    if (colon == std::string::npos) break;
+    const auto start = line.find_first_not_of(" \t", colon + 1);
+    if (start != std::string::npos) return "CPU: " + line.substr(start);
+  }
+  return "CPU: unknown model (" + std::to_string(std::thread::hardware_concurrency()) +
+         " hardware threads)";
+}
 
 Measurement measure_peer(const Scene& scene, const MeasurementRequest& request,
                          std::unique_ptr<Pass> pass) {
@@ -22,42 +37,32 @@ Measurement measure_peer(const Scene& scene, const MeasurementRequest& request,
 
   const GpuScene gpu_scene(scene, needs.scene_attributes);
   m.scene_attributes = needs.scene_attributes.describe();
-  m.scene_gpu_bytes = gpu_scene.bytes();
+  m.scene_gpu_bytes = needs.runs_on_cpu ? 0 : gpu_scene.bytes();
   m.payload = "none";
   pass->prepare({scene, gpu_scene, nullptr, nullptr, request.width, request.height});
 
-  m.timer = request.timer;
-  GpuTimer timer(request.timer);
-  auto keep_running = [&, measured = 0]() mutable {
-    if (request.keep_running) return request.keep_running();
-    return measured++ < request.frames;
-  };
-  for (int frame = 0;; ++frame) {
-    const bool warmup = frame < request.warmup;
-    if (!warmup && !keep_running()) break;
-    timer.begin_frame();
-    pass->render(&timer);
-    FrameTimes times = timer.end_frame();
-    if (warmup) continue;
-    double frame_ms = 0;
+  // A CPU pass's time is the CPU's wall time, and its device the CPU: a GPU timer would
+  // time nothing (timestamps) or wait on an idle GPU (glFinish).
+  m.timer = needs.runs_on_cpu ? TimerSource::CpuWallClock : request.timer;
+  if (needs.runs_on_cpu) m.device = cpu_model_name();
+  GpuTimer timer(m.timer);
+  FrameLoop loop;
+  loop.render = [&](GpuTimer& t) { pass->render(&t); };
+  loop.add_sums = [](FrameTimes& times) {
+    double frame_ms = 0;  // no build: the frame is the pass
     for (const auto& [name, ms] : times) frame_ms += ms;
     times.emplace_back("frame", frame_ms);
-    if (request.on_frame) request.on_frame(times);
-    m.frames.push_back(std::move(times));
-  }
+  };
+  m.frames = run_frame_loop(request, timer, loop);
 
   m.images = pass->images();
   m.pass_results = pass->results();
+  m.memory = pass->memory();
   if (m.images.empty()) throw std::logic_error("pass " + request.pass + " produced no image");
   m.status = BuildStatus::Ok;
-  for (const auto& image : m.images) {
-    try {
-      require_finite(image.image, image.name + " image");
-    } catch (const UserError& e) {
-      m.status = BuildStatus::Invalid;
-      m.status_detail += std::string(m.status_detail.empty() ? "" : "; ") +
-                         "image not measured: " + e.what();
-    }
+  for (const auto& problem : image_problems(m.images)) {
+    m.status = BuildStatus::Invalid;
+    m.status_detail += (m.status_detail.empty() ? "" : "; ") + problem;
   }
   for (const auto& warning : pass->warnings())
     m.status_detail += (m.status_detail.empty() ? "" : "; ") + warning;

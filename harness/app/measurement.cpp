@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "harness/app/frame_loop.h"
 #include "harness/app/ldm_setup.h"
 #include "harness/app/measure_peer.h"
 #include "harness/metrics/image_checks.h"
@@ -70,6 +71,18 @@ uint64_t Measurement::bytes_used() const {
   return total;
 }
 
+std::vector<std::string> image_problems(const std::vector<PassImage>& images) {
+  std::vector<std::string> problems;
+  for (const auto& image : images) {
+    try {
+      require_finite(image.image, image.name + " image");
+    } catch (const UserError& e) {
+      problems.push_back(std::string("image not measured: ") + e.what());
+    }
+  }
+  return problems;
+}
+
 Measurement measure(const Scene& scene, const MeasurementRequest& request) {
   auto pass = make_pass(request.pass, StructureParams(request.pass_params, "--pass " + request.pass));
   const PassRequirements needs = pass->requirements();
@@ -111,33 +124,24 @@ Measurement measure(const Scene& scene, const MeasurementRequest& request) {
     health.report_problem("a pixel holds " + std::to_string(census.max_depth_complexity) +
                           " fragments, more than list walks follow (" +
                           std::to_string(kMaxListWalk) + ")");
-  auto keep_running = [&, measured = 0]() mutable {
-    if (request.keep_running) return request.keep_running();
-    return measured++ < request.frames;
-  };
   // One frame: the yardstick, the build, the pass. Work that belongs to the build (e.g. a
   // per-frame census, or a rebuild after an overflow under a sizing policy) goes between
   // begin_frame() and pass->render(), timed under its own sub-pass name, so that it counts
   // as build time; the pass then reads the finished structure.
-  for (int frame = 0;; ++frame) {
-    const bool warmup = frame < request.warmup;
-    if (!warmup && !keep_running()) break;
-    timer.begin_frame();
-    baseline.render(&timer);
-    sizer.build(&timer);  // the structure's build() under its sizing policy
-    pass->render(&timer);
-    FrameTimes times = timer.end_frame();
+  FrameLoop loop;
+  loop.render = [&](GpuTimer& t) {
+    baseline.render(&t);
+    sizer.build(&t);  // the structure's build() under its sizing policy
+    pass->render(&t);
+  };
+  loop.after_frame = [&](bool warmup) {
     // Untimed: what the build stored, read back through the query API.
     m.last_build = structure->stats();
     health.observe(m.last_build, inspector.check());
-    if (warmup) {  // judged, but not measured
-      rebuilds_in_warmup = sizer.rebuilds();
-      continue;
-    }
-    add_frame_sums(times, m.pass_subpasses);
-    if (request.on_frame) request.on_frame(times);
-    m.frames.push_back(std::move(times));
-  }
+    if (warmup) rebuilds_in_warmup = sizer.rebuilds();
+  };
+  loop.add_sums = [&](FrameTimes& times) { add_frame_sums(times, m.pass_subpasses); };
+  m.frames = run_frame_loop(request, timer, loop);
 
   // A touch baseline that shaded other fragments than the census would make
   // build_vs_raster_touch a ratio to something else.
@@ -150,13 +154,7 @@ Measurement measure(const Scene& scene, const MeasurementRequest& request) {
   m.images = pass->images();
   m.pass_results = pass->results();
   if (m.images.empty()) throw std::logic_error("pass " + request.pass + " produced no image");
-  for (const auto& image : m.images) {
-    try {
-      require_finite(image.image, image.name + " image");
-    } catch (const UserError& e) {
-      health.report_problem(std::string("image not measured: ") + e.what());
-    }
-  }
+  for (const auto& problem : image_problems(m.images)) health.report_problem(problem);
   m.status = health.status();
   m.status_detail = health.detail();
   for (const auto& warning : pass->warnings())  // measured, but known to be off: say so

@@ -61,6 +61,7 @@ struct Measurement {
   uint64_t scene_gpu_bytes = 0;
   CensusSummary census;
   TimerSource timer = TimerSource::FencedWallClock;
+  std::string device;  // empty: the GL context's renderer; a CPU pass: the CPU model
 
   // The verdict on every build (warm-up included) and on the images.
   BuildStatus status = BuildStatus::Ok;
@@ -93,6 +94,9 @@ struct Measurement {
 // Every measured frame's times as a tidy CSV: "frame,subpass,ms", one row per sub-pass and
 // sum of each frame, in order (for statistical comparisons of runs, beyond the summaries).
 std::string frame_samples_csv(const Measurement& measurement);
+
+// Why each image cannot be measured (a NaN or infinity), one sentence each; empty when all can.
+std::vector<std::string> image_problems(const std::vector<PassImage>& images);
 
 // Throws UserError (bad parameters, a configuration the device cannot hold) or GpuError; a
 // build that is merely wrong is not an exception but an "invalid" status.

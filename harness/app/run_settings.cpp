@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "harness/passes/pass.h"
+#include "harness/util/error.h"
 
 namespace ldm {
 
@@ -18,8 +19,11 @@ std::string visibility_name(Visibility v) {
 
 std::string Configuration::id() const {
   std::string scene_name = std::filesystem::path(scene).stem().string();
-  std::string id = scene_name + "-" + structure + "-" + pass + "-n" + std::to_string(views) +
-                   "-r" + std::to_string(resolution);
+  // A pass that reads no LDM (structure none) has no N, R_LDM, trace or sizing: its id
+  // names only what applies to it, scene-none-<pass>[-d..][-att][-k=v...].
+  const bool ldm = structure != kNoStructure;
+  std::string id = scene_name + "-" + structure + "-" + pass;
+  if (ldm) id += "-n" + std::to_string(views) + "-r" + std::to_string(resolution);
   if (d_max) {
     char buffer[32];
     std::snprintf(buffer, sizeof buffer, "-d%g", *d_max);
@@ -27,10 +31,10 @@ std::string Configuration::id() const {
   }
   if (visibility == Visibility::Attenuated) id += "-att";
   if (visibility == Visibility::Unattenuated) id += "-unatt";
-  if (structure != kNoStructure) id += "-" + ao_trace_name(trace);  // LDM AO only
+  if (ldm) id += "-" + ao_trace_name(trace);  // LDM AO only
   if (estimator != AoEstimatorChoice::Eq13) id += "-" + ao_estimator_name(estimator);
   for (const auto& [key, value] : params) id += "-" + key + "=" + value;
-  switch (sizing.policy) {
+  if (ldm) switch (sizing.policy) {
     case SizingPolicy::Oracle: id += "-oracle"; break;
     case SizingPolicy::Census: id += "-census"; break;
     case SizingPolicy::PreviousFrame:
@@ -59,6 +63,40 @@ std::string float_text(float value) {
   return buffer;
 }
 
+// A parameter whose value is a comma list is an axis, like -N 16,32: every combination of
+// the lists of one structure's (or pass's) parameters is one configuration. `owner` names
+// the structure or pass for the message on an empty item (-param ppfla:k=4,,8).
+std::vector<std::map<std::string, std::string>> parameter_combinations(
+    const std::string& owner, const std::map<std::string, std::string>& params) {
+  std::vector<std::map<std::string, std::string>> combinations = {{}};
+  for (const auto& [key, list] : params) {
+    std::vector<std::string> values;
+    for (size_t start = 0;;) {
+      const size_t comma = list.find(',', start);
+      values.push_back(list.substr(start, comma == std::string::npos ? comma : comma - start));
+      if (values.back().empty())
+        throw UserError("--param " + owner + ":" + key + "=" + list +
+                        ": empty item in the comma list");
+      if (comma == std::string::npos) break;
+      start = comma + 1;
+    }
+    std::vector<std::map<std::string, std::string>> grown;
+    for (const auto& combination : combinations)
+      for (const auto& value : values) {
+        grown.push_back(combination);
+        grown.back()[key] = value;
+      }
+    combinations = std::move(grown);
+  }
+  return combinations;
+}
+
+const std::map<std::string, std::string>& params_of(const RunSettings& s, const std::string& owner) {
+  static const std::map<std::string, std::string> none;
+  const auto found = s.structure_params.find(owner);
+  return found == s.structure_params.end() ? none : found->second;
+}
+
 }  // namespace
 
 std::vector<Configuration> expand_configurations(const RunSettings& s) {
@@ -72,7 +110,8 @@ std::vector<Configuration> expand_configurations(const RunSettings& s) {
       // structure, N, R_LDM, trace and estimator axes do not apply to it.
       if (!make_pass(pass, StructureParams())->requirements().needs_structure) {
         for (const auto& d : d_values)
-          for (Visibility v : s.visibility) {
+          for (Visibility v : s.visibility)
+            for (const auto& params : parameter_combinations(pass, params_of(s, pass))) {
             Configuration c;
             c.scene = scene;
             c.structure = kNoStructure;
@@ -81,8 +120,7 @@ std::vector<Configuration> expand_configurations(const RunSettings& s) {
             c.resolution = 0;
             c.d_max = d;
             c.visibility = v;
-            auto params = s.structure_params.find(pass);  // --param hbao:steps=16
-            if (params != s.structure_params.end()) c.params = c.pass_params = params->second;
+            c.params = c.pass_params = params;  // --param hbao:steps=8,16
             if (d) c.pass_params["d_max"] = float_text(*d);
             if (v != Visibility::Scene) c.pass_params["visibility"] = visibility_name(v);
             out.push_back(c);
@@ -90,6 +128,7 @@ std::vector<Configuration> expand_configurations(const RunSettings& s) {
         continue;
       }
       for (const auto& structure : s.structures)
+        for (const auto& params : parameter_combinations(structure, params_of(s, structure)))
         for (uint32_t n : s.views)
           for (uint32_t r : s.resolutions)
             for (const auto& d : d_values)
@@ -107,8 +146,7 @@ std::vector<Configuration> expand_configurations(const RunSettings& s) {
                     c.visibility = v;
                     c.trace = trace;
                     c.estimator = estimator;
-                    auto params = s.structure_params.find(structure);
-                    if (params != s.structure_params.end()) c.params = params->second;
+                    c.params = params;
                     if (d) c.pass_params["d_max"] = float_text(*d);
                     if (v != Visibility::Scene) c.pass_params["visibility"] = visibility_name(v);
                     if (s.normal_offset_pixels)

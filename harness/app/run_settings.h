@@ -67,7 +67,8 @@ struct Configuration {
   SizingSettings sizing;
   // A short unique name for file names:
   // cornell-psppsll-ao-n32-r128[-d1.5][-att]-<trace>[-normalized][-k=v...]-<sizing>, sizing
-  // one of oracle, census, prevframe[-guessG] (G != 1), budget<MiB>
+  // one of oracle, census, prevframe[-guessG] (G != 1), budget<MiB>; for a pass that reads
+  // no LDM only what applies: cornell-none-hbao[-d1.5][-att][-k=v...]
   std::string id() const;
 };
 

@@ -11,7 +11,11 @@ TimerSource default_timer_source(const std::string& gl_renderer) {
 }
 
 const char* timer_source_name(TimerSource source) {
-  return source == TimerSource::GpuTimestamps ? "gl_timestamp" : "fenced_wall_clock";
+  switch (source) {
+    case TimerSource::GpuTimestamps: return "gl_timestamp";
+    case TimerSource::CpuWallClock: return "cpu_wall";
+    default: return "fenced_wall_clock";
+  }
 }
 
 GpuTimer::~GpuTimer() {
@@ -40,7 +44,7 @@ void GpuTimer::begin(const std::string& subpass) {
   if (source_ == TimerSource::GpuTimestamps) {
     glQueryCounter(query(used_++), GL_TIMESTAMP);
   } else {
-    glFinish();
+    if (source_ == TimerSource::FencedWallClock) glFinish();
     wall_start_ = std::chrono::steady_clock::now();
   }
   open_ = true;
@@ -51,7 +55,7 @@ void GpuTimer::end() {
   if (source_ == TimerSource::GpuTimestamps) {
     glQueryCounter(query(used_++), GL_TIMESTAMP);
   } else {
-    glFinish();
+    if (source_ == TimerSource::FencedWallClock) glFinish();
     wall_ms_.push_back(
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - wall_start_)
             .count());

@@ -35,6 +35,7 @@ struct PassRequirements {
   AttributeSet scene_attributes;  // uploaded besides positions
   FragmentPayload payload;        // stored by the structure per fragment besides depth
   bool needs_structure = true;    // false: the pass reads no LDM (a screen-space peer)
+  bool runs_on_cpu = false;       // true: no GL work; timed by the CPU's wall clock (rtao)
 };
 
 // A sub-pass the pass times with ScopedSubpass; the frame loop attributes every other
@@ -78,6 +79,9 @@ class Pass {
   virtual std::vector<PassImage> images() const = 0;
   // Record fields computed from the last render() (e.g. AO's range of values); none by default.
   virtual std::vector<std::pair<std::string, RecordValue>> results() const { return {}; }
+  // What a pass that reads no structure allocates (its targets), for the record's memory
+  // columns; none by default (an LDM pass's memory is its structure's).
+  virtual std::vector<BufferMemory> memory() const { return {}; }
   // Settings that run but are known to give a biased image, one sentence each, for the
   // record's status_detail; none by default.
   virtual std::vector<std::string> warnings() const { return {}; }

@@ -4,6 +4,7 @@
 #include "harness/passes/ambient_occlusion.h"
 #include "harness/passes/hbao.h"
 #include "harness/passes/pass.h"
+#include "harness/passes/rtao.h"
 #include "harness/util/error.h"
 
 namespace ldm {
@@ -18,6 +19,7 @@ const std::vector<Entry>& registry() {
   static const std::vector<Entry> entries = {
       {"ao", [](StructureParams& p) { return std::make_unique<AmbientOcclusion>(p); }},
       {"hbao", [](StructureParams& p) { return std::make_unique<Hbao>(p); }},
+      {"rtao", [](StructureParams& p) { return std::make_unique<Rtao>(p); }},
   };
   return entries;
 }

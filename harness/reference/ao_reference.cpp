@@ -28,8 +28,10 @@ AoSettings settings_used(const Scene& scene, const AoReferenceRequest& request) 
   return request.ao.value_or(scene.ao);
 }
 
-Image render_half_with(const EmbreeScene& embree, const AoSettings& ao, int width, int height,
-                       uint32_t spp, uint64_t seed, uint32_t pass, int threads, bool progress) {
+}  // namespace
+
+Image render_ao_half(const EmbreeScene& embree, const AoSettings& ao, int width, int height,
+                     uint32_t spp, uint64_t seed, uint32_t pass, int threads, bool progress) {
   const AoEstimator estimator(embree, ao, width, height);
   PixelRenderSettings settings;
   settings.width = width;
@@ -46,6 +48,8 @@ Image render_half_with(const EmbreeScene& embree, const AoSettings& ao, int widt
                          *mean = estimator.pixel_mean(x, y, n, rng);
                        });
 }
+
+namespace {
 
 // The secondary rays start up to `offset` off the surface, so hit distances are biased by up
 // to that much: V = (d/d_max)^2 moves by at most 2 * offset / d_max, and an occluder closer
@@ -78,7 +82,7 @@ Image render_ao_half(const Scene& scene, const AoSettings& ao, int width, int he
   scene.validate();
   const Scene centred = centred_on_bounding_sphere(scene);
   const EmbreeScene embree(centred);
-  return render_half_with(embree, ao, width, height, spp, seed, pass, threads, progress);
+  return render_ao_half(embree, ao, width, height, spp, seed, pass, threads, progress);
 }
 
 ReferenceResult render_ao_reference(const Scene& scene, const AoReferenceRequest& request) {
@@ -91,7 +95,7 @@ ReferenceResult render_ao_reference(const Scene& scene, const AoReferenceRequest
   const EmbreeScene embree(centred);  // one BVH for every pass of both halves
   ReferenceResult result = render_reference_pair(
       [&](uint64_t seed, uint32_t spp, uint32_t pass) {
-        return render_half_with(embree, ao, request.width, request.height, spp, seed, pass,
+        return render_ao_half(embree, ao, request.width, request.height, spp, seed, pass,
                                 request.threads, request.progress);
       },
       rule, request.seed);

@@ -30,8 +30,15 @@ struct AoReferenceRequest {
   bool progress = true;
 };
 
+class EmbreeScene;
+
 // One half image: `spp` samples per pixel with seed `seed`, independent pass `pass`.
 Image render_ao_half(const Scene& scene, const AoSettings& ao, int width, int height,
+                     uint32_t spp, uint64_t seed, uint32_t pass = 0, int threads = 0,
+                     bool progress = false);
+// The same in a BVH the caller built once from centred_on_bounding_sphere(scene) (the frame
+// the reference traces in): the estimator the reference and the rtao peer share.
+Image render_ao_half(const EmbreeScene& centred, const AoSettings& ao, int width, int height,
                      uint32_t spp, uint64_t seed, uint32_t pass = 0, int threads = 0,
                      bool progress = false);
 

@@ -33,7 +33,15 @@ int worker_count(int requested, int tile_count) {
   return std::clamp(requested > 0 ? requested : available, 1, tile_count);
 }
 
+int tile_count_of(int width, int height) {
+  return ((width + kTileSize - 1) / kTileSize) * ((height + kTileSize - 1) / kTileSize);
+}
+
 }  // namespace
+
+int render_worker_count(int threads, int width, int height) {
+  return worker_count(threads, tile_count_of(width, height));
+}
 
 Image render_pixels(const PixelRenderSettings& settings, int channels,
                     const PixelEstimator& estimator) {
@@ -41,8 +49,7 @@ Image render_pixels(const PixelRenderSettings& settings, int channels,
   const int width = settings.width, height = settings.height;
   Image image(width, height, channels);
   const int tiles_x = (width + kTileSize - 1) / kTileSize;
-  const int tiles_y = (height + kTileSize - 1) / kTileSize;
-  const int tile_count = tiles_x * tiles_y;
+  const int tile_count = tile_count_of(width, height);
 
   std::atomic<int> next_tile{0};
   std::atomic<int> finished_tiles{0};

@@ -30,6 +30,10 @@ struct PixelRenderSettings {
 using PixelEstimator =
     std::function<void(int x, int y, uint32_t spp, Pcg32& rng, float* mean)>;
 
+// The worker threads render_pixels() starts for `threads` (0: all cores) on a width x height
+// image: never more than it has tiles.
+int render_worker_count(int threads, int width, int height);
+
 // Throws UserError on a non-positive size, spp = 0 or a negative thread count; rethrows the
 // first exception an estimator throws.
 Image render_pixels(const PixelRenderSettings& settings, int channels,

@@ -39,6 +39,51 @@ TEST(PeerPassCli, HbaoRecordIsCompleteAndScored) {
   for (const char* key : {"gbuffer_ms_median", "hbao_ms_median", "frame_ms_median", "mse", "mssim"})
     EXPECT_TRUE(r.contains(key) && r[key].is_number()) << key;
   EXPECT_FALSE(r.contains("build_ms_median")) << "nothing is built";
+  // Only what applies to a pass without structure: no N, R_LDM, trace or sizing.
+  EXPECT_EQ(r["config_id"], "cornell-none-hbao-steps=4");
+  EXPECT_EQ(r["sizing_policy"], "none");
+}
+
+// A comma list in --param is an axis; rtao's time is CPU wall time on the CPU.
+TEST(PeerPassCli, RtaoSppAxisRecordsCpuTime) {
+  const fs::path out = fs::path(test::make_temp_dir("ldm-peer-rtao")) / "run";
+  const std::string cache = test::make_temp_dir("ldm-peer-rtao-cache");
+  std::string output;
+  const int status = test::run_command(
+      std::string(LDM_BINARY_PATH) +
+          " run --scene cornell --pass rtao --param rtao:spp=1,4 --param rtao:threads=1 "
+          "--width 32 --height 32 --frames 2 --warmup 0 --reference-spp 64 --cache-dir " +
+          cache + " --out " + out.string() + " 2>&1",
+      &output);
+  ASSERT_EQ(status, 0) << output;
+  std::ifstream in(out / "records.json");
+  std::stringstream text;
+  text << in.rdbuf();
+  const auto json = nlohmann::json::parse(text.str());
+  ASSERT_EQ(json["records"].size(), 2u) << "one configuration per spp";
+  for (size_t i = 0; i < 2; ++i) {
+    const auto& r = json["records"][i];
+    EXPECT_EQ(r["status"], "ok") << r["status_detail"];
+    EXPECT_EQ(r["config_id"], i == 0 ? "cornell-none-rtao-spp=1-threads=1" : "cornell-none-rtao-spp=4-threads=1");
+    EXPECT_EQ(r["rtao_spp"], i == 0 ? 1 : 4);
+    EXPECT_EQ(r["timer"], "cpu_wall");
+    EXPECT_EQ(r["device"].get<std::string>().rfind("CPU: ", 0), 0u) << r["device"];
+    EXPECT_EQ(r["rtao_threads"], 1);
+    for (const char* key : {"rtao_ms_median", "frame_ms_median", "mse", "mssim", "rtao_bvh_ms"})
+      EXPECT_TRUE(r.contains(key) && r[key].is_number()) << key;
+    EXPECT_FALSE(r.contains("gbuffer_ms_median")) << "nothing is drawn";
+  }
+  EXPECT_LT(json["records"][1]["mse"].get<double>(), json["records"][0]["mse"].get<double>());
+}
+
+TEST(PeerPassCli, EmptyItemInAParameterListIsRejected) {
+  std::string output;
+  const int status = test::run_command(std::string(LDM_BINARY_PATH) +
+                                           " run --scene cornell --pass hbao --param hbao:steps=4,,8 "
+                                           "--out /nonexistent/never 2>&1",
+                                       &output);
+  EXPECT_EQ(status, 2) << output;
+  EXPECT_NE(output.find("hbao:steps=4,,8"), std::string::npos) << output;
 }
 
 TEST(PeerPassCli, UnknownHbaoParameterIsRejected) {
