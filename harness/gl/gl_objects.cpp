@@ -76,6 +76,18 @@ GlTexture2D::GlTexture2D(GLenum internal_format, int width, int height)
   check_gl("allocating texture");
 }
 
+uint64_t GlTexture2D::bytes() const {
+  uint64_t texel = 0;
+  switch (format_) {
+    case GL_RGBA32F: texel = 16; break;
+    case GL_RG32F: texel = 8; break;
+    case GL_R32F: case GL_R32UI: case GL_DEPTH_COMPONENT32F: case GL_RGBA8: texel = 4; break;
+    default: throw GpuError("GlTexture2D::bytes: texel size of format " + std::to_string(format_) +
+                            " unknown");
+  }
+  return texel * uint64_t(width_) * uint64_t(height_);
+}
+
 std::vector<float> GlTexture2D::read_floats(int channels) const {
   static const GLenum formats[] = {GL_RED, GL_RG, GL_RGB, GL_RGBA};
   std::vector<float> out(size_t(width_) * size_t(height_) * size_t(channels));

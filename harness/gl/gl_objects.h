@@ -83,6 +83,8 @@ class GlTexture2D {
   int width() const { return width_; }
   int height() const { return height_; }
   GLenum internal_format() const { return format_; }
+  // Bytes of level 0 (the formats the harness allocates; others throw GpuError).
+  uint64_t bytes() const;
   // Reads the whole level 0 as floats with `channels` components (GL_RED..GL_RGBA).
   std::vector<float> read_floats(int channels) const;
 

@@ -23,6 +23,12 @@ GBufferPass::GBufferPass(int width, int height)
                            binding_defines());
 }
 
+std::vector<BufferMemory> GBufferPass::memory() const {
+  return {{"gbuffer_positions", positions_.bytes(), positions_.bytes()},
+          {"gbuffer_normals", normals_.bytes(), normals_.bytes()},
+          {"gbuffer_depth", depth_.bytes(), depth_.bytes()}};
+}
+
 void GBufferPass::render(const GpuScene& scene, const Scene& description, GpuTimer* timer) {
   if (!scene.attributes().normals) throw GpuError("G-buffer pass needs scene normals uploaded");
   // A world-frame camera over centred geometry would render a plausible but wrong image.

@@ -6,6 +6,7 @@
 #include "harness/image/image.h"
 #include "harness/measure/gpu_timer.h"
 #include "harness/scene/gpu_scene.h"
+#include "ldm_impls/ldm_structure.h"
 
 namespace ldm {
 
@@ -17,6 +18,8 @@ class GBufferPass {
   const GlTexture2D& normals() const { return normals_; }
   int width() const { return width_; }
   int height() const { return height_; }
+  // Its three targets (positions, normals, depth), for a pass's memory columns.
+  std::vector<BufferMemory> memory() const;
   // Top-row-first copies (xyzw), for tests and the reference renderer's cross-checks.
   Image read_positions() const;
   Image read_normals() const;

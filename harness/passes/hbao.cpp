@@ -6,31 +6,18 @@
 #include "harness/gl/gl_objects.h"
 #include "harness/metrics/ao_range.h"
 #include "harness/reference/ao_reference.h"
-#include "harness/reference/pcg32.h"
 #include "harness/reference/reference_settings.h"
 #include "harness/scene/camera.h"
 #include "harness/util/error.h"
 
 namespace ldm {
-namespace {
-
-// The tiled random table's stream: fixed, so a jittered image is reproducible.
-constexpr uint64_t kJitterSeed = 0x4842414fu;  // "HBAO"
-
-}  // namespace
-
-struct Hbao::Gpu {
-  GlTexture2D output;
-  GlFramebuffer framebuffer;
-  GlVertexArray empty_vao;
-  GlProgram program;
-};
 
 Hbao::Hbao(StructureParams& params) {
   hbao_.directions = uint32_t(params.get_uint("directions", hbao_.directions, 1, 256));
   hbao_.steps = uint32_t(params.get_uint("steps", hbao_.steps, 1, 512));
   hbao_.angle_bias = float(params.get_double("angle_bias", hbao_.angle_bias, 0.0, 1.5));
   hbao_.jitter = params.get_choice("jitter", "off", {"off", "on"}) == "on";
+  hbao_.blur_radius = uint32_t(params.get_uint("blur", 0, 0, 16));
   // An absent key keeps the scene's value, as for the LDM AO.
   if (params.has("d_max")) overrides_.d_max = float(params.get_double("d_max", 0.0, 1e-30, 1e30));
   const std::string visibility =
@@ -52,33 +39,24 @@ PassRequirements Hbao::requirements() const {
 }
 
 std::vector<TimedSubpass> Hbao::subpasses() const {
-  return {{"gbuffer", "G-buffer: world positions and camera-facing normals from the camera"},
-          {"hbao", "HBAO: horizon search in the G-buffer, N_HBAO x S_HBAO samples per pixel"}};
+  std::vector<TimedSubpass> subpasses = {
+      {"gbuffer", "G-buffer: world positions and camera-facing normals from the camera"},
+      {"hbao", "HBAO: horizon search in the G-buffer, N_HBAO x S_HBAO samples per pixel"}};
+  if (hbao_.blur_radius > 0)
+    subpasses.push_back({"blur", "HBAO: separable cross-bilateral blur of the AO (--param hbao:blur=)"});
+  return subpasses;
 }
 
 std::vector<std::pair<std::string, RecordValue>> Hbao::describe(const Scene& scene) const {
   const AoSettings ao = settings_for(scene);
   return {{"visibility", std::string(ao.attenuated ? "attenuated" : "unattenuated")},
           {"d_max", double(ao.d_max)},
+          {"falloff_exponent", double(ao.falloff_exponent)},
           {"hbao_directions", int64_t(hbao_.directions)},
           {"hbao_steps", int64_t(hbao_.steps)},
           {"hbao_angle_bias", double(hbao_.angle_bias)},
-          {"hbao_jitter", std::string(hbao_.jitter ? "on" : "off")}};
-}
-
-std::array<glm::vec2, 16> Hbao::jitter_table() const {
-  std::array<glm::vec2, 16> table;
-  Pcg32 rng(kJitterSeed, 1);
-  const float rotation_range = 2.0f * 3.14159265f / float(hbao_.directions);
-  for (glm::vec2& entry : table) {
-    if (!hbao_.jitter) {
-      entry = {0.0f, 1.0f};  // the thesis's fixed directions; samples at 1..S steps
-      continue;
-    }
-    entry.x = rng.next_float() * rotation_range;
-    entry.y = 1.0f - rng.next_float();  // (0, 1]: never the pixel itself
-  }
-  return table;
+          {"hbao_jitter", std::string(hbao_.jitter ? "on" : "off")},
+          {"hbao_blur", int64_t(hbao_.blur_radius)}};
 }
 
 void Hbao::prepare(const PassInputs& in) {
@@ -87,47 +65,40 @@ void Hbao::prepare(const PassInputs& in) {
   width_ = in.width;
   height_ = in.height;
   gbuffer_ = std::make_unique<GBufferPass>(in.width, in.height);
-  gpu_ = std::make_unique<Gpu>();
-  gpu_->output = GlTexture2D(GL_R32F, in.width, in.height);
-  gpu_->framebuffer.attach_color(0, gpu_->output);
-  gpu_->framebuffer.check_complete("HBAO output");
-
-  const AoSettings ao = settings_for(in.scene);
-  ShaderDefines defines = binding_defines();
-  defines.set("HBAO_DIRECTIONS", std::to_string(hbao_.directions));
-  defines.set("HBAO_STEPS", std::to_string(hbao_.steps));
-  defines.set("HBAO_ATTENUATED", ao.attenuated ? 1 : 0);
-  gpu_->program = build_program({{GL_VERTEX_SHADER, "passes/fullscreen.vert", {}},
-                                 {GL_FRAGMENT_SHADER, "passes/hbao.frag", {}}},
-                                defines);
-  const CameraFrame camera = camera_frame(in.scene.camera, in.width, in.height);
-  const GlProgram& p = gpu_->program;
-  p.set("camera_eye", camera.eye.x, camera.eye.y, camera.eye.z);
-  p.set("camera_forward", camera.forward.x, camera.forward.y, camera.forward.z);
-  p.set("focal_pixels", 0.5f * float(in.height) / camera.tan_half_fov_y);
-  p.set("hbao_radius", ao.d_max);
-  p.set("hbao_angle_bias", hbao_.angle_bias);
-  const std::array<glm::vec2, 16> table = jitter_table();
-  glProgramUniform2fv(p.id(), p.uniform("hbao_jitter"), GLsizei(table.size()), &table[0].x);
-  check_gl("HBAO uniforms");
+  kernel_ = std::make_unique<HbaoKernel>(hbao_, settings_for(in.scene), in.width, in.height);
+  const CameraFrame frame = camera_frame(in.scene.camera, in.width, in.height);
+  const HbaoCamera camera{frame.eye, frame.forward, 0.5f * float(in.height) / frame.tan_half_fov_y};
+  kernel_->set_camera(camera);
+  if (hbao_.blur_radius > 0) {
+    blur_ = std::make_unique<HbaoBlur>(hbao_.blur_radius, kernel_->target());
+    blur_->set_camera(camera);
+  }
 }
 
 void Hbao::render(GpuTimer* timer) {
   gbuffer_->render(*gpu_scene_, *scene_, timer);
-  ScopedSubpass timed(timer, "hbao");
-  glBindFramebuffer(GL_FRAMEBUFFER, gpu_->framebuffer.id());
-  glViewport(0, 0, width_, height_);
-  glDisable(GL_DEPTH_TEST);
-  glBindTextureUnit(0, gbuffer_->positions().id());
-  glBindTextureUnit(1, gbuffer_->normals().id());
-  gpu_->program.use();
-  glBindVertexArray(gpu_->empty_vao.id());
-  glDrawArrays(GL_TRIANGLES, 0, 3);
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  {
+    ScopedSubpass timed(timer, "hbao");
+    kernel_->run(gbuffer_->positions(), gbuffer_->normals());
+  }
+  if (blur_) {
+    ScopedSubpass timed(timer, "blur");
+    blur_->run(gbuffer_->positions(), gbuffer_->normals());
+  }
 }
 
 std::vector<PassImage> Hbao::images() const {
-  return {{"ao", image_from_gl_rows(gpu_->output.read_floats(1), width_, height_, 1)}};
+  return {{"ao", image_from_gl_rows(kernel_->target().read_floats(1), width_, height_, 1)}};
+}
+
+std::vector<BufferMemory> Hbao::memory() const {
+  // Render targets, every texel written each frame (allocated = used). The G-buffer is
+  // counted too: the LDM AO draws the same one, but its records count only its structure.
+  std::vector<BufferMemory> targets = gbuffer_->memory();
+  const uint64_t ao_bytes = kernel_->target().bytes();
+  targets.push_back({"hbao_ao", ao_bytes, ao_bytes});
+  if (blur_) targets.push_back({"hbao_blur_scratch", blur_->scratch().bytes(), blur_->scratch().bytes()});
+  return targets;
 }
 
 std::vector<std::pair<std::string, RecordValue>> Hbao::results() const {

@@ -11,21 +11,16 @@
 //   angle_bias   added to the tangent angle, radians (0..1.5, default 0.1)
 //   jitter       off | on: per-pixel rotation and step offset from a tiled 4x4 random table
 //                (off, the default, uses the same directions everywhere, as the thesis does)
-#include <array>
+//   blur         radius in pixels of the cross-bilateral blur after the AO (0..16, default 0:
+//                none, as the thesis); timed as the sub-pass `blur`
+// Every parameter takes a comma list, a run axis (--param hbao:steps=4,8,16).
 #include <memory>
 
-#include <glm/glm.hpp>
-
 #include "harness/passes/gbuffer_pass.h"
+#include "harness/passes/hbao_kernel.h"
 #include "harness/passes/pass.h"
 
 namespace ldm {
-
-struct HbaoSettings {
-  uint32_t directions = 8, steps = 8;
-  float angle_bias = 0.1f;
-  bool jitter = false;
-};
 
 class Hbao : public Pass {
  public:
@@ -40,6 +35,7 @@ class Hbao : public Pass {
   void render(GpuTimer* timer) override;
   std::vector<PassImage> images() const override;
   std::vector<std::pair<std::string, RecordValue>> results() const override;
+  std::vector<BufferMemory> memory() const override;
   ReferenceResult reference(const Scene& scene, int width, int height,
                             const ReferenceSettings& settings) const override;
 
@@ -48,9 +44,6 @@ class Hbao : public Pass {
   const HbaoSettings& hbao() const { return hbao_; }
 
  private:
-  // The tiled random table: per entry a rotation (radians) and a step offset in (0, 1].
-  std::array<glm::vec2, 16> jitter_table() const;
-
   HbaoSettings hbao_;
   AoOverrides overrides_;
   const Scene* scene_ = nullptr;
@@ -58,9 +51,9 @@ class Hbao : public Pass {
   int width_ = 0, height_ = 0;
   // GL objects, created by prepare(): a pass is also constructed without a GL context
   // (argument checks, `ldmbench passes`).
-  struct Gpu;
   std::unique_ptr<GBufferPass> gbuffer_;
-  std::unique_ptr<Gpu> gpu_;
+  std::unique_ptr<HbaoKernel> kernel_;
+  std::unique_ptr<HbaoBlur> blur_;  // null without blur
 };
 
 }  // namespace ldm

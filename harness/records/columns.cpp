@@ -45,6 +45,7 @@ const std::vector<ColumnSpec>& record_columns() {
       {"pass", "hbao_steps", "", "HBAO: S_HBAO ray-marching steps per direction, out to d_max (--param hbao:steps=)"},
       {"pass", "hbao_angle_bias", "radians", "HBAO: bias added to the tangent angle (--param hbao:angle_bias=)"},
       {"pass", "hbao_jitter", "", "HBAO: off, or on (per-pixel rotation and step offset from a tiled 4x4 random table)"},
+      {"pass", "hbao_blur", "pixels", "HBAO: radius of the cross-bilateral blur after the AO, timed as blur (0: none; --param hbao:blur=)"},
       {"pass", "rtao_spp", "samples", "RTAO: AO rays per pixel of the Embree CPU tracer (--param rtao:spp=)"},
       {"pass", "rtao_seed", "", "RTAO: seed of its random stream (a pass index no reference uses: independent of the reference's halves)"},
       {"pass", "rtao_threads", "threads", "RTAO: CPU worker threads that traced (--param rtao:threads=, 0 = all cores)"},

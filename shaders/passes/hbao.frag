@@ -6,8 +6,9 @@
 // angle t (the surface's elevation above the view plane in the slice, from the
 // G-buffer's position differences as in Listing 15)
 // plus the angle bias (added to the angle itself); a sample above the current horizon and within R raises it and adds
-// its rise in sin, weighted by W(r) = 1 - r^2/R^2 (HBAO_ATTENUATED 1, the LDM AO's
-// V = (d/d_max)^2 as 1 - V) or 1 (HBAO_ATTENUATED 0). Elevations are measured from the view
+// its rise in sin, weighted by W(r) = 1 - (r/R)^e (HBAO_ATTENUATED 1: the LDM AO's
+// V = min(d/d_max, 1)^e as 1 - V, e = 2 the 1 - r^2/R^2 of Bavoil et al.) or 1
+// (HBAO_ATTENUATED 0). Elevations are measured from the view
 // plane, as in the thesis (eye-space z over the length of eye-space xy).
 layout(binding = 0) uniform sampler2D gbuffer_position;
 layout(binding = 1) uniform sampler2D gbuffer_normal;
@@ -15,6 +16,7 @@ uniform vec3 camera_eye;
 uniform vec3 camera_forward;
 uniform float focal_pixels;  // (height / 2) / tan(fov_y / 2)
 uniform float hbao_radius;   // R = d_max, scene units
+uniform float hbao_falloff_exponent;  // e of W = 1 - (r/R)^e
 uniform float hbao_angle_bias;  // radians
 // A tiled 4x4 random table (the "random texture"): per pixel, a rotation of the direction
 // set (radians) and a step offset in (0, 1]. Without jitter every entry is (0, 1).
@@ -99,7 +101,9 @@ void main() {
       if (dot(ray, n) <= sin_bias * sqrt(r_squared)) continue;
       const float sin_sample = tan_to_sin(tan_sample);
 #if HBAO_ATTENUATED
-      const float falloff = 1.0 - r_squared / radius_squared;
+      const float falloff = hbao_falloff_exponent == 2.0
+                                ? 1.0 - r_squared / radius_squared
+                                : 1.0 - pow(sqrt(r_squared / radius_squared), hbao_falloff_exponent);
 #else
       const float falloff = 1.0;
 #endif

@@ -22,26 +22,33 @@ TEST(PeerPassCli, HbaoRecordIsCompleteAndScored) {
   const int status = test::run_command(
       std::string(LDM_BINARY_PATH) +
           " run --scene cornell --structure psppsll,dfbuffer --pass hbao --param hbao:steps=4 "
-          "--width 32 --height 32 --frames 2 --warmup 1 --reference-spp 16 --cache-dir " +
-          cache + " --out " + out.string() + " 2>&1",
+          "--param hbao:blur=0,2 --width 32 --height 32 --frames 2 --warmup 1 --reference-spp 16 "
+          "--cache-dir " + cache + " --out " + out.string() + " 2>&1",
       &output);
   ASSERT_EQ(status, 0) << output;
   std::ifstream in(out / "records.json");
   std::stringstream text;
   text << in.rdbuf();
   const auto json = nlohmann::json::parse(text.str());
-  ASSERT_EQ(json["records"].size(), 1u) << "one configuration, not one per structure";
-  const auto& r = json["records"][0];
-  EXPECT_EQ(r["status"], "ok") << r["status_detail"];
-  EXPECT_EQ(r["structure"], "none");
-  EXPECT_EQ(r["pass"], "hbao");
-  EXPECT_EQ(r["hbao_steps"], 4);
-  for (const char* key : {"gbuffer_ms_median", "hbao_ms_median", "frame_ms_median", "mse", "mssim"})
-    EXPECT_TRUE(r.contains(key) && r[key].is_number()) << key;
-  EXPECT_FALSE(r.contains("build_ms_median")) << "nothing is built";
-  // Only what applies to a pass without structure: no N, R_LDM, trace or sizing.
-  EXPECT_EQ(r["config_id"], "cornell-none-hbao-steps=4");
-  EXPECT_EQ(r["sizing_policy"], "none");
+  ASSERT_EQ(json["records"].size(), 2u) << "one configuration per blur, not one per structure";
+  for (size_t i = 0; i < 2; ++i) {
+    const auto& r = json["records"][i];
+    EXPECT_EQ(r["status"], "ok") << r["status_detail"];
+    EXPECT_EQ(r["structure"], "none");
+    EXPECT_EQ(r["pass"], "hbao");
+    EXPECT_EQ(r["hbao_steps"], 4);
+    EXPECT_EQ(r["hbao_blur"], i == 0 ? 0 : 2);
+    for (const char* key : {"gbuffer_ms_median", "hbao_ms_median", "frame_ms_median", "mse", "mssim"})
+      EXPECT_TRUE(r.contains(key) && r[key].is_number()) << key;
+    EXPECT_EQ(r.contains("blur_ms_median"), i == 1) << "the blur is a timed sub-pass";
+    EXPECT_FALSE(r.contains("build_ms_median")) << "nothing is built";
+    // Its render targets: G-buffer (16 + 16 + 4 bytes a pixel), AO 4, the blur's scratch 4.
+    EXPECT_EQ(r["mem_hbao_ao_allocated"], 32 * 32 * 4);
+    EXPECT_EQ(r["bytes_allocated"], 32 * 32 * (i == 0 ? 40 : 44));
+    // Only what applies to a pass without structure: no N, R_LDM, trace or sizing.
+    EXPECT_EQ(r["config_id"], i == 0 ? "cornell-none-hbao-blur=0-steps=4" : "cornell-none-hbao-blur=2-steps=4");
+    EXPECT_EQ(r["sizing_policy"], "none");
+  }
 }
 
 // A comma list in --param is an axis; rtao's time is CPU wall time on the CPU.

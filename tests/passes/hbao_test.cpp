@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "harness/passes/hbao.h"
+#include "harness/passes/hbao_kernel.h"
 #include "harness/reference/ao_reference.h"
 #include "harness/scene/scene_loader.h"
 #include "harness/util/error.h"
@@ -107,10 +108,145 @@ TEST(Hbao, FalloffOnlyLightensAndMatters) {
   EXPECT_GT(lighter, kSize * kSize / 20);
 }
 
+// A hand-made G-buffer: `width` x `height` texels of (position, covered) and normals.
+struct HandGBuffer {
+  int width, height;
+  std::vector<glm::vec4> positions, normals;
+  HandGBuffer(int w, int h) : width(w), height(h), positions(w * h), normals(w * h) {}
+  void set(int x, int y, glm::vec3 p, glm::vec3 n = {0.0f, 0.0f, 1.0f}) {
+    positions[y * width + x] = glm::vec4(p, 1.0f);
+    normals[y * width + x] = glm::vec4(n, 0.0f);
+  }
+  GlTexture2D upload(const std::vector<glm::vec4>& texels) const {
+    GlTexture2D texture(GL_RGBA32F, width, height);
+    glTextureSubImage2D(texture.id(), 0, 0, 0, width, height, GL_RGBA, GL_FLOAT, texels.data());
+    return texture;
+  }
+};
+
+// The camera at the origin looking down -z; a floor facing it at depth 4 whose pixels are
+// `s` apart; with R = 2 and focal 8 px, R projects to 4 px at depth 4, so S = 4 steps read
+// the pixels 1, 2, 3, 4 to the right of x (direction 0 of N = 1).
+float hand_case_ao(const std::vector<std::pair<int, glm::vec3>>& raised, float angle_bias,
+                   float falloff_exponent) {
+  test::gl_context();
+  const float s = 0.25f;
+  HandGBuffer g(8, 3);
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 8; ++x) g.set(x, y, {(float(x) - 1.0f) * s, (float(y) - 1.0f) * s, -4.0f});
+  for (const auto& [dx, offset] : raised) g.set(1 + dx, 1, glm::vec3(float(dx) * s, 0.0f, -4.0f) + offset);
+  HbaoSettings hbao;
+  hbao.directions = 1;
+  hbao.steps = 4;
+  hbao.angle_bias = angle_bias;
+  AoSettings ao;
+  ao.d_max = 2.0f;
+  ao.attenuated = true;
+  ao.falloff_exponent = falloff_exponent;
+  HbaoKernel kernel(hbao, ao, g.width, g.height);
+  kernel.set_camera({{0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -1.0f}, 8.0f});
+  const GlTexture2D positions = g.upload(g.positions), normals = g.upload(g.normals);
+  kernel.run(positions, normals);
+  const std::vector<float> ao_texels = kernel.target().read_floats(1);
+  return ao_texels[1 * g.width + 1];  // x = pixel (1, 1)
+}
+
+// Eq. 11 by hand for x on the floor (tangent angle 0, plus the bias), one direction:
+// the sample 2 px right raised to (0.5 lateral, 0.5 toward the camera) from x has r^2 = 0.5,
+// sin h = 1/sqrt(2), W = 1 - 0.5/4 = 0.875; the one 3 px right at (0.75, 1.5) has
+// r^2 = 2.8125, tan h = 2, sin h = 2/sqrt(5), W = 1 - 2.8125/4 = 0.296875, and adds only its
+// rise above the first; the one 4 px right at (1, 0.25) lies below the horizon and adds
+// nothing. AO = 1 - sum W (sin h_new - sin h_old).
+TEST(Hbao, AttenuationMatchesAHandComputedCase) {
+  const std::vector<std::pair<int, glm::vec3>> raised = {
+      {2, {0.0f, 0.0f, 0.5f}}, {3, {0.0f, 0.0f, 1.5f}}, {4, {0.0f, 0.0f, 0.25f}}};
+  const double sin1 = 1.0 / std::sqrt(2.0), sin2 = 2.0 / std::sqrt(5.0);
+  const double expected = 1.0 - (0.875 * sin1 + 0.296875 * (sin2 - sin1));
+  EXPECT_NEAR(hand_case_ao(raised, 0.0f, 2.0f), expected, 2e-6);
+  // The angle bias starts the horizon at sin(0.1) instead of 0.
+  const double biased = 1.0 - (0.875 * (sin1 - std::sin(0.1)) + 0.296875 * (sin2 - sin1));
+  EXPECT_NEAR(hand_case_ao(raised, 0.1f, 2.0f), biased, 2e-6);
+  // Falloff exponent 1 (the LDM AO's V = (d/d_max)^1): W = 1 - r/R.
+  const double linear = 1.0 - ((1.0 - std::sqrt(0.5) / 2.0) * sin1 +
+                               (1.0 - std::sqrt(2.8125) / 2.0) * (sin2 - sin1));
+  EXPECT_NEAR(hand_case_ao(raised, 0.0f, 1.0f), linear, 2e-6);
+  // Beyond R (r^2 = 4.25 > 4) a sample is ignored however high.
+  EXPECT_EQ(hand_case_ao({{2, {0.0f, 0.0f, 2.0f}}}, 0.0f, 2.0f), 1.0f);
+}
+
+// The blur on a hand-made G-buffer: two facing planes side by side at depths 2 and 6 (a
+// depth edge between columns 7 and 8), AO 0.2 on the near one and 0.9 on the far one, plus
+// a checkerboard of +-0.05 on both. A plain Gaussian would mix the two across the edge; the
+// cross-bilateral weights keep each side its own mean (the far plane's 0.2 weight is
+// exp(-(4/footprint)^2) ~ 0), and the checkerboard shrinks.
+TEST(Hbao, BlurSmoothsWithoutCrossingADepthEdge) {
+  test::gl_context();
+  const int w = 16, h = 8;
+  HandGBuffer g(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const float depth = x < 8 ? 2.0f : 6.0f;
+      g.set(x, y, {(float(x) - 8.0f) * depth / 8.0f, (float(y) - 4.0f) * depth / 8.0f, -depth});
+    }
+  std::vector<float> ao(w * h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) ao[y * w + x] = (x < 8 ? 0.2f : 0.9f) + ((x + y) % 2 ? 0.05f : -0.05f);
+  GlTexture2D target(GL_R32F, w, h);
+  glTextureSubImage2D(target.id(), 0, 0, 0, w, h, GL_RED, GL_FLOAT, ao.data());
+  const GlTexture2D positions = g.upload(g.positions), normals = g.upload(g.normals);
+  HbaoBlur blur(3, target);
+  blur.set_camera({{0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -1.0f}, 8.0f});
+  blur.run(positions, normals);
+  const std::vector<float> out = target.read_floats(1);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const float side = x < 8 ? 0.2f : 0.9f;
+      EXPECT_NEAR(out[y * w + x], side, 0.025f) << "pixel " << x << "," << y;
+    }
+}
+
+TEST(Hbao, BlurIsASubpassAndItsTargetsAreCounted) {
+  test::gl_context();
+  const Scene scene = load_scene("cornell");
+  StructureParams p({{"blur", "2"}, {"jitter", "on"}}, "hbao test");
+  Hbao pass(p);
+  ASSERT_EQ(pass.subpasses().back().name, "blur");
+  AttributeSet attributes;
+  attributes.normals = true;
+  const GpuScene gpu_scene(scene, attributes);
+  pass.prepare({scene, gpu_scene, nullptr, nullptr, kSize, kSize});
+  GpuTimer timer(TimerSource::FencedWallClock);
+  timer.begin_frame();
+  pass.render(&timer);
+  const FrameTimes times = timer.end_frame();
+  std::vector<std::string> names;
+  for (const auto& [name, ms] : times) names.push_back(name);
+  EXPECT_EQ(names, (std::vector<std::string>{"gbuffer", "hbao", "blur"}));
+  uint64_t total = 0;
+  for (const BufferMemory& b : pass.memory()) total += b.allocated;
+  // Two RGBA32F, a depth and two R32F targets: 16 + 16 + 4 + 4 + 4 bytes a pixel.
+  EXPECT_EQ(total, uint64_t(kSize) * kSize * 44);
+  // The jittered image, blurred, is smoother: covered neighbours differ less than without
+  // blur (pairs with a background pixel are left out: the blur keeps those edges).
+  const Image blurred = pass.images().front().image;
+  const Image raw = hbao_image(scene, {{"jitter", "on"}});
+  auto roughness = [](const Image& image) {
+    double sum = 0;
+    for (int y = 0; y < image.height; ++y)
+      for (int x = 1; x < image.width; ++x) {
+        if (image.at(x, y, 0) == 0.0f || image.at(x - 1, y, 0) == 0.0f) continue;
+        const double d = image.at(x, y, 0) - image.at(x - 1, y, 0);
+        sum += d * d;
+      }
+    return sum;
+  };
+  EXPECT_LT(roughness(blurred), 0.5 * roughness(raw));
+}
+
 TEST(Hbao, ParametersAreChecked) {
   for (const auto& [key, value] : std::vector<std::pair<std::string, std::string>>{
            {"directions", "0"}, {"steps", "513"}, {"angle_bias", "-0.1"}, {"jitter", "yes"},
-           {"d_max", "0"}, {"trace", "plane"}}) {
+           {"d_max", "0"}, {"trace", "plane"}, {"blur", "17"}}) {
     EXPECT_THROW(make_pass("hbao", StructureParams({{key, value}}, "--pass hbao")), UserError)
         << key << "=" << value;
   }
