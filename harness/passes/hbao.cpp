@@ -41,7 +41,7 @@ PassRequirements Hbao::requirements() const {
 std::vector<TimedSubpass> Hbao::subpasses() const {
   std::vector<TimedSubpass> subpasses = {
       {"gbuffer", "G-buffer: world positions and camera-facing normals from the camera"},
-      {"hbao", "HBAO: horizon search in the G-buffer, N_HBAO x S_HBAO samples per pixel"}};
+      {"hbao", "HBAO: horizon search in the G-buffer, N_HBAO x S_HBAO samples per pixel (then blur, with --param hbao:blur=R)"}};
   if (hbao_.blur_radius > 0)
     subpasses.push_back({"blur", "HBAO: separable cross-bilateral blur of the AO (--param hbao:blur=)"});
   return subpasses;
