@@ -390,7 +390,8 @@ void Viewer::draw_images(int fb_width, int fb_height) {
 
 void Viewer::print_status() const {
   std::ostringstream line;
-  line << "frame=" << frame_ << " scene=" << config_.scene << " structure=" << config_.structure
+  const Camera& camera = camera_.camera();
+  line << "frame=" << frame_ << " config=" << config_.id() << " scene=" << config_.scene << " structure=" << config_.structure
        << " pass=" << config_.pass << " N=" << config_.views << " R=" << config_.resolution
        << " trace=" << ao_trace_name(config_.trace)
        << " sizing=" << sizing_policy_name(config_.sizing.policy);
@@ -404,6 +405,9 @@ void Viewer::print_status() const {
   } else {
     line << " status=error error=\"" << error_ << "\"";
   }
+  char eye[96];
+  std::snprintf(eye, sizeof eye, " eye=%.4g,%.4g,%.4g", camera.eye.x, camera.eye.y, camera.eye.z);
+  line << eye;
   if (layout_ == Layout::Points)
     line << " cloud_view=" << cloud_view_ << " points_stored=" << cloud_counts_.stored
          << " points_shown=" << cloud_counts_.shown;

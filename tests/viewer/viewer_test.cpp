@@ -1,0 +1,265 @@
+// `ldmbench view` as a person uses it, in a real window on a virtual X server (xvfb-run;
+// Mesa llvmpipe through GLX): it starts and renders, keys typed into the window (xdotool)
+// switch the structure and the pass, a screenshot of a configuration equals the image
+// `ldmbench run` writes for the command line the viewer saves, and the point cloud holds
+// every stored depth. Without a display it refuses with advice; `ldmbench run` needs none.
+// Tests that need xvfb-run (or xdotool) skip, saying so, where it is not installed;
+// scripts/setup.sh installs both, so CI runs them.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "harness/image/image.h"
+#include "harness/passes/pass.h"
+#include "ldm_impls/ldm_structure.h"
+#include "support/test_support.h"
+
+namespace ldm {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kLdm = LDM_BINARY_PATH;
+// Tiny: 64 x 64 LDMs, 128 x 128 images, no reference.
+const std::string kTiny = " --scene cornell -N 4 -R 64 --width 128 --height 128 --no-reference";
+// The pass image alone, pixel for pixel, filling the window.
+const std::string kImageOnly = " --layout pass --hide-panel --window 128x128";
+
+bool installed(const std::string& tool) {
+  std::string ignored;
+  return test::run_command("command -v " + tool + " >/dev/null 2>&1", &ignored) == 0;
+}
+
+#define REQUIRE_TOOL(tool) \
+  if (!installed(tool)) GTEST_SKIP() << tool << " is not installed (scripts/setup.sh installs it)"
+
+// One status line of --print-status as key -> value.
+using Status = std::map<std::string, std::string>;
+
+std::vector<Status> status_lines(const std::string& output) {
+  std::vector<Status> lines;
+  std::istringstream in(output);
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind("frame=", 0) != 0) continue;
+    Status s;
+    std::istringstream words(line);
+    std::string word;
+    while (words >> word) {
+      const auto eq = word.find('=');
+      if (eq != std::string::npos) s[word.substr(0, eq)] = word.substr(eq + 1);
+    }
+    lines.push_back(s);
+  }
+  return lines;
+}
+
+std::string xvfb(const std::string& command) {
+  return "xvfb-run -a -s '-screen 0 1280x1024x24' " + command + " 2>&1";
+}
+
+std::string next_after(const std::vector<std::string>& names, const std::string& name) {
+  const auto it = std::find(names.begin(), names.end(), name);
+  return names[size_t((it - names.begin() + 1) % names.size())];
+}
+
+// Share of pixels that differ from the colour of the top-left pixel (the background).
+double share_unlike_corner(const Image& image) {
+  size_t unlike = 0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x)
+      for (int c = 0; c < std::min(3, image.channels); ++c)
+        if (std::abs(image.at(x, y, c) - image.at(0, 0, c)) > 0.02f) {
+          ++unlike;
+          break;
+        }
+  return double(unlike) / double(image.pixel_count());
+}
+
+TEST(Viewer, WithoutDisplaySaysSoAndExits2) {
+  const std::string dir = test::make_temp_dir("ldm-view-headless");
+  const std::string shot = dir + "/shot.png";
+  std::string output;
+  const int status = test::run_command("env -u DISPLAY -u WAYLAND_DISPLAY " + kLdm + " view" +
+                                           kTiny + " --frames 1 --screenshot " + shot + " 2>&1",
+                                       &output);
+  EXPECT_EQ(status, 2) << output;
+  for (const char* word : {"DISPLAY", "WAYLAND_DISPLAY", "xvfb-run -a ldmbench view"})
+    EXPECT_NE(output.find(word), std::string::npos) << word << " not in: " << output;
+  EXPECT_FALSE(fs::exists(shot));
+}
+
+TEST(Viewer, RunNeedsNoDisplay) {
+  const std::string dir = test::make_temp_dir("ldm-view-run");
+  std::string output;
+  const int status = test::run_command("env -u DISPLAY -u WAYLAND_DISPLAY " + kLdm + " run" +
+                                           kTiny + " --frames 1 --warmup 0 --out " + dir +
+                                           "/run 2>&1",
+                                       &output);
+  EXPECT_EQ(status, 0) << output;
+  EXPECT_TRUE(fs::exists(dir + "/run/records.csv")) << output;
+}
+
+TEST(Viewer, StartsRendersFramesAndShowsTheMeasurement) {
+  REQUIRE_TOOL("xvfb-run");
+  const std::string shot = test::make_temp_dir("ldm-view-start") + "/window.png";
+  std::string output;
+  // The default window: the panel beside the pass image, reference and error map.
+  const int status = test::run_command(
+      xvfb(kLdm + " view" + kTiny + " --frames 3 --print-status --screenshot " + shot), &output);
+  ASSERT_EQ(status, 0) << output;
+  const auto lines = status_lines(output);
+  ASSERT_EQ(lines.size(), 3u) << output;
+  for (size_t i = 0; i < lines.size(); ++i) {
+    EXPECT_EQ(lines[i].at("frame"), std::to_string(i));
+    EXPECT_EQ(lines[i].at("status"), "ok") << output;
+    EXPECT_EQ(lines[i].at("structure"), "psppsll");
+    EXPECT_GT(std::stoull(lines[i].at("fragments")), 1000u);
+    EXPECT_EQ(lines[i].at("stored"), lines[i].at("fragments"));
+  }
+  // After the two warm-up frames, the measured frame's times (Measurement::frames).
+  EXPECT_GT(std::stod(lines[2].at("build_ms")), 0.0);
+  const Image window = read_image(shot);
+  EXPECT_GE(window.width, 128 * 3);
+  EXPECT_GT(share_unlike_corner(window), 0.3) << "the window looks blank: " << shot;
+}
+
+// Keys typed into the window through the X server (XTEST), as a person types them.
+TEST(Viewer, KeysTypedIntoTheWindowSwitchStructureAndPass) {
+  REQUIRE_TOOL("xvfb-run");
+  REQUIRE_TOOL("xdotool");
+  const std::string dir = test::make_temp_dir("ldm-view-keys");
+  const std::string script = dir + "/keys.sh";
+  std::ofstream(script)
+      << "timeout 60 " << kLdm << " view" << kTiny << kImageOnly << " --print-status > "
+      << dir << "/status.txt 2>&1 &\n"
+      << "pid=$!\n"
+      << "wid=$(timeout 30 xdotool search --sync --onlyvisible --name 'ldmbench view' | head -1)\n"
+      << "xdotool windowfocus --sync \"$wid\"\n"
+      << "sleep 0.5; xdotool key s\n"
+      << "sleep 0.5; xdotool key p\n"
+      << "sleep 0.5; xdotool key q\n"
+      << "wait $pid\n";
+  std::string output;
+  ASSERT_EQ(test::run_command(xvfb("sh " + script), &output), 0) << output;
+  std::ifstream in(dir + "/status.txt");
+  std::stringstream text;
+  text << in.rdbuf();
+  const auto lines = status_lines(text.str());
+  ASSERT_FALSE(lines.empty()) << text.str();
+  const std::string structure = next_after(structure_names(), "psppsll");
+  const std::string pass = next_after(pass_names(), "ao");
+  // In order: the start, the next structure (S), then the next pass (P).
+  size_t i = 0;
+  auto advance_to = [&](const std::string& key, const std::string& value) {
+    while (i < lines.size() && lines[i].at(key) != value) ++i;
+    return i < lines.size();
+  };
+  EXPECT_EQ(lines.front().at("structure"), "psppsll");
+  EXPECT_TRUE(advance_to("structure", structure)) << "S did not switch to " << structure << "\n"
+                                                  << text.str();
+  EXPECT_EQ(lines[std::min(i, lines.size() - 1)].at("pass"), "ao");
+  EXPECT_TRUE(advance_to("pass", pass)) << "P did not switch to " << pass << "\n" << text.str();
+  EXPECT_EQ(lines.back().at("status"), "ok") << text.str();
+}
+
+// The same switches through --script, at known frames.
+TEST(Viewer, ScriptedKeysSwitchAtTheirFrames) {
+  REQUIRE_TOOL("xvfb-run");
+  std::string output;
+  const int status = test::run_command(
+      xvfb(kLdm + " view" + kTiny + kImageOnly + " --frames 6 --print-status --script 2:s,4:p"),
+      &output);
+  ASSERT_EQ(status, 0) << output;
+  const auto lines = status_lines(output);
+  ASSERT_EQ(lines.size(), 6u) << output;
+  const std::string structure = next_after(structure_names(), "psppsll");
+  EXPECT_EQ(lines[1].at("structure"), "psppsll");
+  EXPECT_EQ(lines[2].at("structure"), structure) << output;
+  EXPECT_EQ(lines[3].at("pass"), "ao");
+  EXPECT_EQ(lines[4].at("pass"), next_after(pass_names(), "ao")) << output;
+}
+
+// A configuration reached by keys, saved as a run command: `ldmbench run` measures the same
+// configuration (config_id) and writes the PNG the viewer showed. Tolerance: every 8-bit
+// value within 1 of the run's PNG and the mean difference below 0.01 levels (both are the
+// same GPU computation converted by the same code; measured: identical).
+TEST(Viewer, ScreenshotMatchesTheRunOfTheSavedCommand) {
+  REQUIRE_TOOL("xvfb-run");
+  const std::string dir = test::make_temp_dir("ldm-view-match");
+  std::string output;
+  const int status = test::run_command(
+      xvfb(kLdm + " view" + kTiny + kImageOnly + " --frames 6 --script 1:s,2:t --print-status" +
+           " --screenshot " + dir + "/view.png --save-run " + dir + "/run.sh"),
+      &output);
+  ASSERT_EQ(status, 0) << output;
+  const auto lines = status_lines(output);
+  ASSERT_FALSE(lines.empty()) << output;
+  const std::string config = lines.back().at("config");
+  EXPECT_EQ(lines.back().at("structure"), next_after(structure_names(), "psppsll"));
+  EXPECT_EQ(lines.back().at("status"), "ok");
+
+  std::ifstream saved(dir + "/run.sh");
+  std::string command;
+  std::getline(saved, command);
+  ASSERT_NE(command.find(" run "), std::string::npos) << command;
+  ASSERT_EQ(test::run_command("env -u DISPLAY " + command + " --out " + dir + "/run 2>&1", &output), 0)
+      << command << "\n" << output;
+  const std::string run_png = dir + "/run/images/" + config + "-ao.png";
+  ASSERT_TRUE(fs::exists(run_png)) << "the saved command measured another configuration than "
+                                   << config << ":\n" << output;
+
+  const Image view = read_image(dir + "/view.png"), run = read_image(run_png);
+  ASSERT_EQ(view.width, run.width);
+  ASSERT_EQ(view.height, run.height);
+  const auto view_bytes = png_bytes(view), run_bytes = png_bytes(run);
+  double sum = 0;
+  int worst = 0;
+  for (int y = 0; y < run.height; ++y)
+    for (int x = 0; x < run.width; ++x)
+      for (int c = 0; c < 3; ++c) {
+        const int a = view_bytes[(size_t(y) * view.width + x) * view.channels + c];
+        const int b = run_bytes[(size_t(y) * run.width + x) * run.channels + std::min(c, run.channels - 1)];
+        worst = std::max(worst, std::abs(a - b));
+        sum += std::abs(a - b);
+      }
+  EXPECT_LE(worst, 1) << "the screenshot differs from " << run_png;
+  EXPECT_LT(sum / double(run.pixel_count() * 3), 0.01);
+  EXPECT_GT(share_unlike_corner(run), 0.3) << "the run's image is blank: no comparison";
+}
+
+// Each LDM's point cloud, stepped through with V: the depths read through the query API,
+// summed over the views, are every fragment the structure stored; all views at once (the
+// last step) the same; and the cloud is drawn.
+TEST(Viewer, PointCloudHoldsEveryStoredDepth) {
+  REQUIRE_TOOL("xvfb-run");
+  const std::string shot = test::make_temp_dir("ldm-view-cloud") + "/cloud.png";
+  std::string output;
+  const int status = test::run_command(
+      xvfb(kLdm + " view" + kTiny + " --layout points --hide-panel --window 128x128" +
+           " --cloud-view 0 --frames 5 --script 1:v,2:v,3:v,4:v --print-status --screenshot " +
+           shot),
+      &output);
+  ASSERT_EQ(status, 0) << output;
+  const auto lines = status_lines(output);
+  ASSERT_EQ(lines.size(), 5u) << output;
+  uint64_t per_view_sum = 0;
+  for (size_t v = 0; v < 4; ++v) {
+    EXPECT_EQ(lines[v].at("cloud_view"), std::to_string(v));
+    EXPECT_GT(std::stoull(lines[v].at("points_stored")), 0u) << "view " << v;
+    EXPECT_EQ(lines[v].at("points_shown"), lines[v].at("points_stored"));
+    per_view_sum += std::stoull(lines[v].at("points_stored"));
+  }
+  EXPECT_EQ(std::to_string(per_view_sum), lines[0].at("stored")) << output;
+  EXPECT_EQ(lines[4].at("cloud_view"), "4") << "all views";
+  EXPECT_EQ(lines[4].at("points_stored"), lines[4].at("stored"));
+  EXPECT_GT(share_unlike_corner(read_image(shot)), 0.05) << "no points drawn: " << shot;
+}
+
+}  // namespace
+}  // namespace ldm
