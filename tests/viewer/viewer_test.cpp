@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -68,17 +69,31 @@ std::string next_after(const std::vector<std::string>& names, const std::string&
   return names[size_t((it - names.begin() + 1) % names.size())];
 }
 
-// Share of pixels that differ from the colour of the top-left pixel (the background).
-double share_unlike_corner(const Image& image) {
-  size_t unlike = 0;
-  for (int y = 0; y < image.height; ++y)
-    for (int x = 0; x < image.width; ++x)
-      for (int c = 0; c < std::min(3, image.channels); ++c)
-        if (std::abs(image.at(x, y, c) - image.at(0, 0, c)) > 0.02f) {
-          ++unlike;
-          break;
-        }
-  return double(unlike) / double(image.pixel_count());
+// The 8-bit RGB colour of every pixel of a rectangle.
+std::vector<std::array<int, 3>> colours(const Image& image, int x0, int y0, int w, int h) {
+  const auto bytes = png_bytes(image);
+  std::vector<std::array<int, 3>> out;
+  for (int y = y0; y < y0 + h; ++y)
+    for (int x = x0; x < x0 + w; ++x) {
+      const size_t p = (size_t(y) * image.width + x) * image.channels;
+      out.push_back({bytes[p], bytes[p + std::min(1, image.channels - 1)],
+                     bytes[p + std::min(2, image.channels - 1)]});
+    }
+  return out;
+}
+
+// Share of the pixels that have the commonest colour: 1 for a blank image.
+double commonest_colour_share(const std::vector<std::array<int, 3>>& pixels) {
+  std::map<std::array<int, 3>, size_t> counts;
+  size_t most = 0;
+  for (const auto& c : pixels) most = std::max(most, ++counts[c]);
+  return pixels.empty() ? 1.0 : double(most) / double(pixels.size());
+}
+
+double share_of_colour(const std::vector<std::array<int, 3>>& pixels, std::array<int, 3> colour) {
+  return pixels.empty() ? 1.0
+                        : double(std::count(pixels.begin(), pixels.end(), colour)) /
+                              double(pixels.size());
 }
 
 TEST(Viewer, WithoutDisplaySaysSoAndExits2) {
@@ -125,8 +140,14 @@ TEST(Viewer, StartsRendersFramesAndShowsTheMeasurement) {
   // After the two warm-up frames, the measured frame's times (Measurement::frames).
   EXPECT_GT(std::stod(lines[2].at("build_ms")), 0.0);
   const Image window = read_image(shot);
-  EXPECT_GE(window.width, 128 * 3);
-  EXPECT_GT(share_unlike_corner(window), 0.3) << "the window looks blank: " << shot;
+  ASSERT_GE(window.width, 380 + 128 * 3);  // the panel (380 px), then the images
+  ASSERT_GE(window.height, 18 + 128);
+  // The pass image, right of the panel below its label, is drawn: few of its pixels have the
+  // window's background colour (its bottom-right corner) and it is not one colour.
+  const auto background = colours(window, window.width - 1, window.height - 1, 1, 1).front();
+  const auto pass_area = colours(window, 380, 18, 128, 128);
+  EXPECT_LT(share_of_colour(pass_area, background), 0.2) << "no pass image drawn: " << shot;
+  EXPECT_LT(commonest_colour_share(pass_area), 0.5) << "the pass image is blank: " << shot;
 }
 
 // Keys typed into the window through the X server (XTEST), as a person types them.
@@ -230,7 +251,8 @@ TEST(Viewer, ScreenshotMatchesTheRunOfTheSavedCommand) {
       }
   EXPECT_LE(worst, 1) << "the screenshot differs from " << run_png;
   EXPECT_LT(sum / double(run.pixel_count() * 3), 0.01);
-  EXPECT_GT(share_unlike_corner(run), 0.3) << "the run's image is blank: no comparison";
+  EXPECT_LT(commonest_colour_share(colours(run, 0, 0, run.width, run.height)), 0.5)
+      << "the run's image is blank: no comparison";
 }
 
 // Each LDM's point cloud, stepped through with V: the depths read through the query API,
@@ -258,7 +280,9 @@ TEST(Viewer, PointCloudHoldsEveryStoredDepth) {
   EXPECT_EQ(std::to_string(per_view_sum), lines[0].at("stored")) << output;
   EXPECT_EQ(lines[4].at("cloud_view"), "4") << "all views";
   EXPECT_EQ(lines[4].at("points_stored"), lines[4].at("stored"));
-  EXPECT_GT(share_unlike_corner(read_image(shot)), 0.05) << "no points drawn: " << shot;
+  const Image cloud = read_image(shot);
+  EXPECT_LT(commonest_colour_share(colours(cloud, 0, 0, cloud.width, cloud.height)), 0.95)
+      << "no points drawn: " << shot;
 }
 
 }  // namespace
