@@ -184,6 +184,7 @@ class Viewer {
   std::unique_ptr<ReferenceResult> reference_;
   std::string reference_status_ = "none (press G)";
   std::unique_ptr<ImageComparison> comparison_;
+  bool reference_wanted_ = false;  // G: asked for once the configuration is built
 
   int screenshot_count_ = 0;
   std::string message_;
@@ -488,7 +489,7 @@ void Viewer::on_key(int key, int mods) {
       break;
     }
     case GLFW_KEY_L: colour_by_view_ = !colour_by_view_; break;
-    case GLFW_KEY_G: request_reference(); break;
+    case GLFW_KEY_G: reference_wanted_ = true; break;
     case GLFW_KEY_F: camera_.toggle_mode(); break;
     case GLFW_KEY_H: show_panel_ = !show_panel_; break;
     case GLFW_KEY_F12: {
@@ -610,7 +611,7 @@ void Viewer::draw_panel() {
     }
     ImGui::TextUnformatted("parameters (OWNER:KEY=VALUE per line)");
     ImGui::InputTextMultiline("##params", param_text_.data(), param_text_.size(),
-                              ImVec2(-1, 60));
+                              ImVec2(-1, 36));
     if (ImGui::Button("apply parameters")) {
       std::map<std::string, std::map<std::string, std::string>> params;
       std::istringstream lines(param_text_.c_str());
@@ -656,7 +657,7 @@ void Viewer::draw_panel() {
     }
     ImGui::Text("camera: %s (F), drag to turn, wheel to zoom%s", camera_.mode_name(),
                 camera_.is_fly() ? ", arrows to move" : "");
-    if (ImGui::Button("reference (G)")) request_reference();
+    if (ImGui::Button("reference (G)")) reference_wanted_ = true;
     ImGui::SameLine();
     if (ImGui::Button("screenshot (F12)")) on_key(GLFW_KEY_F12, 0);
     ImGui::SameLine();
@@ -733,6 +734,13 @@ int Viewer::run() {
     for (const KeyPress& press : script_)
       if (press.frame == frame_) on_key(press.key, press.mods);
     run_frame();
+    if (reference_wanted_ && session_) {
+      reference_wanted_ = false;
+      request_reference();
+    }
+    // A script's last frame shows the reference it asked for (G): wait for it there.
+    const bool last_frame = options_.frames > 0 && frame_ + 1 >= options_.frames;
+    if (last_frame && reference_job_.valid()) reference_job_.wait();
     update_reference();
 
     ImGui_ImplOpenGL3_NewFrame();
@@ -855,7 +863,7 @@ int run_viewer(const ViewerOptions& options) {
   int window_w = options.window_width, window_h = options.window_height;
   if (window_w <= 0)
     window_w = std::min(1920, (options.show_panel ? int(kPanelWidth) : 0) + 3 * w + 2 * kGap);
-  if (window_h <= 0) window_h = std::min(1200, std::max(h + 18, options.show_panel ? 760 : 0));
+  if (window_h <= 0) window_h = std::min(1200, std::max(h + 18, options.show_panel ? 900 : 0));
   std::string api;
   GLFWwindow* window = open_window(options, window_w, window_h, api);
   if (!window) {

@@ -150,8 +150,9 @@ TEST(Viewer, StartsRendersFramesAndShowsTheMeasurement) {
   EXPECT_LT(commonest_colour_share(pass_area), 0.5) << "the pass image is blank: " << shot;
 }
 
-// Keys typed into the window through the X server (XTEST), as a person types them.
-TEST(Viewer, KeysTypedIntoTheWindowSwitchStructureAndPass) {
+// Keys typed into the window through the X server (XTEST), as a person types them, and a
+// mouse drag that orbits the camera.
+TEST(Viewer, KeysAndDragInTheWindowSwitchStructurePassAndCamera) {
   REQUIRE_TOOL("xvfb-run");
   REQUIRE_TOOL("xdotool");
   const std::string dir = test::make_temp_dir("ldm-view-keys");
@@ -164,6 +165,10 @@ TEST(Viewer, KeysTypedIntoTheWindowSwitchStructureAndPass) {
       << "xdotool windowfocus --sync \"$wid\"\n"
       << "sleep 0.5; xdotool key s\n"
       << "sleep 0.5; xdotool key p\n"
+      // An orbit: a drag across the window.
+      << "sleep 0.5; xdotool mousemove --window \"$wid\" 40 64 mousedown 1\n"
+      << "sleep 0.2; xdotool mousemove --window \"$wid\" 60 64\n"
+      << "sleep 0.2; xdotool mousemove --window \"$wid\" 90 70 mouseup 1\n"
       << "sleep 0.5; xdotool key q\n"
       << "wait $pid\n";
   std::string output;
@@ -186,6 +191,8 @@ TEST(Viewer, KeysTypedIntoTheWindowSwitchStructureAndPass) {
                                                   << text.str();
   EXPECT_EQ(lines[std::min(i, lines.size() - 1)].at("pass"), "ao");
   EXPECT_TRUE(advance_to("pass", pass)) << "P did not switch to " << pass << "\n" << text.str();
+  const std::string eye = lines[std::min(i, lines.size() - 1)].at("eye");
+  EXPECT_NE(lines.back().at("eye"), eye) << "the drag did not orbit the camera\n" << text.str();
   EXPECT_EQ(lines.back().at("status"), "ok") << text.str();
 }
 
