@@ -1,5 +1,6 @@
 #include "harness/app/run_command_line.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cstdio>
 #include <functional>
@@ -57,8 +58,14 @@ std::string run_command_line(const RunSettings& s, const std::string& program,
     if (p == SizingPolicy::Budget) add("--sizing-budget-mib", exact(s.sizing_budget_mib, 17));
   add("--sizing-initial-per-pixel", std::to_string(s.sizing_initial_per_pixel));
   if (s.normal_offset_pixels) add("--normal-offset", exact(*s.normal_offset_pixels, 9));
+  // Parameters of a structure or pass not measured are left out (run refuses them).
+  auto measured = [&s](const std::string& owner) {
+    return std::find(s.structures.begin(), s.structures.end(), owner) != s.structures.end() ||
+           std::find(s.passes.begin(), s.passes.end(), owner) != s.passes.end();
+  };
   for (const auto& [owner, params] : s.structure_params)
-    for (const auto& [key, value] : params) add("--param", owner + ":" + key + "=" + value);
+    if (measured(owner))
+      for (const auto& [key, value] : params) add("--param", owner + ":" + key + "=" + value);
   add("--frames", std::to_string(s.frames));
   add("--warmup", std::to_string(s.warmup));
   add("--timer", s.timer);

@@ -4,9 +4,12 @@
 #include <iostream>
 #include <memory>
 
+#include "harness/app/run_command.h"
 #include "harness/cli/commands.h"
 #include "harness/cli/run_options.h"
+#include "harness/scene/scene_loader.h"
 #include "harness/util/error.h"
+#include "harness/viewer/key_script.h"
 #include "harness/viewer/viewer.h"
 
 namespace ldm::cli {
@@ -78,6 +81,10 @@ Runner add_view_command(CLI::App& app, const std::string& program) {
     viewer::ViewerOptions options = o->viewer;
     options.settings = run_settings_from(&o->run);
     require_single_values(options.settings);
+    // Bad input is refused before a window opens, as `run` refuses it before GPU work.
+    validate_axes(options.settings);
+    load_scene(options.settings.scenes.front());
+    viewer::parse_key_script(options.script);
     options.layout = viewer::parse_layout(o->layout);
     if (!o->window.empty()) {
       int w = 0, h = 0;

@@ -109,6 +109,16 @@ TEST(Viewer, WithoutDisplaySaysSoAndExits2) {
   EXPECT_FALSE(fs::exists(shot));
 }
 
+TEST(Viewer, BadInputIsRefusedBeforeAnyWindow) {
+  std::string output;
+  EXPECT_EQ(test::run_command(kLdm + " view --structure nope --frames 1 2>&1", &output), 2);
+  EXPECT_NE(output.find("unknown structure 'nope'"), std::string::npos) << output;
+  EXPECT_EQ(test::run_command(kLdm + " view -N 4,8 --frames 1 2>&1", &output), 2);
+  EXPECT_NE(output.find("one configuration"), std::string::npos) << output;
+  EXPECT_EQ(test::run_command(kLdm + " view --script 2:nokey --frames 1 2>&1", &output), 2);
+  EXPECT_NE(output.find("'2:nokey' is not FRAME:KEY"), std::string::npos) << output;
+}
+
 TEST(Viewer, RunNeedsNoDisplay) {
   const std::string dir = test::make_temp_dir("ldm-view-run");
   std::string output;
