@@ -15,6 +15,7 @@
 #include <map>
 #include <sstream>
 
+#include "harness/app/run_command_line.h"
 #include "harness/image/image.h"
 #include "harness/passes/pass.h"
 #include "ldm_impls/ldm_structure.h"
@@ -300,6 +301,32 @@ TEST(Viewer, PointCloudHoldsEveryStoredDepth) {
   const Image cloud = read_image(shot);
   EXPECT_LT(commonest_colour_share(colours(cloud, 0, 0, cloud.width, cloud.height)), 0.95)
       << "no points drawn: " << shot;
+}
+
+// What Save as run writes: every setting explicit, floats exact, words shell-quoted, and
+// parameters of structures not measured left out (ldmbench run refuses them).
+TEST(Viewer, SavedRunCommandLineIsExplicitAndQuoted) {
+  RunSettings s;
+  s.scenes = {"scenes/my scene.json"};
+  s.structures = {"ppfla"};
+  s.d_max = {0.1f};
+  s.normal_offset_pixels = 0.7f;
+  s.sizing = {SizingPolicy::Budget};
+  s.sizing_budget_mib = 12.5;
+  s.structure_params["ppfla"]["k"] = "4";
+  s.structure_params["psppsll"]["capacity"] = "9";
+  s.reference.enabled = false;
+  const std::string line = run_command_line(s, "build/ldmbench", "out dir");
+  for (const char* part : {"build/ldmbench run --scene 'scenes/my scene.json' --structure ppfla",
+                           " --pass ao -N 32 -R 128 --width 256 --height 256",
+                           " --d-max 0.100000001 ", " --visibility scene ", " --trace plane ",
+                           " --sizing budget --sizing-budget-mib 12.5 ", " --normal-offset 0.699999988 ",
+                           " --param ppfla:k=4 ", " --frames 5 --warmup 2 --timer auto --no-reference",
+                           " --out 'out dir'"})
+    EXPECT_NE(line.find(part), std::string::npos) << part << " not in: " << line;
+  EXPECT_EQ(line.find("psppsll:capacity"), std::string::npos) << line;
+  EXPECT_EQ(std::stof("0.100000001"), 0.1f);
+  EXPECT_EQ(shell_quoted("it's"), "'it'\\''s'");
 }
 
 }  // namespace
