@@ -15,6 +15,8 @@
 #include <map>
 #include <sstream>
 
+#include <unistd.h>
+
 #include "harness/app/run_command_line.h"
 #include "harness/image/image.h"
 #include "harness/passes/pass.h"
@@ -61,8 +63,12 @@ std::vector<Status> status_lines(const std::string& output) {
   return lines;
 }
 
+// ctest -j runs tests side by side: each process starts its search for a free X display at
+// its own number, so that two xvfb-run -a do not race for the same one.
 std::string xvfb(const std::string& command) {
-  return "xvfb-run -a -s '-screen 0 1280x1024x24' " + command + " 2>&1";
+  const int first_display = 100 + int(getpid() % 800) * 4;
+  return "xvfb-run -a -n " + std::to_string(first_display) + " -s '-screen 0 1280x1024x24' " +
+         command + " 2>&1";
 }
 
 std::string next_after(const std::vector<std::string>& names, const std::string& name) {
