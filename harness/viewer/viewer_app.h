@@ -63,7 +63,6 @@ class Viewer {
   void print_status() const;
   void save_screenshot(const std::string& path) const;
   void save_run(const std::string& path);
-  const std::string& current(const std::vector<std::string>& axis) const { return axis.front(); }
   int width() const { return settings_.width; }
   int height() const { return settings_.height; }
 
