@@ -98,6 +98,9 @@ std::string frame_samples_csv(const Measurement& measurement);
 // Why each image cannot be measured (a NaN or infinity), one sentence each; empty when all can.
 std::vector<std::string> image_problems(const std::vector<PassImage>& images);
 
+// "CPU: <model name>" from /proc/cpuinfo (the device column of a CPU pass's record, e.g. rtao).
+std::string cpu_model_name();
+
 // Throws UserError (bad parameters, a configuration the device cannot hold) or GpuError; a
 // build that is merely wrong is not an exception but an "invalid" status.
 Measurement measure(const Scene& scene, const MeasurementRequest& request);

@@ -36,6 +36,8 @@ std::string timestamp(const char* format) {
   return out.str();
 }
 
+}  // namespace
+
 // Everything the user can get wrong is checked here, before any GPU work or file output.
 void validate_axes(const RunSettings& s) {
   for (const auto& config : expand_configurations(s)) {
@@ -57,6 +59,8 @@ void validate_axes(const RunSettings& s) {
   if (!budget && s.sizing_budget_mib > 0)
     throw UserError("--sizing-budget-mib is only used by --sizing budget");
 }
+
+namespace {
 
 // A regular file where the reference cache folder should be is found here, not by every
 // configuration failing at run time.

@@ -23,4 +23,9 @@ constexpr int kExitInterruptedBase = 128;
 // (records/run_folder.h). `command_line` is stored in the run metadata.
 int run_benchmark(const RunSettings& settings, const std::string& command_line, std::ostream& log);
 
+// The checks run_benchmark makes on every axis value before any GPU work (structures and
+// passes with their parameters, --param owners, the budget option); throws UserError.
+// Shared with `ldmbench view`.
+void validate_axes(const RunSettings& settings);
+
 }  // namespace ldm

@@ -17,6 +17,8 @@ Runner add_reference_command(CLI::App& app);
 Runner add_report_command(CLI::App& app);  // ldmbench report RUN... (plots, pages)
 Runner add_compare_command(CLI::App& app);
 Runner add_compare_runs_command(CLI::App& app);  // ldmbench compare BASE NEW
-Runner add_listing_commands(CLI::App& app);  // scenes, structures, passes, columns, info
+Runner add_listing_commands(CLI::App& app);
+// ldmbench view (harness/viewer); `program` is argv[0], for the command lines it saves.
+Runner add_view_command(CLI::App& app, const std::string& program);  // scenes, structures, passes, columns, info
 
 }  // namespace ldm::cli

@@ -4,6 +4,7 @@
 //   ldmbench compare-images  error metrics between two images
 //   ldmbench report          tables, plots and pages from runs (scripts/report/)
 //   ldmbench compare         regressions between two runs (time, memory, accuracy, status)
+//   ldmbench view            interactive viewer of one configuration (GLFW, Dear ImGui)
 //   ldmbench scenes | structures | passes | columns | info
 #include <CLI/CLI.hpp>
 
@@ -27,6 +28,7 @@ int main(int argc, char** argv) {
       {"report", ldm::cli::add_report_command(app)},
       {"compare", ldm::cli::add_compare_runs_command(app)},
       {"listing", ldm::cli::add_listing_commands(app)},
+      {"view", ldm::cli::add_view_command(app, argv[0])},
   };
   try {
     ldm::cli::reject_empty_list_items(argc, argv);

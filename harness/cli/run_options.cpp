@@ -6,6 +6,7 @@
 
 #include "harness/app/run_command.h"
 #include "harness/cli/commands.h"
+#include "harness/cli/run_options.h"
 #include "harness/util/error.h"
 #include "harness/passes/pass.h"
 #include "ldm_impls/ldm_structure.h"
@@ -37,13 +38,6 @@ Visibility parse_visibility(const std::string& text) {
   return Visibility::Scene;
 }
 
-struct RunOptions {
-  RunSettings settings;
-  std::vector<std::string> params, visibility, traces, estimators, sizing;
-  std::string platform = "auto";
-  float normal_offset = 0.0f;
-  CLI::Option* normal_offset_option = nullptr;
-};
 
 std::string format_g(double x) {
   char buffer[32];
@@ -96,12 +90,8 @@ void reject_empty_list_items(int argc, const char* const* argv) {
   }
 }
 
-Runner add_run_command(CLI::App& app, const std::string& command_line) {
-  auto o = std::make_shared<RunOptions>();
+void add_run_options(CLI::App* run, RunOptions* o) {
   RunSettings& s = o->settings;
-  auto* run = app.add_subcommand(
-      "run", "Measure every combination of the given axes (comma lists); write records.csv, "
-             "records.json and images");
   run->add_option("--scene", s.scenes,
                   "Built-in scene name (see `ldmbench scenes`) or scene file path")
       ->delimiter(',')
@@ -212,8 +202,10 @@ Runner add_run_command(CLI::App& app, const std::string& command_line) {
       ->check(CLI::IsMember({"auto", "gl_timestamp", "fenced_wall_clock"}))
       ->capture_default_str();
   run->add_flag("--gl-debug", s.context.debug_output, "Print OpenGL debug messages");
+}
 
-  return [o, command_line]() {
+RunSettings run_settings_from(RunOptions* o) {
+  {
     RunSettings& settings = o->settings;
     validate_numbers(*o);
     for (const auto& p : o->params) parse_structure_param(p, settings);
@@ -237,7 +229,18 @@ Runner add_run_command(CLI::App& app, const std::string& command_line) {
     settings.context.platform = parse_egl_platform(o->platform);
     if (settings.structures.size() == 1 && settings.structures[0] == "all")
       settings.structures = structure_names();
-    return run_benchmark(settings, command_line, std::cout);
+  }
+  return o->settings;
+}
+
+Runner add_run_command(CLI::App& app, const std::string& command_line) {
+  auto o = std::make_shared<RunOptions>();
+  auto* run = app.add_subcommand(
+      "run", "Measure every combination of the given axes (comma lists); write records.csv, "
+             "records.json and images");
+  add_run_options(run, o.get());
+  return [o, command_line]() {
+    return run_benchmark(run_settings_from(o.get()), command_line, std::cout);
   };
 }
 

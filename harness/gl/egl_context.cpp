@@ -98,9 +98,7 @@ std::unique_ptr<HeadlessContext> HeadlessContext::create(const ContextOptions& o
     throw UserError("EGL: eglInitialize failed on the " + platform_name + " platform (" +
                     egl_error_string(eglGetError()) + ")");
   ctx->display_ = display;
-  ctx->device_.egl_platform = platform_name;
   const char* egl_vendor = eglQueryString(display, EGL_VENDOR);
-  ctx->device_.egl_vendor = egl_vendor ? egl_vendor : "";
 
   if (!eglBindAPI(EGL_OPENGL_API)) throw UserError("EGL: this display offers no desktop OpenGL");
 
@@ -140,7 +138,14 @@ std::unique_ptr<HeadlessContext> HeadlessContext::create(const ContextOptions& o
     throw UserError("EGL: eglMakeCurrent without a surface failed (" +
                     egl_error_string(eglGetError()) + ")");
 
-  DeviceInfo& info = ctx->device_;
+  ctx->device_ = describe_current_context(platform_name, options.debug_output);
+  ctx->device_.egl_vendor = egl_vendor ? egl_vendor : "";
+  return ctx;
+}
+
+DeviceInfo describe_current_context(const std::string& platform_name, bool debug_output) {
+  DeviceInfo info;
+  info.egl_platform = platform_name;
   auto gl_string = [](GLenum name) {
     const char* s = reinterpret_cast<const char*>(glGetString(name));
     return std::string(s ? s : "");
@@ -162,20 +167,20 @@ std::unique_ptr<HeadlessContext> HeadlessContext::create(const ContextOptions& o
   info.max_ssbo_block_bytes = block;
   glGetIntegerv(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS, &value);
   info.max_ssbo_bindings = value;
-  info.has_int64_atomics = ctx->has_extension("GL_NV_shader_atomic_int64");
+  info.has_int64_atomics = has_gl_extension("GL_NV_shader_atomic_int64");
   GLint timer_bits = 0;
   glGetQueryiv(GL_TIMESTAMP, GL_QUERY_COUNTER_BITS, &timer_bits);
   info.has_timer_queries = timer_bits > 0;
-  if (options.debug_output) {
+  if (debug_output) {
     glEnable(GL_DEBUG_OUTPUT);
     glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
     glDebugMessageCallback(debug_callback, nullptr);
     info.debug_output = true;
   }
-  return ctx;
+  return info;
 }
 
-bool HeadlessContext::has_extension(const std::string& name) const {
+bool has_gl_extension(const std::string& name) {
   GLint count = 0;
   glGetIntegerv(GL_NUM_EXTENSIONS, &count);
   for (GLint i = 0; i < count; ++i) {
@@ -183,6 +188,10 @@ bool HeadlessContext::has_extension(const std::string& name) const {
     if (ext && name == ext) return true;
   }
   return false;
+}
+
+bool HeadlessContext::has_extension(const std::string& name) const {
+  return has_gl_extension(name);
 }
 
 HeadlessContext::~HeadlessContext() {

@@ -60,6 +60,14 @@ class HeadlessContext {
   DeviceInfo device_;
 };
 
+// What the OpenGL context current on this thread runs on, whoever created it (the headless
+// EGL context above, or a window's context in `ldmbench view`). `platform_name` goes into
+// DeviceInfo::egl_platform. Throws UserError below OpenGL 4.5; turns debug output on when
+// asked. The library's GL code runs on any such context: GL entry points come from libglvnd's
+// libOpenGL, which dispatches to whichever context is current (gl_api.h).
+DeviceInfo describe_current_context(const std::string& platform_name, bool debug_output);
+bool has_gl_extension(const std::string& name);  // of the current context
+
 EglPlatform parse_egl_platform(const std::string& name);  // "auto" | "device" | "surfaceless"
 
 }  // namespace ldm

@@ -48,13 +48,22 @@ void write_exr(const std::string& path, const Image& image) {
   write_with_oiio(path, spec, OIIO::TypeDesc::FLOAT, image.pixels.data());
 }
 
-void write_png(const std::string& path, const Image& image, float exposure) {
+std::vector<unsigned char> png_bytes(const Image& image, float exposure) {
   std::vector<unsigned char> bytes(image.pixels.size());
   for (size_t i = 0; i < bytes.size(); ++i) {
     const float v = std::clamp(image.pixels[i] * exposure, 0.0f, 1.0f);
     bytes[i] = static_cast<unsigned char>(std::lround(srgb_encode(std::isfinite(v) ? v : 0.0f) * 255.0f));
   }
-  OIIO::ImageSpec spec(image.width, image.height, image.channels, OIIO::TypeDesc::UINT8);
+  return bytes;
+}
+
+void write_png(const std::string& path, const Image& image, float exposure) {
+  write_png_bytes(path, image.width, image.height, image.channels, png_bytes(image, exposure));
+}
+
+void write_png_bytes(const std::string& path, int width, int height, int channels,
+                     const std::vector<unsigned char>& bytes) {
+  OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::UINT8);
   write_with_oiio(path, spec, OIIO::TypeDesc::UINT8, bytes.data());
 }
 

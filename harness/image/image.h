@@ -29,6 +29,11 @@ Image image_from_gl_rows(const std::vector<float>& gl_rows, int width, int heigh
 void write_exr(const std::string& path, const Image& image);
 // For viewing: value * exposure, clamped to [0, 1], sRGB-encoded, 8 bits.
 void write_png(const std::string& path, const Image& image, float exposure = 1.0f);
+// The bytes write_png writes (interleaved, rows top first), e.g. to show them on screen.
+std::vector<unsigned char> png_bytes(const Image& image, float exposure = 1.0f);
+// 8-bit data as they are (rows top first), e.g. a screenshot.
+void write_png_bytes(const std::string& path, int width, int height, int channels,
+                     const std::vector<unsigned char>& bytes);
 // Reads EXR, PNG or anything OpenImageIO knows, as linear float (8-bit files are decoded
 // from sRGB). Throws UserError naming the path.
 Image read_image(const std::string& path);

@@ -1,0 +1,239 @@
+#include "harness/app/measurement_session.h"
+
+#include <algorithm>
+#include <optional>
+#include <stdexcept>
+
+#include "harness/app/ldm_setup.h"
+#include "harness/metrics/image_checks.h"
+#include "harness/passes/raster_baseline.h"
+#include "harness/util/error.h"
+#include "harness/util/hash.h"
+#include "ldm_impls/common/ldm_inspector.h"
+#include "ldm_impls/common/sizing_driver.h"
+
+namespace ldm {
+namespace {
+
+CensusSummary summarize_census(const FragmentCensus& census) {
+  CensusSummary s;
+  s.fragments = census.total_fragments;
+  s.max_depth_complexity = census.max_depth_complexity;
+  s.mean_depth_complexity = census.mean_depth_complexity();
+  s.nonempty_pixel_fraction =
+      census.total_pixels ? double(census.nonempty_pixels) / double(census.total_pixels) : 0.0;
+  return s;
+}
+
+// Adds the sums "build" (the structure's sub-passes: all but the baselines and the pass's
+// own) and "frame" (all but the baselines) to one frame's times.
+void add_frame_sums(FrameTimes& times, const std::vector<std::string>& pass_subpasses) {
+  double build_ms = 0, frame_ms = 0;
+  for (const auto& [name, ms] : times) {
+    // The baselines are timed beside the build but belong to neither the build nor the
+    // frame: they are the yardsticks the build is compared with (build_vs_raster*).
+    if (RasterBaseline::is_baseline_subpass(name)) continue;
+    frame_ms += ms;
+    if (std::find(pass_subpasses.begin(), pass_subpasses.end(), name) == pass_subpasses.end())
+      build_ms += ms;
+  }
+  times.emplace_back("build", build_ms);
+  times.emplace_back("frame", frame_ms);
+}
+
+std::unique_ptr<Pass> make_request_pass(const MeasurementRequest& request) {
+  return make_pass(request.pass, StructureParams(request.pass_params, "--pass " + request.pass));
+}
+
+}  // namespace
+
+// Everything one configuration's frames need. The LDM members are empty for a peer pass,
+// which has only `peer_scene` and `peer_gpu_scene`.
+struct MeasurementSession::State {
+  MeasurementRequest request;
+  std::unique_ptr<Pass> pass;
+  Measurement m;  // the fields fixed before the first frame, and the kept frames
+  int frames_run = 0;
+  GpuTimer timer;
+
+  // LDM passes.
+  std::unique_ptr<LdmSetup> setup;
+  std::unique_ptr<LdmStructure> structure;
+  std::unique_ptr<RasterBaseline> baseline;
+  std::unique_ptr<LdmInspector> inspector;
+  std::unique_ptr<SizingDriver> sizer;
+  std::optional<BuildHealth> health;
+  uint64_t rebuilds_in_warmup = 0;
+
+  // Peer passes: the scene as given (no LDM views, so no centred frame is imposed).
+  std::unique_ptr<Scene> peer_scene;
+  std::unique_ptr<GpuScene> peer_gpu_scene;
+
+  State(const MeasurementRequest& r, std::unique_ptr<Pass> p, TimerSource source)
+      : request(r), pass(std::move(p)), timer(source) {}
+
+  Scene& scene() { return setup ? setup->scene : *peer_scene; }
+  void prepare_pass() {
+    if (setup)
+      pass->prepare({setup->scene, *setup->gpu_scene, setup->inputs.get(), structure.get(),
+                     request.width, request.height});
+    else
+      pass->prepare({*peer_scene, *peer_gpu_scene, nullptr, nullptr, request.width,
+                     request.height});
+  }
+};
+
+MeasurementSession::MeasurementSession(const Scene& scene, const MeasurementRequest& request)
+    : state_() {
+  auto pass = make_request_pass(request);
+  const PassRequirements needs = pass->requirements();
+  // A CPU pass's time is the CPU's wall time, and its device the CPU: a GPU timer would
+  // time nothing (timestamps) or wait on an idle GPU (glFinish).
+  const TimerSource timer_source = needs.runs_on_cpu ? TimerSource::CpuWallClock : request.timer;
+  state_ = std::make_unique<State>(request, std::move(pass), timer_source);
+  State& s = *state_;
+  Measurement& m = s.m;
+  m.scene_name = scene.name;
+  m.scene_hash = hex64(scene.content_hash());
+  m.triangles = scene.mesh.triangle_count();
+  m.pass = request.pass;
+  m.pass_settings = s.pass->describe(scene);
+  for (const auto& sub : s.pass->subpasses()) m.pass_subpasses.push_back(sub.name);
+  m.scene_attributes = needs.scene_attributes.describe();
+  m.timer = timer_source;
+  if (needs.runs_on_cpu) m.device = cpu_model_name();
+
+  if (!needs.needs_structure) {
+    // A screen-space or ray-traced peer such as HBAO: the scene uploaded with the attributes
+    // the pass asks for, then frames of the pass alone. No census, views, baselines or
+    // build: the record's structure is "none" and its "frame" time is the pass's whole cost.
+    m.structure = "none";
+    m.payload = "none";
+    s.peer_scene = std::make_unique<Scene>(scene);
+    s.peer_gpu_scene = std::make_unique<GpuScene>(*s.peer_scene, needs.scene_attributes);
+    m.scene_gpu_bytes = needs.runs_on_cpu ? 0 : s.peer_gpu_scene->bytes();
+    s.prepare_pass();
+    return;
+  }
+
+  m.structure = request.structure;
+  // Only what the pass reads is uploaded, and the structure stores only its payload.
+  s.setup = std::make_unique<LdmSetup>(scene, needs.scene_attributes, request.views,
+                                       request.resolution, needs.payload, request.sizing);
+  const FragmentCensus& census = s.setup->census;
+  const BuildInputs& in = *s.setup->inputs;
+  m.scene_gpu_bytes = s.setup->gpu_scene->bytes();
+  m.payload = in.payload.describe();
+  m.census = summarize_census(census);
+
+  s.structure = s.setup->prepare(request.structure, request.structure_params);
+  s.baseline = std::make_unique<RasterBaseline>(*s.setup->raster, s.setup->views);
+  s.prepare_pass();
+  // Verification reads the census (never sizing): a list longer than its deepest pixel is
+  // corrupt.
+  s.inspector = std::make_unique<LdmInspector>(*s.structure, in,
+                                               std::max(1u, census.max_depth_complexity));
+  s.sizer = std::make_unique<SizingDriver>(*s.structure, in);
+  s.health.emplace(census);
+  if (census.max_depth_complexity > kMaxListWalk)
+    s.health->report_problem("a pixel holds " + std::to_string(census.max_depth_complexity) +
+                             " fragments, more than list walks follow (" +
+                             std::to_string(kMaxListWalk) + ")");
+}
+
+MeasurementSession::~MeasurementSession() = default;
+
+// One frame: the yardstick, the build, the pass. Work that belongs to the build (e.g. a
+// per-frame census, or a rebuild after an overflow under a sizing policy) goes between
+// begin_frame() and pass->render(), timed under its own sub-pass name, so that it counts
+// as build time; the pass then reads the finished structure.
+FrameTimes MeasurementSession::run_frame() {
+  State& s = *state_;
+  const bool warmup = in_warmup();
+  ++s.frames_run;
+  s.timer.begin_frame();
+  if (s.setup) {
+    s.baseline->render(&s.timer);
+    s.sizer->build(&s.timer);  // the structure's build() under its sizing policy
+  }
+  s.pass->render(&s.timer);
+  FrameTimes times = s.timer.end_frame();
+  if (s.setup) {
+    // Untimed: what the build stored, read back through the query API.
+    s.m.last_build = s.structure->stats();
+    s.health->observe(s.m.last_build, s.inspector->check());
+    if (warmup) {  // judged, but not measured
+      s.rebuilds_in_warmup = s.sizer->rebuilds();
+      return times;
+    }
+    add_frame_sums(times, s.m.pass_subpasses);
+  } else {
+    if (warmup) return times;
+    double frame_ms = 0;
+    for (const auto& [name, ms] : times) frame_ms += ms;
+    times.emplace_back("frame", frame_ms);
+  }
+  s.m.frames.push_back(times);
+  return times;
+}
+
+int MeasurementSession::frames_run() const { return state_->frames_run; }
+bool MeasurementSession::in_warmup() const { return state_->frames_run < state_->request.warmup; }
+
+Measurement MeasurementSession::result() const {
+  const State& s = *state_;
+  Measurement m = s.m;
+  m.images = s.pass->images();
+  m.pass_results = s.pass->results();
+  if (m.images.empty()) throw std::logic_error("pass " + s.request.pass + " produced no image");
+  const std::vector<std::string> problems = image_problems(m.images);
+  if (!s.setup) {
+    m.status = problems.empty() ? BuildStatus::Ok : BuildStatus::Invalid;
+    m.memory = s.pass->memory();
+    for (const auto& problem : problems)
+      m.status_detail += (m.status_detail.empty() ? "" : "; ") + problem;
+  } else {
+    BuildHealth health = *s.health;  // a snapshot: later frames are judged afresh
+    // A touch baseline that shaded other fragments than the census would make
+    // build_vs_raster_touch a ratio to something else.
+    m.raster_touch_fragments = s.baseline->touched_fragments();
+    if (m.raster_touch_fragments != s.setup->census.total_fragments)
+      health.report_problem("the raster_touch baseline shaded " +
+                            std::to_string(m.raster_touch_fragments) +
+                            " fragments where the census counted " +
+                            std::to_string(s.setup->census.total_fragments));
+    for (const auto& problem : problems) health.report_problem(problem);
+    m.status = health.status();
+    m.status_detail = health.detail();
+    m.overflow = health.overflow();
+    m.checksum_changes = health.checksum_changes();
+    m.lists_checksum = health.first_checksum();
+    m.sizing = s.structure->sizing();
+    for (const auto& entry : s.sizer->describe()) m.sizing.push_back(entry);
+    m.sizing_rebuilds = s.sizer->rebuilds();
+    m.sizing_rebuilds_measured = s.sizer->rebuilds() - s.rebuilds_in_warmup;
+    m.sizing_reallocations = s.sizer->reallocations();
+    m.memory = s.structure->memory();
+    for (const auto& buffer : s.sizer->memory()) m.memory.push_back(buffer);
+  }
+  for (const auto& warning : s.pass->warnings())  // measured, but known to be off: say so
+    m.status_detail += (m.status_detail.empty() ? "" : "; ") + warning;
+  return m;
+}
+
+const Scene& MeasurementSession::scene() const {
+  return state_->setup ? state_->setup->scene : *state_->peer_scene;
+}
+
+void MeasurementSession::set_camera(const Camera& camera) {
+  State& s = *state_;
+  s.scene().camera = camera;
+  s.pass = make_request_pass(s.request);
+  s.prepare_pass();
+}
+
+const Pass& MeasurementSession::pass() const { return *state_->pass; }
+const LdmSetup* MeasurementSession::setup() const { return state_->setup.get(); }
+const LdmStructure* MeasurementSession::structure() const { return state_->structure.get(); }
+
+}  // namespace ldm

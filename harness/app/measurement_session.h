@@ -1,0 +1,54 @@
+#pragma once
+// measure()'s frames one at a time. measure() runs a session for warm-up + measured frames
+// and returns its result(); the interactive viewer (`ldmbench view`) runs the same session
+// frame by frame, moving the camera in between, and shows the same Measurement after each
+// frame. So what the viewer shows is what `ldmbench run` records, by construction.
+//
+// A pass that reads a structure gets the whole LDM frame (raster baselines │ build under the
+// sizing policy │ pass, judged by BuildHealth after every frame); a peer pass
+// (requirements().needs_structure false) gets its frames alone.
+#include <memory>
+
+#include "harness/app/measurement.h"
+
+namespace ldm {
+
+struct LdmSetup;
+
+class MeasurementSession {
+ public:
+  // Throws what measure() throws (UserError, GpuError).
+  MeasurementSession(const Scene& scene, const MeasurementRequest& request);
+  ~MeasurementSession();
+  MeasurementSession(const MeasurementSession&) = delete;
+  MeasurementSession& operator=(const MeasurementSession&) = delete;
+
+  // Runs one frame and judges it. The first request.warmup frames are warm-up (judged, not
+  // kept); every later frame is kept in result().frames. Returns the frame's times, with
+  // the sums "build" (LDM passes) and "frame" added for kept frames.
+  FrameTimes run_frame();
+  int frames_run() const;
+  bool in_warmup() const;
+
+  // What measure() returns for the frames run so far (the last frame's images read back).
+  Measurement result() const;
+
+  // The scene the GPU computes in (LdmSetup's centred frame for LDM passes; the scene as
+  // given for peers). Its camera is the one the pass renders from.
+  const Scene& scene() const;
+  // Moves the pass's camera (in scene()'s frame). The pass is prepared anew, since a pass
+  // may read the camera when it is prepared; the structure, its build and the frames kept
+  // so far stay.
+  void set_camera(const Camera& camera);
+
+  const Pass& pass() const;
+  // Null for a peer pass.
+  const LdmSetup* setup() const;
+  const LdmStructure* structure() const;
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+}  // namespace ldm

@@ -1,0 +1,86 @@
+#include "harness/app/run_command_line.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <functional>
+
+namespace ldm {
+namespace {
+
+// Enough digits that the float (or double) read back is the one written.
+std::string exact(double value, int digits) {
+  char buffer[48];
+  std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
+  return buffer;
+}
+
+template <typename T, typename Name>
+std::string joined(const std::vector<T>& values, Name name) {
+  std::string out;
+  for (const auto& v : values) out += (out.empty() ? "" : ",") + name(v);
+  return out;
+}
+
+}  // namespace
+
+std::string shell_quoted(const std::string& word) {
+  bool safe = !word.empty();
+  for (char c : word)
+    safe = safe && (std::isalnum(static_cast<unsigned char>(c)) ||
+                    std::string("-_./:=,+@%").find(c) != std::string::npos);
+  if (safe) return word;
+  std::string out = "'";
+  for (char c : word) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+std::string run_command_line(const RunSettings& s, const std::string& program,
+                             const std::string& out_dir) {
+  std::string line = shell_quoted(program) + " run";
+  auto add = [&line](const std::string& option, const std::string& value) {
+    line += " " + option + " " + shell_quoted(value);
+  };
+  auto same = [](const std::string& v) { return v; };
+  add("--scene", joined(s.scenes, same));
+  add("--structure", joined(s.structures, same));
+  add("--pass", joined(s.passes, same));
+  add("-N", joined(s.views, [](uint32_t v) { return std::to_string(v); }));
+  add("-R", joined(s.resolutions, [](uint32_t v) { return std::to_string(v); }));
+  add("--width", std::to_string(s.width));
+  add("--height", std::to_string(s.height));
+  if (!s.d_max.empty()) add("--d-max", joined(s.d_max, [](float d) { return exact(d, 9); }));
+  add("--visibility", joined(s.visibility, visibility_name));
+  add("--trace", joined(s.traces, ao_trace_name));
+  add("--ao-estimator", joined(s.estimators, ao_estimator_name));
+  add("--sizing", joined(s.sizing, [](SizingPolicy p) { return std::string(sizing_policy_name(p)); }));
+  for (SizingPolicy p : s.sizing)
+    if (p == SizingPolicy::Budget) add("--sizing-budget-mib", exact(s.sizing_budget_mib, 17));
+  add("--sizing-initial-per-pixel", std::to_string(s.sizing_initial_per_pixel));
+  if (s.normal_offset_pixels) add("--normal-offset", exact(*s.normal_offset_pixels, 9));
+  // Parameters of a structure or pass not measured are left out (run refuses them).
+  auto measured = [&s](const std::string& owner) {
+    return std::find(s.structures.begin(), s.structures.end(), owner) != s.structures.end() ||
+           std::find(s.passes.begin(), s.passes.end(), owner) != s.passes.end();
+  };
+  for (const auto& [owner, params] : s.structure_params)
+    if (measured(owner))
+      for (const auto& [key, value] : params) add("--param", owner + ":" + key + "=" + value);
+  add("--frames", std::to_string(s.frames));
+  add("--warmup", std::to_string(s.warmup));
+  add("--timer", s.timer);
+  if (!s.reference.enabled) {
+    line += " --no-reference";
+  } else {
+    add("--reference-spp", std::to_string(s.reference.spp.spp_per_half));
+    add("--reference-noise", exact(s.reference.spp.target_noise_mse, 17));
+    add("--reference-max-spp", std::to_string(s.reference.spp.max_spp_per_half));
+    add("--reference-seed", std::to_string(s.reference.seed));
+    if (!s.reference.cache_dir.empty()) add("--cache-dir", s.reference.cache_dir);
+  }
+  if (!s.write_images) line += " --no-images";
+  if (!out_dir.empty()) add("--out", out_dir);
+  return line;
+}
+
+}  // namespace ldm
