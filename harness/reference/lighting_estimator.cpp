@@ -42,7 +42,10 @@ LightingEstimator::LightingEstimator(const EmbreeScene& scene, LightingComponent
       height_(height),
       camera_(camera_frame(scene.scene().camera, width, height)),
       roulette_(roulette),
-      light_(scene.scene().light) {
+      light_(scene.scene().light),
+      light_frame_(glm::normalize(scene.scene().light.direction)),
+      outer_cos_(std::cos(glm::radians(scene.scene().light.outer_angle_deg))),
+      outer_solid_angle_(spot_outer_cone_solid_angle(scene.scene().light)) {
   if (width <= 0 || height <= 0)
     throw UserError("lighting reference: image size must be positive");
   validate_materials(scene.scene());
@@ -90,34 +93,101 @@ std::optional<SurfacePoint> LightingEstimator::next_surface(const SurfacePoint& 
   return surface_point(scene_, *hit, from.offset_origin, w);
 }
 
-// L(x) = albedo(x)/π ∫ L_direct(y(ω)) cos dω; with pdf cos/π the sample is albedo(x) L_direct(y).
-glm::vec3 LightingEstimator::single_bounce_sample(const SurfacePoint& x, Pcg32& rng) const {
-  const auto y = next_surface(x, rng);
-  if (!y) return glm::vec3(0.0f);
-  return albedo(x) * direct_radiance(*y);
+std::optional<RayHit> LightingEstimator::light_sample(Pcg32& rng) const {
+  const float u1 = rng.next_float(), u2 = rng.next_float();
+  const float mu = 1.0f - u1 * (1.0f - outer_cos_);  // uniform in solid angle within the cone
+  const float sine = std::sqrt(std::max(0.0f, 1.0f - mu * mu));
+  const float phi = 2.0f * std::numbers::pi_v<float> * u2;
+  const glm::vec3 w = glm::normalize(
+      light_frame_.to_world(glm::vec3(sine * std::cos(phi), sine * std::sin(phi), mu)));
+  return scene_.intersect(light_.position, w, 0.0f, std::numeric_limits<float>::infinity());
 }
 
-// L(x) = albedo(x)/π ∫ [L_direct(y) + L_indirect(y)] cos dω, the recursion unrolled: the
-// throughput T is the product of the albedos so far (each cosine-weighted bounce cancels its
-// cos/π), next-event estimation adds T · L_direct at every vertex after x, and Russian
-// roulette ends paths without bias (survivors' throughput divided by their probability).
+// Light directions are uniform in the outer cone (density 1/Ω_outer); the change of measure
+// to solid angle at x goes through y's area: dω_light = cos_l dA / r², dω_x = cos_y dA / d²,
+// with the geometric normal of y's triangle (the area measure).
+float LightingEstimator::light_strategy_pdf(const SurfacePoint& x, const SurfacePoint& y) const {
+  const glm::vec3 from_light = y.position - light_.position;
+  const float r2 = glm::dot(from_light, from_light);
+  const glm::vec3 to_x = x.position - y.position;
+  const float d2 = glm::dot(to_x, to_x);
+  if (!(r2 > 0.0f) || !(d2 > 0.0f)) return 0.0f;
+  const glm::vec3 l = from_light / std::sqrt(r2);
+  if (glm::dot(glm::normalize(light_.direction), l) < outer_cos_) return 0.0f;
+  const float cos_light = std::abs(glm::dot(y.geometric_normal, l));
+  const float cos_y = std::abs(glm::dot(y.geometric_normal, to_x)) / std::sqrt(d2);
+  if (!(cos_y > 0.0f)) return 0.0f;
+  return (1.0f / outer_solid_angle_) * (cos_light / r2) * (d2 / cos_y);
+}
+
+// L(x) = ∫ f dω with f(ω) = albedo(x)/π L_direct(y(ω)) cos θ_x. Two strategies each draw one
+// direction: A cosine-weighted at x (p_A = cos θ_x / π; good where the lit surface is near
+// or large), B from the light through the surface it reaches first (p_B above; good where
+// the lit patch is small and far, which A finds rarely: the spot's cone). The balance
+// heuristic weighs each sample f / (p_A + p_B): unbiased, and bounded where either density
+// is large (B alone has a 1/d² singularity where lit surfaces meet x's).
+glm::vec3 LightingEstimator::single_bounce_sample(const SurfacePoint& x, Pcg32& rng) const {
+  glm::vec3 sum(0.0f);
+  const glm::vec3 rho_over_pi = albedo(x) * float(std::numbers::inv_pi);
+  if (const auto y = next_surface(x, rng)) {  // strategy A
+    const glm::vec3 light = direct_radiance(*y);
+    if (max_channel(light) > 0.0f) {
+      const glm::vec3 w = glm::normalize(y->position - x.offset_origin);
+      const float p_a = std::max(0.0f, glm::dot(x.shading_normal, w)) *
+                        float(std::numbers::inv_pi);
+      const float p_b = light_strategy_pdf(x, *y);
+      // f / (p_A + p_B) with f = albedo/π · light · cos θ_x = albedo · light · p_A.
+      if (p_a > 0.0f) sum += albedo(x) * light * (p_a / (p_a + p_b));
+    }
+  }
+  if (const auto hit = light_sample(rng)) {  // strategy B
+    const glm::vec3 hit_position = surface_point(scene_, *hit, light_.position,
+                                                 glm::vec3(0.0f, 0.0f, 1.0f)).position;
+    const glm::vec3 toward = hit_position - x.offset_origin;
+    const float distance = glm::length(toward);
+    if (distance > 0.0f) {
+      const glm::vec3 w = toward / distance;
+      const float cos_x = glm::dot(x.shading_normal, w);
+      if (cos_x > 0.0f && glm::dot(x.geometric_normal, w) > 0.0f) {
+        // y as x sees it: the first surface along w (the same event strategy A samples).
+        const SurfacePoint y = surface_point(scene_, *hit, x.offset_origin, w);
+        const float y_offset = glm::length(y.offset_origin - y.position);
+        if (distance > y_offset &&
+            !scene_.occluded(x.offset_origin, w, 0.0f, distance - y_offset)) {
+          const glm::vec3 light = direct_radiance(y);
+          const float p_a = cos_x * float(std::numbers::inv_pi);
+          const float p_b = light_strategy_pdf(x, y);
+          if (max_channel(light) > 0.0f && p_b > 0.0f)
+            sum += rho_over_pi * light * cos_x / (p_a + p_b);
+        }
+      }
+    }
+  }
+  return sum;
+}
+
+// L_indirect(x) = S(x) + albedo(x)/π ∫ L_indirect(y) cos dω, with S the single bounce
+// (above). Unrolled along a cosine-weighted path x = z_0, z_1, ... (each bounce's cos/π
+// cancels its density): L_indirect(x) = E[Σ_k T_k S(z_k)], T_0 = 1, T_k the product of the
+// albedos of z_0 .. z_{k-1}. So every vertex gets the two-strategy estimate of the light
+// reaching it by one more bounce, and Russian roulette ends paths without bias (survivors'
+// throughput divided by their probability).
 glm::vec3 LightingEstimator::multi_bounce_sample(const SurfacePoint& x, Pcg32& rng) const {
-  glm::vec3 radiance(0.0f);
-  glm::vec3 throughput = albedo(x);
+  glm::vec3 radiance = single_bounce_sample(x, rng);
+  glm::vec3 throughput(1.0f);
   SurfacePoint at = x;
-  for (int bounce = 1;; ++bounce) {
-    const auto y = next_surface(at, rng);
-    if (!y) break;
-    radiance += throughput * direct_radiance(*y);
-    if (bounce >= roulette_.max_bounces) break;
-    throughput *= albedo(*y);
+  for (int bounce = 1; bounce < roulette_.max_bounces; ++bounce) {
+    throughput *= albedo(at);
     if (max_channel(throughput) <= 0.0f) break;  // black: nothing more to carry
     if (bounce >= roulette_.start_bounce) {
       const float survival = std::min(roulette_.max_survival, max_channel(throughput));
       if (!(rng.next_float() < survival)) break;
       throughput /= survival;
     }
-    at = *y;
+    const auto next = next_surface(at, rng);  // z_bounce
+    if (!next) break;
+    at = *next;
+    radiance += throughput * single_bounce_sample(at, rng);
   }
   return radiance;
 }

@@ -7,6 +7,7 @@
 #include <glm/glm.hpp>
 
 #include "harness/reference/embree_scene.h"
+#include "harness/reference/hemisphere.h"
 #include "harness/reference/lighting_reference.h"
 #include "harness/reference/pcg32.h"
 #include "harness/reference/surface_point.h"
@@ -34,7 +35,14 @@ class LightingEstimator {
   // The surface seen from `from` along a cosine-weighted direction about its shading normal
   // (nothing when it points below the triangle's plane or escapes).
   std::optional<SurfacePoint> next_surface(const SurfacePoint& from, Pcg32& rng) const;
+  // Light reflected once on its way to x, by both strategies combined with the balance
+  // heuristic (lighting_estimator.cpp).
   glm::vec3 single_bounce_sample(const SurfacePoint& x, Pcg32& rng) const;
+  // The density, in solid angle at x, with which the light-side strategy picks the
+  // direction from x to y (0 where it cannot).
+  float light_strategy_pdf(const SurfacePoint& x, const SurfacePoint& y) const;
+  // A surface point the light reaches, by a direction uniform in the outer cone.
+  std::optional<RayHit> light_sample(Pcg32& rng) const;
   glm::vec3 multi_bounce_sample(const SurfacePoint& x, Pcg32& rng) const;
 
   const EmbreeScene& scene_;
@@ -43,6 +51,9 @@ class LightingEstimator {
   CameraFrame camera_;
   RussianRoulette roulette_;
   SpotLight light_;
+  NormalFrame light_frame_;
+  float outer_cos_;            // cos(outer angle): light samples have cos >= this
+  float outer_solid_angle_;    // of the cone light samples are drawn from
 };
 
 }  // namespace ldm
