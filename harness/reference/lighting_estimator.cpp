@@ -22,6 +22,20 @@ void validate_materials(const Scene& scene) {
                         " in channel " + std::to_string(c) + "; it must lie in [0, 1]");
 }
 
+void validate_light(const Scene& scene) {
+  const SpotLight& l = scene.light;
+  for (int c = 0; c < 3; ++c)
+    if (!(l.intensity[c] >= 0.0f) || !std::isfinite(l.intensity[c]))
+      throw UserError("lighting reference: the spot light of scene '" + scene.name +
+                      "' has intensity " + std::to_string(l.intensity[c]) + " in channel " +
+                      std::to_string(c) + "; it must be finite and >= 0");
+  if (!(glm::length(l.direction) > 0.0f) ||
+      !(l.inner_angle_deg >= 0.0f && l.inner_angle_deg <= l.outer_angle_deg &&
+        l.outer_angle_deg <= 180.0f))
+    throw UserError("lighting reference: the spot light of scene '" + scene.name +
+                    "' needs a non-zero direction and 0 <= inner <= outer <= 180 degrees");
+}
+
 void validate_roulette(const RussianRoulette& r) {
   if (r.start_bounce < 1) throw UserError("lighting reference: roulette start_bounce must be >= 1");
   if (!(r.max_survival > 0.0f && r.max_survival < 1.0f))
@@ -49,6 +63,7 @@ LightingEstimator::LightingEstimator(const EmbreeScene& scene, LightingComponent
   if (width <= 0 || height <= 0)
     throw UserError("lighting reference: image size must be positive");
   validate_materials(scene.scene());
+  validate_light(scene.scene());
   validate_roulette(roulette);
 }
 

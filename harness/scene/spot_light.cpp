@@ -38,4 +38,10 @@ glm::vec3 spot_radiant_flux(const SpotLight& light) {
   return light.intensity * spot_effective_solid_angle(light);
 }
 
+float spot_texel_solid_angle(float tan_half_extent, int resolution, float x_ndc, float y_ndc) {
+  const double t = tan_half_extent, side = 2.0 * t / double(resolution);
+  const double x = double(x_ndc) * t, y = double(y_ndc) * t;
+  return float(side * side / std::pow(1.0 + x * x + y * y, 1.5));
+}
+
 }  // namespace ldm

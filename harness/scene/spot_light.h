@@ -34,4 +34,14 @@ float spot_outer_cone_solid_angle(const SpotLight& light);
 // equally among n_e photons, which is the same for a uniform cone).
 glm::vec3 spot_radiant_flux(const SpotLight& light);
 
+// Photon bookkeeping for a light rendered as a pinhole camera (thesis §5.1.4, §5.4.1): an
+// image plane at distance 1 along the axis, half-extent t = tan(outer angle) (a frustum
+// whose inscribed circle is the outer cone; outer < 90°), R × R texels. The texel whose
+// centre has normalised coordinates (x, y) in [-1, 1]² sees the solid angle
+//   dω = (2t/R)² / (1 + (xt)² + (yt)²)^(3/2),
+// and a photon through it carries I(ω) dω of the flux: summed over the texels this tends to
+// Φ as R grows (tests/reference/lighting_reference_test.cpp), whatever the falloff, whereas
+// Φ / n_e per photon holds only for a cone of uniform intensity.
+float spot_texel_solid_angle(float tan_half_extent, int resolution, float x_ndc, float y_ndc);
+
 }  // namespace ldm

@@ -106,6 +106,31 @@ TEST(SpotLight, FluxEqualsTheIntegralOfTheIntensityOverTheSphere) {
   }
 }
 
+TEST(SpotLight, PhotonsThroughTheLightsTexelsCarryItsFlux) {
+  // The light's view as a pinhole camera, as a photon pass renders it: per texel centre a
+  // direction and a solid angle; I(ω) dω summed over the texels is Φ.
+  const SpotLight light = make_light(glm::normalize(glm::vec3(0.2f, -1.0f, 0.1f)), 30, 45);
+  const glm::vec3 axis = glm::normalize(light.direction);
+  const glm::vec3 right = glm::normalize(glm::cross(axis, glm::vec3(0, 0, 1)));
+  const glm::vec3 up = glm::cross(right, axis);
+  const float t = std::tan(glm::radians(light.outer_angle_deg));
+  constexpr int kR = 512;
+  glm::dvec3 flux(0.0);
+  double solid_angle = 0.0;
+  for (int j = 0; j < kR; ++j)
+    for (int i = 0; i < kR; ++i) {
+      const float x = (i + 0.5f) / kR * 2 - 1, y = (j + 0.5f) / kR * 2 - 1;
+      const glm::vec3 w = glm::normalize(axis + x * t * right + y * t * up);
+      const float d_omega = spot_texel_solid_angle(t, kR, x, y);
+      solid_angle += d_omega;
+      flux += glm::dvec3(spot_radiant_intensity(light, w)) * double(d_omega);
+    }
+  // The frustum's solid angle: 4 arcsin(t² / (1 + t²)) for a square of half-extent t.
+  EXPECT_NEAR(solid_angle, 4.0 * std::asin(t * t / (1.0 + t * t)), 1e-4);
+  const glm::vec3 expected = spot_radiant_flux(light);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(flux[c], expected[c], 2e-3 * expected[c]);
+}
+
 // ---- direct light on a plane: E = I cos θ / r² ---------------------------------------------
 
 // The floor y = 0 of the `plane` scene under a coloured spot whose soft edge lies in view,
@@ -447,6 +472,9 @@ TEST(LightingReference, ComponentNamesRoundTripAndBadInputIsAnError) {
   EXPECT_THROW(render_lighting_reference(scene, request), UserError);
   request.width = 4;
   scene.materials[0].albedo = {1.5f, 0.5f, 0.5f};  // brighter than white: diverges
+  EXPECT_THROW(render_lighting_reference(scene, request), UserError);
+  scene.materials[0].albedo = {0.5f, 0.5f, 0.5f};
+  scene.light.intensity = {1.0f, -1.0f, 1.0f};
   EXPECT_THROW(render_lighting_reference(scene, request), UserError);
 }
 
