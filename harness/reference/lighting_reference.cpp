@@ -97,13 +97,17 @@ ReferenceResult render_lighting_reference(const Scene& scene,
   scene.validate();
   const Scene centred = centred_on_bounding_sphere(scene);
   const EmbreeScene embree(centred);  // one BVH for every pass of both halves
+  // The direct image is deterministic: one "sample" per pixel and half is the converged
+  // image, and the record says so (spp 1 per half) whatever rule was asked for.
+  SppRule rule = request.spp;
+  if (request.component == LightingComponent::direct) rule.spp_per_half = 1;
   ReferenceResult result = render_reference_pair(
       [&](uint64_t seed, uint32_t spp, uint32_t pass) {
         return render_half_with(embree, request.component, request.width, request.height, spp,
                                 seed, pass, request.threads, request.progress,
                                 request.roulette);
       },
-      request.spp, request.seed, exposure_squared);
+      rule, request.seed, exposure_squared);
   result.cache_key = reference_cache_key(lighting_reference_inputs(scene, request));
   annotate_ray_offset(result, scene, 0.0, "");
   return result;

@@ -10,15 +10,19 @@
 //   direct         albedo/π · I(ω_l) · max(0, n·ω_l) / r² · V(x, light). Deterministic given
 //                  the G-buffer point: no sample is jittered, the two halves are identical
 //                  and the noise floor is 0 (the halves are still rendered, so that the
-//                  result has the same shape as every other reference).
+//                  result has the same shape as every other reference; spp_per_half is
+//                  1 whatever the request's rule).
 //   single_bounce  light → one diffuse surface y → x → eye: exactly one diffuse
 //                  interreflection (what the photon method approximates, LDDE paths), the
-//                  direct term NOT included. One cosine-weighted direction from x per
-//                  sample; next-event estimation of the direct light at y.
+//                  direct term NOT included. Per sample two strategies under the balance
+//                  heuristic: a cosine-weighted direction from x with next-event estimation
+//                  of the light at the surface y it meets, and a direction from the light,
+//                  uniform in its outer cone, whose first hit y is connected to x
+//                  (lighting_estimator.cpp).
 //   multi_bounce   all indirect light (paths with >= 1 interreflection), direct NOT
-//                  included: cosine-weighted path continuation, next-event estimation at
-//                  every vertex after x, Russian roulette (unbiased: the survival
-//                  probability divides the throughput).
+//                  included: a cosine-weighted path from x with the single-bounce estimate
+//                  at every vertex, Russian roulette (unbiased: the survival probability
+//                  divides the throughput).
 // Noise target: radiance has no fixed scale, so the automatic spp rule compares
 //   noise_mse · e² ≤ spp.target_noise_mse,   e = lighting_ssim_exposure(current mean)
 // i.e. the noise measured on the image as SSIM sees it (README "Accuracy"). `noise_mse` in

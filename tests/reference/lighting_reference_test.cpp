@@ -186,6 +186,7 @@ TEST(LightingReference, DirectLightOnAPlaneIsTheClosedFormPerPixel) {
     request.progress = false;
     const ReferenceResult result = render_lighting_reference(scene, request);
     EXPECT_EQ(result.noise_mse, 0.0);  // deterministic: the halves are identical
+    EXPECT_EQ(result.spp_per_half, 1u);
     EXPECT_TRUE(result.noise_target_met);
     const dvec3 light(scene.light.position);
     const dvec3 albedo(scene.materials[0].albedo);
