@@ -65,7 +65,9 @@ Runner add_reference_command(CLI::App& app) {
                   "Samples per pixel per half (0: double until the noise target)")
       ->check(CLI::Range(0u, 1u << 20))
       ->capture_default_str();
-  cmd->add_option("--noise", o->reference.spp.target_noise_mse, "Noise target (expected MSE)")
+  cmd->add_option("--noise", o->reference.spp.target_noise_mse,
+                  "Noise target (expected MSE; for a lighting --kind, of the image times its "
+                  "SSIM exposure)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd->add_option("--max-spp", o->reference.spp.max_spp_per_half,
