@@ -9,6 +9,8 @@
 #include "harness/cli/commands.h"
 #include "harness/metrics/image_metrics.h"
 #include "harness/passes/pass.h"
+#include "harness/metrics/image_metrics.h"
+#include "harness/reference/lighting_reference.h"
 #include "harness/reference/reference_cache.h"
 #include "harness/reference/reference_settings.h"
 #include "harness/scene/scene_loader.h"
@@ -19,6 +21,7 @@ namespace {
 
 struct ReferenceOptions {
   std::string scene = "cornell", pass = "ao", out, visibility = "scene";
+  std::string kind = "pass";  // the pass's own reference, or a lighting component
   int width = 256, height = 256;
   float d_max = 0;
   ReferenceSettings reference;
@@ -48,13 +51,23 @@ Runner add_reference_command(CLI::App& app) {
   cmd->add_option("--pass", o->pass, "Pass whose reference to render (see `ldmbench passes`)")
       ->check(CLI::IsMember(pass_names()))
       ->capture_default_str();
+  std::vector<std::string> kinds = {"pass"};
+  for (const auto& name : lighting_component_names()) kinds.push_back(name);
+  cmd->add_option("--kind", o->kind,
+                  "What to render: `pass` (the reference --pass is scored against) or a "
+                  "lighting component of the scene's spot light (direct, single_bounce, "
+                  "multi_bounce: outgoing radiance, RGB; see README Accuracy)")
+      ->check(CLI::IsMember(kinds))
+      ->capture_default_str();
   cmd->add_option("--width", o->width, "Image width")->check(CLI::Range(1, 16384))->capture_default_str();
   cmd->add_option("--height", o->height, "Image height")->check(CLI::Range(1, 16384))->capture_default_str();
   cmd->add_option("--spp", o->reference.spp.spp_per_half,
                   "Samples per pixel per half (0: double until the noise target)")
       ->check(CLI::Range(0u, 1u << 20))
       ->capture_default_str();
-  cmd->add_option("--noise", o->reference.spp.target_noise_mse, "Noise target (expected MSE)")
+  cmd->add_option("--noise", o->reference.spp.target_noise_mse,
+                  "Noise target (expected MSE; for a lighting --kind, of the image times its "
+                  "SSIM exposure)")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd->add_option("--max-spp", o->reference.spp.max_spp_per_half,
@@ -75,18 +88,36 @@ Runner add_reference_command(CLI::App& app) {
   return [o]() {
     if (std::filesystem::path(o->out).extension() != ".exr")
       throw UserError("--out: '" + o->out + "' must end in .exr (linear float output)");
+    if (o->kind != "pass" && (o->d_max > 0 || o->visibility != "scene"))
+      throw UserError("--d-max and --visibility set AO's reference; --kind " + o->kind +
+                      " renders the spot light's, which has neither");
     const Scene scene = load_scene(o->scene);
-    const auto pass = make_pass(o->pass, StructureParams(pass_params(*o), "--pass " + o->pass));
-    const ReferenceResult result = pass->reference(scene, o->width, o->height, o->reference);
+    ReferenceResult result;
+    double exposure = 1.0;  // of the PNG; radiance has no fixed scale
+    if (o->kind == "pass") {
+      const auto pass =
+          make_pass(o->pass, StructureParams(pass_params(*o), "--pass " + o->pass));
+      result = pass->reference(scene, o->width, o->height, o->reference);
+    } else {
+      result = lighting_reference_for_run(scene, parse_lighting_component(o->kind, "--kind"),
+                                          o->width, o->height, o->reference);
+      exposure = lighting_ssim_exposure(result.image);
+    }
     write_exr(o->out, result.image);
     const auto png = std::filesystem::path(o->out).replace_extension(".png").string();
-    write_png(png, result.image);
-    const ImageComparison noise = compare_images(result.half_a, result.half_b, {});
+    write_png(png, result.image, float(exposure));
+    MetricOptions metric_options;
+    metric_options.ssim_exposure = exposure;
+    const ImageComparison noise = compare_images(result.half_a, result.half_b, metric_options);
     std::cout << "reference: " << o->out << " and " << png << "\n"
               << "spp: " << result.spp_total << " (" << result.spp_per_half << " per half)\n"
               << "noise MSE (expected, of the mean): " << result.noise_mse
-              << (result.noise_target_met ? "" : "  (target NOT met: raise --max-spp)") << "\n"
-              << "noise MSSIM between halves: " << noise.mssim << "\n"
+              << (result.noise_target_met ? "" : "  (target NOT met: raise --max-spp)") << "\n";
+    if (o->kind != "pass")
+      std::cout << "exposure (SSIM and PNG): " << exposure
+                << "; noise MSE x exposure^2 (what --noise bounds): "
+                << result.noise_mse * exposure * exposure << "\n";
+    std::cout << "noise MSSIM between halves: " << noise.mssim << "\n"
               << "render time: " << result.render_seconds << " s"
               << (result.from_cache ? " (from cache)" : "") << "\n";
     return kExitOk;

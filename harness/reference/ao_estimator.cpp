@@ -12,15 +12,6 @@
 namespace ldm {
 namespace {
 
-// Secondary rays start this many float ulps of the hit's coordinates off the surface. x is
-// interpolated from its triangle's vertices, so its error is a few ulps of their largest
-// coordinate (and Embree's robust triangle test subtracts the ray origin from those same
-// vertices); 64 ulps leave a margin of ~16x against self-intersection. The tracer works in
-// coordinates centred on the scene (ao_reference.cpp), so these ulps are ulps of the scene's
-// extent, whatever its distance from the world origin: 64 * 2^-23 = 7.6e-6 of the radius at
-// most. (Before, the offset was 1e-5 of |centre| + radius: 17 units for a unit scene
-// translated 1e6 from the origin, past every occluder.)
-constexpr float kRayOffsetUlps = 64.0f;
 // Secondary rays go to Embree as streams of this many (rtcIntersect1M / rtcOccluded1M).
 // Measured on Cornell and atrium, 128x128, 1 thread: streams trace 1.2x (intersect) and
 // 1.6x (occluded) the rays per CPU-second of one rtcIntersect1/rtcOccluded1 call per ray;
@@ -33,10 +24,6 @@ void validate(const AoSettings& ao) {
   if (!(ao.falloff_exponent >= 0.0f) || !std::isfinite(ao.falloff_exponent))
     throw UserError("ao.falloff_exponent must be non-negative and finite (got " +
                     std::to_string(ao.falloff_exponent) + ")");
-}
-
-float largest_magnitude(glm::vec3 p) {
-  return std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)});
 }
 
 RTCRay make_ray(glm::vec3 origin, glm::vec3 direction, float t_far) {
@@ -58,12 +45,6 @@ RTCRay make_ray(glm::vec3 origin, glm::vec3 direction, float t_far) {
 
 }  // namespace
 
-float AoEstimator::max_ray_offset(const Scene& scene) {
-  float largest = 0.0f;
-  for (const glm::vec3& p : scene.mesh.positions) largest = std::max(largest, largest_magnitude(p));
-  return kRayOffsetUlps * std::numeric_limits<float>::epsilon() * largest;
-}
-
 AoEstimator::AoEstimator(const EmbreeScene& scene, const AoSettings& ao, int width, int height)
     : scene_(scene),
       ao_(ao),
@@ -73,36 +54,6 @@ AoEstimator::AoEstimator(const EmbreeScene& scene, const AoSettings& ao, int wid
       ray_offset_(max_ray_offset(scene.scene())) {
   validate(ao);
   if (width <= 0 || height <= 0) throw UserError("AO reference: image size must be positive");
-}
-
-bool AoEstimator::primary_hit(int x, int y, SurfacePoint* point) const {
-  const glm::vec3 direction = camera_.ray_direction(x, y, width_, height_);
-  const auto hit = scene_.intersect(camera_.eye, direction, 0.0f,
-                                    std::numeric_limits<float>::infinity());
-  if (!hit) return false;
-  const TriangleMesh& mesh = scene_.scene().mesh;
-  const glm::uvec3 tri = mesh.triangles[hit->triangle];
-  const glm::vec3 p0 = mesh.positions[tri.x], p1 = mesh.positions[tri.y],
-                  p2 = mesh.positions[tri.z];
-  // Interpolated like the rasteriser's v_position, and more exact than eye + t * direction.
-  point->position = (1.0f - hit->u - hit->v) * p0 + hit->u * p1 + hit->v * p2;
-
-  glm::vec3 geometric = glm::cross(p1 - p0, p2 - p0);
-  geometric = glm::normalize(glm::dot(geometric, direction) > 0.0f ? -geometric : geometric);
-  // As shaders/passes/gbuffer.frag: normalise, then face the eye. A degenerate interpolated
-  // normal (opposite vertex normals) falls back to the geometric one instead of NaN.
-  glm::vec3 n = scene_.shading_normal(*hit);
-  const float length = glm::length(n);
-  n = length > 1e-12f ? n / length : geometric;
-  if (glm::dot(n, camera_.eye - point->position) < 0.0f) n = -n;
-  point->shading_normal = n;
-  // Offset along the geometric normal on the side the camera sees: that is the side of the
-  // triangle's plane the secondary rays must start from, whatever the shading normal says.
-  const float precision =
-      std::max({largest_magnitude(p0), largest_magnitude(p1), largest_magnitude(p2)});
-  point->offset_origin =
-      point->position + kRayOffsetUlps * std::numeric_limits<float>::epsilon() * precision * geometric;
-  return true;
 }
 
 float AoEstimator::attenuated_visibility(float hit_distance) const {
@@ -154,9 +105,9 @@ double AoEstimator::visibility_sum(const SurfacePoint& point, uint32_t count, Pc
 }
 
 float AoEstimator::pixel_mean(int x, int y, uint32_t spp, Pcg32& rng) const {
-  SurfacePoint point;
-  if (!primary_hit(x, y, &point)) return 0.0f;
-  return float(visibility_sum(point, spp, rng) / double(spp));
+  const auto point = camera_surface_point(scene_, camera_, x, y, width_, height_);
+  if (!point) return 0.0f;  // the GPU writes 0 for background
+  return float(visibility_sum(*point, spp, rng) / double(spp));
 }
 
 }  // namespace ldm

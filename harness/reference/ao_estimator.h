@@ -8,6 +8,7 @@
 #include "harness/scene/camera.h"
 #include "harness/reference/embree_scene.h"
 #include "harness/reference/pcg32.h"
+#include "harness/reference/surface_point.h"
 #include "harness/scene/scene.h"
 
 namespace ldm {
@@ -22,16 +23,10 @@ class AoEstimator {
   float pixel_mean(int x, int y, uint32_t spp, Pcg32& rng) const;
 
   // Secondary rays start at most this far from x along the camera-facing geometric normal:
-  // 64 float ulps of the largest coordinate of x's triangle (ao_estimator.cpp).
+  // kRayOffsetUlps float ulps of the largest coordinate of x's triangle (surface_point.h).
   float ray_offset() const { return ray_offset_; }
-  // The same bound for a scene, in the coordinates it is traced in.
-  static float max_ray_offset(const Scene& scene);
 
  private:
-  struct SurfacePoint {
-    glm::vec3 position, shading_normal, offset_origin;
-  };
-  bool primary_hit(int x, int y, SurfacePoint* point) const;
   double visibility_sum(const SurfacePoint& point, uint32_t count, Pcg32& rng) const;
   // V of `count` (at most one batch) rays from `origin`.
   void trace_visibility(glm::vec3 origin, const glm::vec3* directions, uint32_t count,

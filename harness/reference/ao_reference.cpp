@@ -5,23 +5,16 @@
 #include "harness/reference/ao_estimator.h"
 #include "harness/reference/embree_scene.h"
 #include "harness/reference/pixel_renderer.h"
+#include "harness/reference/surface_point.h"
 #include "harness/util/error.h"
 #include "harness/util/hash.h"
 
 namespace ldm {
 namespace {
 
-// Larger images are a typo, not a reference anyone can wait for.
-constexpr int kMaxImageSide = 16384;
-
 void validate(const AoReferenceRequest& request) {
-  if (request.width <= 0 || request.width > kMaxImageSide)
-    throw UserError("AO reference: width must lie in [1, " + std::to_string(kMaxImageSide) +
-                    "] (got " + std::to_string(request.width) + ")");
-  if (request.height <= 0 || request.height > kMaxImageSide)
-    throw UserError("AO reference: height must lie in [1, " + std::to_string(kMaxImageSide) +
-                    "] (got " + std::to_string(request.height) + ")");
-  if (request.threads < 0) throw UserError("AO reference: threads must be >= 0");
+  validate_reference_image_request("AO reference", request.width, request.height,
+                                   request.threads);
 }
 
 AoSettings settings_used(const Scene& scene, const AoReferenceRequest& request) {
@@ -56,23 +49,8 @@ namespace {
 // than the offset is missed. Below 1e-3 of d_max the squared bias stays under 4e-6, below the
 // reference's own noise target (1e-5); above it (or above 1e-3 of the scene's radius) the
 // record says the reference may be biased.
-constexpr double kMaterialOffsetFraction = 1e-3;
-
 void annotate_ray_offset(ReferenceResult& result, const Scene& scene, const AoSettings& ao) {
-  result.ray_offset = AoEstimator::max_ray_offset(centred_on_bounding_sphere(scene));
-  const double radius = scene.bounding_sphere().radius;
-  const char* scale = ao.attenuated && result.ray_offset > kMaterialOffsetFraction * ao.d_max
-                          ? "d_max"
-                      : result.ray_offset > kMaterialOffsetFraction * radius ? "the scene's radius"
-                                                                             : nullptr;
-  if (scale) {
-    char text[160];
-    std::snprintf(text, sizeof text,
-                  "reference ray offset %g is a material fraction (> 1e-3) of %s: the reference "
-                  "may be biased",
-                  result.ray_offset, scale);
-    result.ray_offset_warning = text;
-  }
+  annotate_ray_offset(result, scene, ao.attenuated ? double(ao.d_max) : 0.0, "d_max");
 }
 
 }  // namespace
@@ -106,13 +84,6 @@ ReferenceResult render_ao_reference(const Scene& scene, const AoReferenceRequest
 
 nlohmann::json ao_reference_inputs(const Scene& scene, const AoReferenceRequest& request) {
   const AoSettings ao = settings_used(scene, request);
-  nlohmann::json spp;
-  if (request.spp.spp_per_half > 0)
-    spp = {{"per_half", request.spp.spp_per_half}};
-  else
-    spp = {{"auto_target_noise_mse", request.spp.target_noise_mse},
-           {"auto_max_per_half", request.spp.max_spp_per_half},
-           {"auto_start_per_half", request.spp.start_spp_per_half}};
   return {{"pass", "ao"},
           {"renderer_version", kAoReferenceVersion},
           {"scene", scene.name},
@@ -123,7 +94,7 @@ nlohmann::json ao_reference_inputs(const Scene& scene, const AoReferenceRequest&
            {{"attenuated", ao.attenuated},
             {"d_max", ao.d_max},
             {"falloff_exponent", ao.falloff_exponent}}},
-          {"spp", spp},
+          {"spp", spp_rule_inputs(request.spp)},
           {"seed", request.seed}};
 }
 

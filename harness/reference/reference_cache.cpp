@@ -74,6 +74,13 @@ std::optional<ReferenceResult> try_load(const std::string& cache_dir,
 
 }  // namespace
 
+nlohmann::json spp_rule_inputs(const SppRule& rule) {
+  if (rule.spp_per_half > 0) return {{"per_half", rule.spp_per_half}};
+  return {{"auto_target_noise_mse", rule.target_noise_mse},
+          {"auto_max_per_half", rule.max_spp_per_half},
+          {"auto_start_per_half", rule.start_spp_per_half}};
+}
+
 std::string reference_cache_key(const nlohmann::json& inputs) {
   Fnv1a h;
   h.add_string(inputs.dump());  // std::map-ordered keys: the text is canonical

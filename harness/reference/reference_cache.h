@@ -20,6 +20,8 @@ namespace ldm {
 inline constexpr const char* kDefaultReferenceCacheDir = "results/cache/references";
 
 std::string reference_cache_key(const nlohmann::json& inputs);
+// The spp rule as a key's "spp" field: the fixed count, or the automatic rule's parameters.
+nlohmann::json spp_rule_inputs(const SppRule& rule);
 
 // The cached result (from_cache = true) or nothing; never throws on a bad entry.
 std::optional<ReferenceResult> load_cached_reference(const std::string& cache_dir,

@@ -19,6 +19,19 @@ void validate_spp_rule(const SppRule& rule) {
                     ")");
 }
 
+void validate_reference_image_request(const std::string& what, int width, int height,
+                                      int threads) {
+  // Larger images are a typo, not a reference anyone can wait for.
+  constexpr int kMaxImageSide = 16384;
+  if (width <= 0 || width > kMaxImageSide)
+    throw UserError(what + ": width must lie in [1, " + std::to_string(kMaxImageSide) +
+                    "] (got " + std::to_string(width) + ")");
+  if (height <= 0 || height > kMaxImageSide)
+    throw UserError(what + ": height must lie in [1, " + std::to_string(kMaxImageSide) +
+                    "] (got " + std::to_string(height) + ")");
+  if (threads < 0) throw UserError(what + ": threads must be >= 0");
+}
+
 double mean_squared_error(const Image& a, const Image& b) {
   if (!a.same_shape(b)) throw UserError("mean_squared_error: images differ in shape");
   if (a.pixels.empty()) throw UserError("mean_squared_error: images are empty");
@@ -40,7 +53,7 @@ Image weighted_mean(const Image& a, uint32_t n_a, const Image& b, uint32_t n_b) 
 }
 
 ReferenceResult render_reference_pair(const HalfRenderer& render_half, const SppRule& rule,
-                                      uint64_t seed) {
+                                      uint64_t seed, const NoiseScale& noise_scale) {
   validate_spp_rule(rule);
   const auto start = std::chrono::steady_clock::now();
   const bool automatic = rule.spp_per_half == 0;
@@ -50,7 +63,10 @@ ReferenceResult render_reference_pair(const HalfRenderer& render_half, const Spp
   r.half_a = render_half(seed, r.spp_per_half, 0);
   r.half_b = render_half(seed + 1, r.spp_per_half, 0);
   r.noise_mse = mean_squared_error(r.half_a, r.half_b) / 4.0;
-  for (uint32_t pass = 1; automatic && r.noise_mse > rule.target_noise_mse &&
+  auto scaled_noise = [&] {
+    return r.noise_mse * (noise_scale ? noise_scale(r.half_a, r.half_b) : 1.0);
+  };
+  for (uint32_t pass = 1; automatic && scaled_noise() > rule.target_noise_mse &&
                           r.spp_per_half < rule.max_spp_per_half;
        ++pass) {
     const uint32_t more = std::min(r.spp_per_half, rule.max_spp_per_half - r.spp_per_half);
@@ -61,7 +77,7 @@ ReferenceResult render_reference_pair(const HalfRenderer& render_half, const Spp
   }
   r.image = weighted_mean(r.half_a, 1, r.half_b, 1);
   r.spp_total = 2 * r.spp_per_half;
-  r.noise_target_met = r.noise_mse <= rule.target_noise_mse;
+  r.noise_target_met = scaled_noise() <= rule.target_noise_mse;
   r.render_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return r;

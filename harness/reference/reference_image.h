@@ -48,10 +48,19 @@ struct ReferenceResult {
 // independent batch of samples for the same half. Returns per-pixel means.
 using HalfRenderer = std::function<Image(uint64_t seed, uint32_t spp, uint32_t pass)>;
 
+// The factor the automatic rule multiplies noise_mse by before comparing it with the target,
+// given the halves so far: none (1) for AO, whose values lie in [0, 1]; the square of the
+// SSIM exposure for radiance, which has no fixed scale (lighting_reference.h).
+using NoiseScale = std::function<double(const Image& half_a, const Image& half_b)>;
+
 // Throws UserError naming the field on a bad rule (target <= 0, max = 0, fixed spp > max).
 void validate_spp_rule(const SppRule& rule);
+// Throws UserError naming `what` ("AO reference") and the field: a side outside
+// [1, 16384] or a negative thread count.
+void validate_reference_image_request(const std::string& what, int width, int height,
+                                      int threads);
 ReferenceResult render_reference_pair(const HalfRenderer& render_half, const SppRule& rule,
-                                      uint64_t seed);
+                                      uint64_t seed, const NoiseScale& noise_scale = {});
 
 // Mean squared difference over all pixels and channels; throws UserError on shape mismatch.
 double mean_squared_error(const Image& a, const Image& b);

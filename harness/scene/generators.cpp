@@ -97,6 +97,14 @@ const std::vector<SceneGenerator>& scene_generators() {
        wrap(make_parallel_planes_scene, "parallel-planes")},
       {"wall", "A floor meeting a vertical wall (analytic AO near the wall)",
        wrap(make_wall_scene, "wall")},
+      {"spot-bounce",
+       "A spot light on a floor beside a perpendicular wall lit only by the floor's reflection "
+       "(analytic single-bounce light)",
+       wrap(make_spot_bounce_scene, "spot-bounce")},
+      {"closed-sphere",
+       "The inside of a closed diffuse sphere around a spot light (analytic indirect light: "
+       "an integrating sphere)",
+       wrap(make_closed_sphere_scene, "closed-sphere")},
   };
   return generators;
 }

@@ -48,5 +48,7 @@ Scene make_atrium_scene(GeneratorParams& params);
 Scene make_plane_scene(GeneratorParams& params);
 Scene make_parallel_planes_scene(GeneratorParams& params);
 Scene make_wall_scene(GeneratorParams& params);
+Scene make_spot_bounce_scene(GeneratorParams& params);
+Scene make_closed_sphere_scene(GeneratorParams& params);
 
 }  // namespace ldm

@@ -75,8 +75,8 @@ TEST(ExtremesReference, TinyAndHugeScenesHaveTheSameAo) {
 
 TEST(ExtremesReference, RayOffsetScalesWithTheSceneNotItsPosition) {
   const Scene unit = dyadic_planes();
-  const float at_origin = AoEstimator::max_ray_offset(centred_on_bounding_sphere(unit));
-  const float far = AoEstimator::max_ray_offset(
+  const float at_origin = max_ray_offset(centred_on_bounding_sphere(unit));
+  const float far = max_ray_offset(
       centred_on_bounding_sphere(transformed(unit, 1.0f, glm::vec3(1e6f))));
   EXPECT_GT(at_origin, 0.0f);
   EXPECT_EQ(far, at_origin);
