@@ -65,6 +65,9 @@ struct Configuration {
   // by the pass itself.
   std::map<std::string, std::string> pass_params;
   SizingSettings sizing;
+  // Set by a sweep file that varies what `ldmbench run` holds fixed (image size, frames):
+  // "-img<W>x<H>", "-f<F>w<W>", appended to id() so that the ids stay unique.
+  std::string id_suffix;
   // A short unique name for file names:
   // cornell-psppsll-ao-n32-r128[-d1.5][-att]-<trace>[-normalized][-k=v...]-<sizing>, sizing
   // one of oracle, census, prevframe[-guessG] (G != 1), budget<MiB>; for a pass that reads
