@@ -156,18 +156,17 @@ int run_configurations(const ConfigurationRun& job, const std::string& command_l
   install_stop_handlers();
 
   // Finished configurations of an interrupted run of the same sweep are kept, not redone;
-  // failed ones are redone when asked (the new record replaces the old in the tables).
-  std::vector<Record> records;
-  size_t redone = 0;
-  for (Record& r : latest_per_configuration(plan.previous.records)) {
-    if (job.redo_failed && status_of(r) == "failed") {
-      ++redone;
-      continue;
-    }
-    records.push_back(std::move(r));
-  }
+  // failed ones are redone when asked (the new record takes the old one's place in the
+  // tables; until then, and if the redo is interrupted, the old one stays).
+  std::vector<Record> records = latest_per_configuration(plan.previous.records);
   std::set<std::string> finished;
-  for (const Record& r : records) finished.insert(config_id_of(r));
+  size_t redone = 0;
+  for (const Record& r : records) {
+    if (job.redo_failed && status_of(r) == "failed")
+      ++redone;
+    else
+      finished.insert(config_id_of(r));
+  }
 
   Record run;
   run.set("command", command_line);
