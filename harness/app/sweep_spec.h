@@ -54,7 +54,7 @@ SweepSpec parse_sweep_spec(const std::string& text, const std::string& name,
 // block's product; minus those an exclude filter matches; duplicates dropped (first kept).
 // Records in spec.warnings an exclude filter that matched nothing. Throws UserError when the
 // product exceeds kMaxSweepCombinations.
-inline constexpr size_t kMaxSweepCombinations = 1000000;
+inline constexpr size_t kMaxSweepCombinations = 100000;
 std::vector<SweepAssignment> sweep_combinations(SweepSpec& spec);
 
 }  // namespace ldm

@@ -272,3 +272,52 @@ TEST(SweepCli, ShardsMergeIntoTheWholeSweep) {
 
 }  // namespace
 }  // namespace ldm
+
+namespace ldm {
+namespace {
+
+TEST(SweepCli, SlurmScriptRunsItsShardsAndMerges) {
+  // The array task's and the merge job's branches of scripts/slurm-sweep.sh, as Slurm would
+  // run them (the environment Slurm sets, no Slurm needed).
+  const Folder f = folder();
+  const std::string sweep = f.sweep("small.json", kSmall);
+  const std::string script = std::string(LDM_TEST_SOURCE_DIR) + "/../scripts/slurm-sweep.sh";
+  const std::string out = (f.dir / "slurm").string();
+  const std::string env = "LDMBENCH=" + std::string(LDM_BINARY_PATH) + " ";
+  std::string output;
+  for (int i = 0; i < 2; ++i)
+    ASSERT_EQ(test::run_command(env + "SLURM_ARRAY_TASK_ID=" + std::to_string(i) + " " + script + " " +
+                                    sweep + " 2 " + out, &output), 0) << output;
+  ASSERT_EQ(test::run_command(env + "LDM_SLURM_MERGE=1 " + script + " " + sweep + " 2 " + out, &output), 0)
+      << output;
+  EXPECT_EQ(csv_ids(fs::path(out) / "shard-1").size(), 3u);
+  std::vector<std::string> ids = csv_ids(fs::path(out) / "merged"), expected = dry_run_ids(sweep);
+  std::sort(ids.begin(), ids.end());
+  std::sort(expected.begin(), expected.end());
+  EXPECT_EQ(ids, expected);
+}
+
+}  // namespace
+}  // namespace ldm
+
+namespace ldm {
+namespace {
+
+TEST(SweepCli, CiSmallSweepReproducesTheCommittedBaseline) {
+  // sweeps/ci-small.json measures the configurations of results/baselines/ci-small (same ids,
+  // same settings, through the same path as `ldmbench run`): memory, accuracy and status
+  // agree with the committed records.
+  const Folder f = folder();
+  const std::string root = std::string(LDM_TEST_SOURCE_DIR) + "/..";
+  const fs::path out = f.dir / "ci";
+  const Outcome run = ldmbench("sweep " + root + "/sweeps/ci-small.json" + f.cache() + " --out " + out.string());
+  ASSERT_EQ(run.status, 0) << run.output;
+  const Outcome compared = ldmbench("compare " + root + "/results/baselines/ci-small " + out.string() +
+                                    " --fail-on accuracy,memory,status");
+  EXPECT_EQ(compared.status, 0) << compared.output;
+  EXPECT_NE(compared.output.find("regressions: time"), std::string::npos) << compared.output;
+  EXPECT_NE(compared.output.find("memory 0 accuracy 0 status 0"), std::string::npos) << compared.output;
+}
+
+}  // namespace
+}  // namespace ldm

@@ -117,9 +117,9 @@ TEST(SweepSpec, CanonicalFormIgnoresLayout) {
 
 TEST(SweepSpec, TooManyCombinationsIsAnErrorNotAnAllocation) {
   std::string values;
-  for (int i = 1; i <= 1000; ++i) values += (i > 1 ? "," : "") + std::to_string(i);
+  for (int i = 1; i <= 400; ++i) values += (i > 1 ? "," : "") + std::to_string(i);
   EXPECT_NE(error_of(R"({"axes": {"views": [)" + values + R"(], "r_ldm": [)" + values + R"(], "frames": [1, 2]}})")
-                .find("more than 1000000 combinations"),
+                .find("more than 100000 combinations"),
             std::string::npos);
 }
 
