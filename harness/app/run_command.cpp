@@ -198,9 +198,19 @@ int run_configurations(const ConfigurationRun& job, const std::string& command_l
     const RunSettings& settings = configurations[i].settings;
     if (finished.count(config.id())) continue;
     if ((interrupted_by = stop_signal())) break;
-    progress.erase();
-    log << "[" << i + 1 << "/" << configurations.size() << "] " << config.id() << " ... "
-        << std::flush;
+    // With the bar on a terminal, the bar shows the configuration in flight and its line is
+    // printed whole when it ends; otherwise (logs, pipes) the line starts at once.
+    const std::string prefix =
+        "[" + std::to_string(i + 1) + "/" + std::to_string(configurations.size()) + "] " + config.id() + " ... ";
+    if (progress.active())
+      progress.show(config.id());
+    else
+      log << prefix << std::flush;
+    auto begin_line = [&] {
+      if (!progress.active()) return;
+      progress.erase();
+      log << prefix;
+    };
     Record record;
     const auto started = std::chrono::steady_clock::now();
     try {
@@ -208,6 +218,7 @@ int run_configurations(const ConfigurationRun& job, const std::string& command_l
     } catch (const Interrupted& e) {
       // Abandoned cleanly: no record, no images; a rerun of the same command measures it.
       remove_configuration_images(paths.images_dir, config.id() + "-" + config.pass);
+      begin_line();
       log << "abandoned (" << e.what() << ")\n";
       interrupted_by = e.signal();
       break;
@@ -221,6 +232,7 @@ int run_configurations(const ConfigurationRun& job, const std::string& command_l
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     record.set("wall_seconds", seconds);
     const std::string status = status_of(record);
+    begin_line();
     log << status;
     // Medians to 4 significant digits: a progress line, not the record (which keeps all).
     for (const char* subpass : {"build", "frame"})

@@ -38,11 +38,12 @@ std::string SweepProgress::format(size_t done, size_t total, double elapsed) {
   return text;
 }
 
-void SweepProgress::finished_one() {
-  ++done_;
+void SweepProgress::finished_one() { ++done_; }
+
+void SweepProgress::show(const std::string& current) {
   if (!out_) return;
   const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  *out_ << "\r\033[K" << format(done_, total_, elapsed) << std::flush;
+  *out_ << "\r\033[K" << format(done_, total_, elapsed) << "  " << current << std::flush;
   shown_ = true;
 }
 

@@ -1,7 +1,7 @@
 #pragma once
-// The progress bar of a sweep on a terminal: "sweep [#####-----] 12/40 30% 1m02s, ETA 2m25s",
-// drawn on stderr below the per-configuration lines (erased before each of them) and only
-// when stderr is a terminal, so that logs and pipes never see it. The ETA is the mean time
+// The progress bar of a sweep on a terminal: "sweep [#####-----] 12/40 30% 1m02s, ETA 2m25s
+// <configuration in flight>", drawn on stderr below the per-configuration lines (erased
+// before each of them is printed) and only when stderr is a terminal, so that logs and pipes never see it. The ETA is the mean time
 // of the configurations measured so far times those left.
 #include <chrono>
 #include <cstddef>
@@ -16,7 +16,9 @@ class SweepProgress {
   SweepProgress(size_t total, std::ostream* out);
   static std::ostream* stderr_if_terminal();
 
-  void finished_one();  // one more configuration done; redraws
+  bool active() const { return out_ != nullptr; }
+  void show(const std::string& current);  // draws the bar and the configuration in flight
+  void finished_one();  // one more configuration done
   void erase();         // clears the bar's line (before other output)
 
   // The bar's text for `done` of `total` after `elapsed` seconds (tests check it).
