@@ -255,6 +255,20 @@ size_t axis_order(const std::string& key) {
   return it == names.end() ? names.size() : size_t(it - names.begin());
 }
 
+// What identifies a sweep: its content without notes (description, comment), dumped with
+// sorted keys (nlohmann::json's order), so formatting, key order and notes do not count.
+std::string identity_text(json root) {
+  root.erase("description");
+  root.erase("comment");
+  for (const char* key : {"axes", "settings"})
+    if (root.contains(key) && root[key].is_object()) root[key].erase("comment");
+  for (const char* list : {"include", "exclude"})
+    if (root.contains(list) && root[list].is_array())
+      for (auto& block : root[list])
+        if (block.is_object()) block.erase("comment");
+  return root.dump();
+}
+
 }  // namespace
 
 const std::vector<std::string>& sweep_axis_names() {
@@ -322,7 +336,7 @@ SweepSpec parse_sweep_spec(const std::string& text, const std::string& name,
     check_settings(root["settings"], name);
     spec.settings = root["settings"];
   }
-  spec.canonical = root.dump();  // nlohmann::json sorts keys: formatting and key order do not count
+  spec.canonical = identity_text(root);
   return spec;
 }
 

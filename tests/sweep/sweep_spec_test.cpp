@@ -111,7 +111,11 @@ TEST(SweepSpec, CanonicalFormIgnoresLayout) {
   const SweepSpec a = parse_sweep_spec(R"({"axes": {"views": [4, 8], "r_ldm": 64}})", "a", vocabulary());
   const SweepSpec b = parse_sweep_spec("{ \"axes\" : {\n \"r_ldm\":64,\"views\":[4,8]} }", "b", vocabulary());
   const SweepSpec c = parse_sweep_spec(R"({"axes": {"views": [4, 16], "r_ldm": 64}})", "c", vocabulary());
+  // Notes do not count either.
+  const SweepSpec d = parse_sweep_spec(R"({"description": "x", "comment": ["y"],
+      "axes": {"views": [4, 8], "r_ldm": 64, "comment": "z"}})", "d", vocabulary());
   EXPECT_EQ(a.canonical, b.canonical);
+  EXPECT_EQ(a.canonical, d.canonical);
   EXPECT_NE(a.canonical, c.canonical);
 }
 
