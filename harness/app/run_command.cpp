@@ -65,7 +65,7 @@ void validate_axes(const RunSettings& s) {
 namespace {
 
 // Identifies a sweep of `ldmbench run` for resuming: the command's arguments without the
-// program path, --out and --overwrite.
+// program path, --out, --overwrite and --redo-failed.
 std::vector<std::string> run_key_parts(const std::string& command_line) {
   std::istringstream words(command_line);
   std::vector<std::string> args;
@@ -76,7 +76,7 @@ std::vector<std::string> run_key_parts(const std::string& command_line) {
       ++i;
       continue;
     }
-    if (args[i].rfind("--out=", 0) == 0 || args[i] == "--overwrite") continue;
+    if (args[i].rfind("--out=", 0) == 0 || args[i] == "--overwrite" || args[i] == "--redo-failed") continue;
     parts.push_back(args[i]);
   }
   return parts;
@@ -131,6 +131,7 @@ int run_benchmark(const RunSettings& settings, const std::string& command_line, 
   run.scenes = &scenes;
   run.out_dir = settings.out_dir;
   run.overwrite = settings.overwrite;
+  run.redo_failed = settings.redo_failed;
   run.context = settings.context;
   run.sweep_key = sweep_key(run_key_parts(command_line), scenes);
   return run_configurations(run, command_line, log);

@@ -41,6 +41,7 @@ struct RunSettings {
   bool write_images = true;
   std::string out_dir;  // empty: results/runs/<timestamp>
   bool overwrite = false;  // replace another sweep's results in out_dir (else refuse)
+  bool redo_failed = false;  // resuming: measure again what out_dir holds as failed
   ContextOptions context = default_context_options();
   std::string timer = "auto";  // auto | gl_timestamp | fenced_wall_clock
   ReferenceSettings reference;

@@ -177,11 +177,13 @@ TEST(SweepCli, FailedConfigurationsAreKeptUnlessRedone) {
   EXPECT_EQ(json["records"].size(), 2u);
 }
 
-TEST(SweepCli, SigkillMidSweepLosesAtMostTheConfigurationInFlight) {
+// Starts the 24-configuration sweep below, sends `signal` once at least three records
+// are durable, resumes, and checks every configuration is recorded exactly once, complete.
+void interrupt_and_resume(const std::string& signal, const std::string& exit_status) {
   const Folder f = folder();
-  // Twelve configurations with a small reference each: long enough to be killed in the middle.
+  // 24 configurations sharing one small reference: long enough to be stopped in the middle.
   const std::string sweep = f.sweep("kill.json", R"({"axes": {"structures": ["psppsll", "ppfla", "psppfla"],
-      "views": [2, 4, 6, 8], "r_ldm": 32, "image_size": "32x32", "frames": 1, "warmup": 0},
+      "views": [2, 4, 6, 8], "r_ldm": [32, 48], "image_size": "32x32", "frames": 1, "warmup": 0},
       "settings": {"reference": {"spp": 64}}})");
   const fs::path out = f.dir / "run", log = f.dir / "log";
   const std::string command = std::string(LDM_BINARY_PATH) + " sweep " + sweep + f.cache() + " --out " + out.string();
@@ -189,32 +191,44 @@ TEST(SweepCli, SigkillMidSweepLosesAtMostTheConfigurationInFlight) {
   const std::string script =
       "(" + command + " > " + log.string() + " 2>&1 & pid=$!; "
       "for i in $(seq 600); do [ \"$(grep -c '\"record\"' " + (out / "records.jsonl").string() +
-      " 2>/dev/null)\" -ge 3 ] && break; sleep 0.05; done; kill -KILL $pid; wait $pid; echo \"exit=$?\")";
+      " 2>/dev/null)\" -ge 3 ] && break; sleep 0.05; done; kill -" + signal + " $pid; wait $pid; echo \"exit=$?\")";
   std::string output;
   test::run_command(script, &output);
-  ASSERT_NE(output.find("exit=137"), std::string::npos) << output << read_text(log);
+  ASSERT_NE(output.find("exit=" + exit_status), std::string::npos) << output << read_text(log);
   const size_t before = journal_records(out).size();
   ASSERT_GE(before, 3u);
-  ASSERT_LT(before, 12u) << "the sweep finished before the kill";
+  ASSERT_LT(before, 24u) << "the sweep finished before the signal";
 
   const Outcome resumed = ldmbench("sweep " + sweep + f.cache() + " --out " + out.string());
   EXPECT_EQ(resumed.status, 0) << resumed.output;
   EXPECT_NE(resumed.output.find("resuming: " + std::to_string(before)), std::string::npos) << resumed.output;
   // Every configuration exactly once, in sweep order, in the journal and both tables.
   const std::vector<std::string> expected = dry_run_ids(sweep);
-  ASSERT_EQ(expected.size(), 12u);
+  ASSERT_EQ(expected.size(), 24u);
   std::vector<std::string> journal_ids;
   for (const auto& r : journal_records(out)) journal_ids.push_back(r["config_id"]);
   EXPECT_EQ(journal_ids, expected);
   EXPECT_EQ(csv_ids(out), expected);
   const auto json = nlohmann::json::parse(read_text(out / "records.json"));
-  ASSERT_EQ(json["records"].size(), 12u);
+  ASSERT_EQ(json["records"].size(), 24u);
   for (const auto& r : json["records"]) {
     EXPECT_EQ(r["status"], "ok") << r["config_id"];
     EXPECT_TRUE(r.contains("mse")) << r["config_id"];  // complete rows: scored
     EXPECT_TRUE(fs::exists(out / r["image_png"].get<std::string>())) << r["config_id"];
   }
+  // No orphan of the configuration in flight: every image is one a record names (or the EXR
+  // or PNG beside it).
+  std::set<std::string> referenced;
+  for (const auto& r : json["records"])
+    for (const char* key : {"image_exr", "image_png", "reference_exr", "ssim_map_png", "diff_png"})
+      referenced.insert(fs::path(r[key].get<std::string>()).stem().string());
+  for (const auto& entry : fs::directory_iterator(out / "images"))
+    EXPECT_TRUE(referenced.count(entry.path().stem().string())) << "orphan " << entry.path();
 }
+
+TEST(SweepCli, SigkillMidSweepLosesAtMostTheConfigurationInFlight) { interrupt_and_resume("KILL", "137"); }
+
+TEST(SweepCli, SigintMidSweepAbandonsTheConfigurationInFlight) { interrupt_and_resume("INT", "130"); }
 
 TEST(SweepCli, ShardsMergeIntoTheWholeSweep) {
   const Folder f = folder();
@@ -317,6 +331,30 @@ TEST(SweepCli, CiSmallSweepReproducesTheCommittedBaseline) {
   EXPECT_EQ(compared.status, 0) << compared.output;
   EXPECT_NE(compared.output.find("regressions: time"), std::string::npos) << compared.output;
   EXPECT_NE(compared.output.find("memory 0 accuracy 0 status 0"), std::string::npos) << compared.output;
+}
+
+}  // namespace
+}  // namespace ldm
+
+namespace ldm {
+namespace {
+
+TEST(SweepCli, RunRedoesFailedConfigurationsWhenAsked) {
+  // `ldmbench run` shares the loop: --redo-failed resumes the same sweep (it is not part of
+  // the sweep's identity) and measures the failed configuration again.
+  const Folder f = folder();
+  const int64_t block = test::gl_context().device().max_ssbo_block_bytes;
+  const int too_big = int(std::ceil(std::sqrt(double(block) / 4.0 / 64))) + 1;
+  const fs::path out = f.dir / "run";
+  const std::string run = "run -N 64 -R " + std::to_string(too_big) +
+                          ",16 --width 32 --height 32 --frames 1 --warmup 0 --no-reference --no-images --out " +
+                          out.string();
+  ASSERT_EQ(ldmbench(run).status, 3);
+  const Outcome redone = ldmbench(run + " --redo-failed");
+  EXPECT_EQ(redone.status, 3) << redone.output;
+  EXPECT_NE(redone.output.find("1 failed one(s) to redo"), std::string::npos) << redone.output;
+  EXPECT_EQ(journal_records(out).size(), 3u);
+  EXPECT_EQ(csv_ids(out).size(), 2u);
 }
 
 }  // namespace
