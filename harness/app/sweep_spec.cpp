@@ -110,8 +110,9 @@ json canonical_value(const AxisRule& rule, const json& v, const std::string& nam
       } else if (v.is_string()) {
         const std::string text = v.get<std::string>();
         char tail = 0;
-        if (std::sscanf(text.c_str(), "%ux%u%c", &w, &h, &tail) != 2 ||
-            text.find_first_not_of("0123456789x") != std::string::npos)
+        // Digits only and short, so that sscanf never meets a number beyond unsigned.
+        if (text.size() > 11 || text.find_first_not_of("0123456789x") != std::string::npos ||
+            std::sscanf(text.c_str(), "%ux%u%c", &w, &h, &tail) != 2)
           fail(name, path, "expected an image size \"WIDTHxHEIGHT\" (e.g. \"64x48\"), got \"" +
                                text + "\"");
       } else {
