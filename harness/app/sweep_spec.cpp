@@ -124,8 +124,13 @@ json canonical_value(const AxisRule& rule, const json& v, const std::string& nam
       return json(std::to_string(w) + "x" + std::to_string(h));
     }
     case Kind::Param: {
-      // The text --param OWNER:KEY=VALUE would carry; the owner checks the value.
-      if (v.is_string()) return v;
+      // The text --param OWNER:KEY=VALUE would carry; the owner checks the value. A comma
+      // would make it a list on the command line: in a file, lists are arrays.
+      if (v.is_string()) {
+        if (v.get<std::string>().find(',') != std::string::npos)
+          fail(name, path, "a comma in a parameter value; give several values as an array");
+        return v;
+      }
       if (v.is_boolean()) return json(v.get<bool>() ? "true" : "false");
       if (v.is_number_unsigned()) return json(std::to_string(v.get<uint64_t>()));
       if (v.is_number_integer()) return json(std::to_string(v.get<int64_t>()));
