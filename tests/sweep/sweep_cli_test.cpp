@@ -177,26 +177,27 @@ TEST(SweepCli, FailedConfigurationsAreKeptUnlessRedone) {
   EXPECT_EQ(json["records"].size(), 2u);
 }
 
-// Starts the 24-configuration sweep below, sends `signal` once at least three records
-// are durable, resumes, and checks every configuration is recorded exactly once, complete.
+// Starts the 24-configuration sweep below, sends `signal` once at least two records are
+// durable, resumes, and checks every configuration is recorded exactly once, complete.
 void interrupt_and_resume(const std::string& signal, const std::string& exit_status) {
   const Folder f = folder();
-  // 24 configurations sharing one small reference: long enough to be stopped in the middle.
+  // 24 configurations sharing one small reference, seconds in all even on a loaded machine:
+  // the signal lands in the middle.
   const std::string sweep = f.sweep("kill.json", R"({"axes": {"structures": ["psppsll", "ppfla", "psppfla"],
-      "views": [2, 4, 6, 8], "r_ldm": [32, 48], "image_size": "32x32", "frames": 1, "warmup": 0},
+      "views": [4, 8, 12, 16], "r_ldm": [64, 128], "image_size": "32x32", "frames": 2, "warmup": 1},
       "settings": {"reference": {"spp": 64}}})");
   const fs::path out = f.dir / "run", log = f.dir / "log";
   const std::string command = std::string(LDM_BINARY_PATH) + " sweep " + sweep + f.cache() + " --out " + out.string();
-  // Killed once at least three records are durable, with later ones in flight.
+  // Signalled once two records are durable, with later ones in flight.
   const std::string script =
       "(" + command + " > " + log.string() + " 2>&1 & pid=$!; "
       "for i in $(seq 600); do [ \"$(grep -c '\"record\"' " + (out / "records.jsonl").string() +
-      " 2>/dev/null)\" -ge 3 ] && break; sleep 0.05; done; kill -" + signal + " $pid; wait $pid; echo \"exit=$?\")";
+      " 2>/dev/null)\" -ge 2 ] && break; sleep 0.02; done; kill -" + signal + " $pid; wait $pid; echo \"exit=$?\")";
   std::string output;
   test::run_command(script, &output);
   ASSERT_NE(output.find("exit=" + exit_status), std::string::npos) << output << read_text(log);
   const size_t before = journal_records(out).size();
-  ASSERT_GE(before, 3u);
+  ASSERT_GE(before, 2u);
   ASSERT_LT(before, 24u) << "the sweep finished before the signal";
 
   const Outcome resumed = ldmbench("sweep " + sweep + f.cache() + " --out " + out.string());
