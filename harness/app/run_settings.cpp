@@ -48,6 +48,7 @@ std::string Configuration::id() const {
       break;
     }
   }
+  id += id_suffix;
   for (char& c : id)
     if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.' || c == '='))
       c = '_';

@@ -41,6 +41,7 @@ struct RunSettings {
   bool write_images = true;
   std::string out_dir;  // empty: results/runs/<timestamp>
   bool overwrite = false;  // replace another sweep's results in out_dir (else refuse)
+  bool redo_failed = false;  // resuming: measure again what out_dir holds as failed
   ContextOptions context = default_context_options();
   std::string timer = "auto";  // auto | gl_timestamp | fenced_wall_clock
   ReferenceSettings reference;
@@ -65,6 +66,9 @@ struct Configuration {
   // by the pass itself.
   std::map<std::string, std::string> pass_params;
   SizingSettings sizing;
+  // Set by a sweep file that varies what `ldmbench run` holds fixed (image size, frames):
+  // "-img<W>x<H>", "-f<F>w<W>", appended to id() so that the ids stay unique.
+  std::string id_suffix;
   // A short unique name for file names:
   // cornell-psppsll-ao-n32-r128[-d1.5][-att]-<trace>[-normalized][-k=v...]-<sizing>, sizing
   // one of oracle, census, prevframe[-guessG] (G != 1), budget<MiB>; for a pass that reads

@@ -13,6 +13,8 @@ Runner add_run_command(CLI::App& app, const std::string& command_line);
 // CLI11 silently drops the empty item of "-N 4,,8"; its intended value is unknown, so the
 // comma lists of `run` are checked on the raw arguments first. Throws UserError.
 void reject_empty_list_items(int argc, const char* const* argv);
+Runner add_sweep_command(CLI::App& app, const std::string& command_line);  // ldmbench sweep FILE
+Runner add_merge_command(CLI::App& app, const std::string& command_line);  // ldmbench merge OUT RUN...
 Runner add_reference_command(CLI::App& app);
 Runner add_report_command(CLI::App& app);  // ldmbench report RUN... (plots, pages)
 Runner add_compare_command(CLI::App& app);

@@ -1,5 +1,7 @@
 // ldmbench: benchmark and compare layered-depth-map structures on the GPU.
 //   ldmbench run             measure structures x passes x parameters: records and images
+//   ldmbench sweep           the configurations of a sweep file (resumable, sharded)
+//   ldmbench merge           join the run folders of a sweep's shards into one
 //   ldmbench reference       render a path-traced reference image
 //   ldmbench compare-images  error metrics between two images
 //   ldmbench report          tables, plots and pages from runs (scripts/report/)
@@ -23,6 +25,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   std::map<std::string, ldm::cli::Runner> runners = {
       {"run", ldm::cli::add_run_command(app, command_line)},
+      {"sweep", ldm::cli::add_sweep_command(app, command_line)},
+      {"merge", ldm::cli::add_merge_command(app, command_line)},
       {"reference", ldm::cli::add_reference_command(app)},
       {"compare-images", ldm::cli::add_compare_command(app)},
       {"report", ldm::cli::add_report_command(app)},

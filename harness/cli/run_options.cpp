@@ -171,6 +171,8 @@ void add_run_options(CLI::App* run, RunOptions* o) {
   run->add_flag("--overwrite", s.overwrite,
                 "Replace the records and images in --out when they belong to another sweep "
                 "(without it such a folder is refused; the same sweep is resumed)");
+  run->add_flag("--redo-failed", s.redo_failed,
+                "Resuming: measure again the configurations --out holds as failed (else kept)");
   run->add_flag("!--no-images", s.write_images, "Do not write images");
   run->add_flag("!--no-reference", s.reference.enabled,
                 "Skip the path-traced reference and the image metrics");

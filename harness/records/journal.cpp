@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -95,6 +96,21 @@ JournalContents read_journal(const std::string& path) {
     (is_run ? contents.runs : contents.records).push_back(std::move(fields));
   }
   return contents;
+}
+
+std::vector<Record> latest_per_configuration(const std::vector<Record>& records) {
+  std::vector<Record> out;
+  std::map<std::string, size_t> index;
+  for (const Record& r : records) {
+    const RecordValue* id = r.get("config_id");
+    const std::string key = id && std::holds_alternative<std::string>(*id) ? std::get<std::string>(*id) : "";
+    const auto [it, fresh] = index.emplace(key, out.size());
+    if (fresh)
+      out.push_back(r);
+    else
+      out[it->second] = r;
+  }
+  return out;
 }
 
 RecordJournal::RecordJournal(const std::string& path) : path_(path) {

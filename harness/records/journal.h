@@ -41,6 +41,11 @@ class RecordJournal {
   int fd_ = -1;
 };
 
+// One record per configuration (by config_id), in first-seen order: a configuration measured
+// again (--redo-failed) appears twice in a journal, and its later record is the one that
+// counts, in the earlier one's place.
+std::vector<Record> latest_per_configuration(const std::vector<Record>& records);
+
 // A record as one JSON line and back. Doubles keep their type (and NaN/inf, as
 // {"nonfinite": "nan"}), so a table derived from the journal equals one written directly.
 std::string journal_line(const char* kind, const Record& fields);

@@ -1,0 +1,241 @@
+#include "harness/app/sweep_plan.h"
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <set>
+#include <sstream>
+
+#include "harness/passes/pass.h"
+#include "harness/scene/generators.h"
+#include "harness/scene/scene_loader.h"
+#include "harness/util/error.h"
+#include "harness/util/hash.h"
+#include "ldm_impls/ldm_structure.h"
+
+namespace ldm {
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+[[noreturn]] void fail(const std::string& file, const std::string& where, const std::string& what) {
+  throw UserError(file + ": " + where + ": " + what);
+}
+
+// Calls visit(json path, value) for every value of `axis` in the main axes and include blocks.
+void for_each_value(const SweepSpec& spec, const std::string& axis,
+                    const std::function<void(const std::string&, const json&)>& visit) {
+  for (const auto& [key, values] : spec.axes)
+    if (key == axis)
+      for (size_t i = 0; i < values.size(); ++i) visit("axes." + key + "[" + std::to_string(i) + "]", values[i]);
+  for (size_t b = 0; b < spec.include.size(); ++b) {
+    const auto it = spec.include[b].find(axis);
+    if (it == spec.include[b].end()) continue;
+    for (size_t i = 0; i < it->second.size(); ++i)
+      visit("include[" + std::to_string(b) + "]." + axis + "[" + std::to_string(i) + "]", it->second[i]);
+  }
+}
+
+std::set<std::string> axes_of(const SweepSpec& spec) {
+  std::set<std::string> out;
+  for (const auto& [key, values] : spec.axes) out.insert(key);
+  for (const auto& block : spec.include)
+    for (const auto& [key, values] : block) out.insert(key);
+  return out;
+}
+
+bool is_builtin_scene(const std::string& name) {
+  for (const auto& g : scene_generators())
+    if (g.name == name) return true;
+  return false;
+}
+
+// A scene file named relative to the sweep file is found beside it (the sweep folder moves
+// with its scenes); otherwise the name is a built-in scene or a path from the working folder.
+std::string resolve_scene(const std::string& spec, const fs::path& sweep_dir) {
+  if (is_builtin_scene(spec) || fs::path(spec).is_absolute()) return spec;
+  std::error_code error;
+  const fs::path beside = sweep_dir / spec;
+  if (!sweep_dir.empty() && fs::exists(beside, error)) return beside.lexically_normal().string();
+  return spec;
+}
+
+void apply_settings(const json& settings, RunSettings& s) {
+  if (settings.contains("images")) s.write_images = settings["images"].get<bool>();
+  if (settings.contains("timer")) s.timer = settings["timer"].get<std::string>();
+  if (settings.contains("reference")) {
+    const json& r = settings["reference"];
+    if (r.contains("enabled")) s.reference.enabled = r["enabled"].get<bool>();
+    if (r.contains("spp")) s.reference.spp.spp_per_half = r["spp"].get<uint32_t>();
+    if (r.contains("noise")) s.reference.spp.target_noise_mse = r["noise"].get<double>();
+    if (r.contains("max_spp")) s.reference.spp.max_spp_per_half = r["max_spp"].get<uint32_t>();
+    if (r.contains("seed")) s.reference.seed = r["seed"].get<uint32_t>();
+  }
+}
+
+// The RunSettings of one combination: one value per axis; the axes it does not name keep
+// `ldmbench run`'s defaults.
+RunSettings combination_settings(const SweepAssignment& a, const RunSettings& base,
+                                 const std::map<std::string, std::string>& scene_paths) {
+  RunSettings s = base;
+  s.structure_params.clear();
+  auto text = [&](const char* key) { return a.at(key).get<std::string>(); };
+  auto has = [&](const char* key) { return a.count(key) != 0; };
+  if (has("scenes")) s.scenes = {scene_paths.at(text("scenes"))};
+  if (has("passes")) s.passes = {text("passes")};
+  if (has("structures")) s.structures = {text("structures")};
+  if (has("views")) s.views = {a.at("views").get<uint32_t>()};
+  if (has("r_ldm")) s.resolutions = {a.at("r_ldm").get<uint32_t>()};
+  if (has("d_max")) s.d_max = {float(a.at("d_max").get<double>())};
+  if (has("visibility")) {
+    const std::string v = text("visibility");
+    s.visibility = {v == "attenuated" ? Visibility::Attenuated
+                    : v == "unattenuated" ? Visibility::Unattenuated : Visibility::Scene};
+  }
+  if (has("normal_offset")) s.normal_offset_pixels = float(a.at("normal_offset").get<double>());
+  if (has("trace")) s.traces = {parse_ao_trace(text("trace"))};
+  if (has("ao_estimator")) s.estimators = {parse_ao_estimator(text("ao_estimator"))};
+  if (has("sizing")) s.sizing = {parse_sizing_policy(text("sizing"))};
+  // The budget belongs to the budget policy only (run refuses it with another policy).
+  if (has("sizing_budget_mib") && s.sizing.front() == SizingPolicy::Budget)
+    s.sizing_budget_mib = a.at("sizing_budget_mib").get<double>();
+  if (has("sizing_initial_per_pixel"))
+    s.sizing_initial_per_pixel = a.at("sizing_initial_per_pixel").get<uint32_t>();
+  if (has("image_size")) {
+    const std::string size = text("image_size");
+    s.width = std::atoi(size.c_str());
+    s.height = std::atoi(size.c_str() + size.find('x') + 1);
+  }
+  if (has("frames")) s.frames = int(a.at("frames").get<uint32_t>());
+  if (has("warmup")) s.warmup = int(a.at("warmup").get<uint32_t>());
+  // OWNER:KEY applies when its structure or pass is the combination's (else it is an axis
+  // this configuration does not use).
+  for (const auto& [key, value] : a) {
+    const auto colon = key.find(':');
+    if (colon == std::string::npos) continue;
+    const std::string owner = key.substr(0, colon);
+    if (owner == s.structures.front() || owner == s.passes.front())
+      s.structure_params[owner][key.substr(colon + 1)] = value.get<std::string>();
+  }
+  return s;
+}
+
+}  // namespace
+
+Shard parse_shard(const std::string& text) {
+  Shard shard;
+  const auto slash = text.find('/');
+  const auto digits = [](const std::string& t) {
+    return !t.empty() && t.size() <= 9 && t.find_first_not_of("0123456789") == std::string::npos;
+  };
+  if (slash == std::string::npos || !digits(text.substr(0, slash)) || !digits(text.substr(slash + 1)))
+    throw UserError("--shard '" + text + "': expected INDEX/COUNT with 0 <= INDEX < COUNT (e.g. 0/8)");
+  shard.index = std::stoul(text.substr(0, slash));
+  shard.count = std::stoul(text.substr(slash + 1));
+  if (shard.count == 0 || shard.index >= shard.count)
+    throw UserError("--shard '" + text + "': expected INDEX/COUNT with 0 <= INDEX < COUNT (e.g. 0/8)");
+  return shard;
+}
+
+SweepVocabulary current_sweep_vocabulary() {
+  return {structure_names(), pass_names(), ao_trace_names(), ao_estimator_names()};
+}
+
+SweepPlan plan_sweep(const std::string& path, const RunSettings& base) {
+  const std::string file = fs::path(path).filename().string();
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw UserError(path + ": cannot read the sweep file");
+  std::stringstream text;
+  text << in.rdbuf();
+
+  SweepPlan plan;
+  plan.path = path;
+  plan.spec = parse_sweep_spec(text.str(), file, current_sweep_vocabulary());
+  const SweepSpec& spec = plan.spec;
+  plan.sweep_hash = hex64([&] {
+    Fnv1a h;
+    h.add_string(spec.canonical);
+    return h.value();
+  }());
+
+  // Scenes: loaded once each, errors at their JSON path.
+  std::map<std::string, std::string> scene_paths;
+  const fs::path sweep_dir = fs::path(path).parent_path();
+  for_each_value(spec, "scenes", [&](const std::string& where, const json& v) {
+    const std::string name = v.get<std::string>();
+    const std::string resolved = resolve_scene(name, sweep_dir);
+    scene_paths[name] = resolved;
+    if (plan.scenes.count(resolved)) return;
+    try {
+      plan.scenes.emplace(resolved, load_scene(resolved));
+    } catch (const UserError& e) {
+      fail(file, where, e.what());
+    }
+  });
+  if (!axes_of(spec).count("scenes")) {
+    for (const auto& scene : base.scenes) {
+      scene_paths[scene] = scene;
+      plan.scenes.emplace(scene, load_scene(scene));
+    }
+  }
+  // Each parameter value on its own, by its owner's checks, at its JSON path.
+  for (const std::string& axis : axes_of(spec)) {
+    const auto colon = axis.find(':');
+    if (colon == std::string::npos) continue;
+    const std::string owner = axis.substr(0, colon), key = axis.substr(colon + 1);
+    const auto structures = structure_names();
+    const bool is_structure = std::find(structures.begin(), structures.end(), owner) != structures.end();
+    for_each_value(spec, axis, [&](const std::string& where, const json& v) {
+      const StructureParams params({{key, v.get<std::string>()}}, "--param " + owner);
+      try {
+        if (is_structure)
+          make_structure(owner, params);
+        else
+          make_pass(owner, params);
+      } catch (const UserError& e) {
+        fail(file, where, e.what());
+      }
+    });
+  }
+  const std::set<std::string> axes = axes_of(spec);
+  if (axes.count("sizing_budget_mib") && !axes.count("sizing"))
+    fail(file, "axes.sizing_budget_mib", "is used only by the budget sizing policy; add \"sizing\": \"budget\"");
+
+  RunSettings shared = base;
+  apply_settings(spec.settings, shared);
+  const std::vector<SweepAssignment> combinations = sweep_combinations(plan.spec);
+  plan.combinations = combinations.size();
+
+  // What `ldmbench run` holds fixed becomes part of the id when the sweep varies it.
+  std::set<std::string> image_sizes, frame_counts;
+  for (const auto& a : combinations) {
+    const RunSettings s = combination_settings(a, shared, scene_paths);
+    image_sizes.insert(std::to_string(s.width) + "x" + std::to_string(s.height));
+    frame_counts.insert(std::to_string(s.frames) + "w" + std::to_string(s.warmup));
+  }
+
+  std::set<std::string> ids;
+  for (const auto& a : combinations) {
+    const RunSettings s = combination_settings(a, shared, scene_paths);
+    try {
+      if (s.sizing.front() == SizingPolicy::Budget && s.sizing_budget_mib <= 0)
+        throw UserError("the budget sizing policy needs sizing_budget_mib (an axis of MiB values)");
+      validate_axes(s);
+    } catch (const UserError& e) {
+      fail(file, "combination " + json(a).dump(), e.what());
+    }
+    for (Configuration config : expand_configurations(s)) {
+      if (image_sizes.size() > 1) config.id_suffix += "-img" + std::to_string(s.width) + "x" + std::to_string(s.height);
+      if (frame_counts.size() > 1)
+        config.id_suffix += "-f" + std::to_string(s.frames) + "w" + std::to_string(s.warmup);
+      if (!ids.insert(config.id()).second) continue;  // an axis this configuration does not use
+      plan.configurations.push_back({config, s});
+    }
+  }
+  if (plan.configurations.empty()) fail(file, "(top level)", "the sweep has no configuration (everything excluded)");
+  return plan;
+}
+
+}  // namespace ldm

@@ -1,0 +1,433 @@
+#include "harness/app/sweep_spec.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <set>
+
+#include "harness/util/error.h"
+
+namespace ldm {
+namespace {
+
+using json = nlohmann::json;
+
+enum class Kind { Text, Name, Structure, UInt, Real, ImageSize, Param };
+
+struct AxisRule {
+  std::string key;
+  Kind kind;
+  double min = 0, max = 0;            // UInt, Real (inclusive, after float rounding)
+  std::vector<std::string> names;     // Name
+  std::string what;                   // "structure", "trace variant", ... for messages
+};
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
+std::string number_text(double x) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.9g", x);
+  return buffer;
+}
+
+std::vector<AxisRule> axis_rules(const SweepVocabulary& v) {
+  return {
+      {"scenes", Kind::Text, 0, 0, {}, "scene"},
+      {"passes", Kind::Name, 0, 0, v.passes, "pass"},
+      {"structures", Kind::Structure, 0, 0, v.structures, "structure"},
+      {"views", Kind::UInt, 1, 4096, {}, "N"},
+      {"r_ldm", Kind::UInt, 1, 8192, {}, "R_LDM"},
+      {"d_max", Kind::Real, 1.4e-45, 3.4e38, {}, "d_max"},
+      {"visibility", Kind::Name, 0, 0, {"scene", "attenuated", "unattenuated"}, "visibility"},
+      {"normal_offset", Kind::Real, 0, 1000, {}, "normal offset"},
+      {"trace", Kind::Name, 0, 0, v.traces, "trace variant"},
+      {"ao_estimator", Kind::Name, 0, 0, v.estimators, "AO estimator"},
+      {"sizing", Kind::Name, 0, 0, {"oracle", "census", "previous_frame", "budget"}, "sizing policy"},
+      {"sizing_budget_mib", Kind::Real, 0.001, 1048576, {}, "budget"},
+      {"sizing_initial_per_pixel", Kind::UInt, 1, 4096, {}, "initial guess"},
+      {"image_size", Kind::ImageSize, 16, 16384, {}, "image size"},
+      {"frames", Kind::UInt, 1, 100000, {}, "frames"},
+      {"warmup", Kind::UInt, 0, 100000, {}, "warm-up frames"},
+  };
+}
+
+[[noreturn]] void fail(const std::string& name, const std::string& path, const std::string& what) {
+  throw UserError(name + ": " + path + ": " + what);
+}
+
+std::string type_name(const json& v) {
+  if (v.is_number_integer()) return "an integer";
+  if (v.is_number()) return "a number";
+  return std::string("a ") + v.type_name();
+}
+
+// Checks one axis value and returns it in canonical form.
+json canonical_value(const AxisRule& rule, const json& v, const std::string& name,
+                     const std::string& path) {
+  switch (rule.kind) {
+    case Kind::Text:
+      if (!v.is_string() || v.get<std::string>().empty())
+        fail(name, path, "expected a non-empty string, got " + type_name(v));
+      return v;
+    case Kind::Name:
+    case Kind::Structure: {
+      if (!v.is_string()) fail(name, path, "expected a " + rule.what + " name, got " + type_name(v));
+      const std::string text = v.get<std::string>();
+      if (std::find(rule.names.begin(), rule.names.end(), text) == rule.names.end())
+        fail(name, path, "unknown " + rule.what + " \"" + text + "\" (known: " + joined(rule.names) +
+                             (rule.kind == Kind::Structure ? ", or all" : "") + ")");
+      return v;
+    }
+    case Kind::UInt: {
+      if (!v.is_number_integer())
+        fail(name, path, "expected an integer (" + rule.what + "), got " + type_name(v));
+      const bool negative = v.is_number_integer() && !v.is_number_unsigned() && v.get<int64_t>() < 0;
+      const double x = negative ? -1.0 : double(v.get<uint64_t>());
+      if (x < rule.min || x > rule.max)
+        fail(name, path, rule.what + " " + v.dump() + " is out of range [" + number_text(rule.min) +
+                             ", " + number_text(rule.max) + "]");
+      return json(v.get<uint64_t>());
+    }
+    case Kind::Real: {
+      if (!v.is_number()) fail(name, path, "expected a number (" + rule.what + "), got " + type_name(v));
+      const float f = float(v.get<double>());  // checked as the float the run uses
+      if (!(std::isfinite(f) && double(f) >= rule.min && double(f) <= rule.max))
+        fail(name, path, rule.what + " " + v.dump() + " reads as " + number_text(f) +
+                             " in a 32-bit float; it must lie in [" + number_text(rule.min) + ", " +
+                             number_text(rule.max) + "]");
+      return json(v.get<double>());
+    }
+    case Kind::ImageSize: {
+      // "WxH", or one integer for a square image.
+      unsigned w = 0, h = 0;
+      if (v.is_number_unsigned()) {
+        w = h = unsigned(std::min<uint64_t>(v.get<uint64_t>(), 1u << 30));
+      } else if (v.is_string()) {
+        const std::string text = v.get<std::string>();
+        char tail = 0;
+        // Digits only and short, so that sscanf never meets a number beyond unsigned.
+        if (text.size() > 11 || text.find_first_not_of("0123456789x") != std::string::npos ||
+            std::sscanf(text.c_str(), "%ux%u%c", &w, &h, &tail) != 2)
+          fail(name, path, "expected an image size \"WIDTHxHEIGHT\" (e.g. \"64x48\"), got \"" +
+                               text + "\"");
+      } else {
+        fail(name, path, "expected an image size \"WIDTHxHEIGHT\" or one integer, got " + type_name(v));
+      }
+      for (unsigned side : {w, h})
+        if (side < rule.min || side > rule.max)
+          fail(name, path, "image side " + std::to_string(side) + " is out of range [16, 16384]");
+      return json(std::to_string(w) + "x" + std::to_string(h));
+    }
+    case Kind::Param: {
+      // The text --param OWNER:KEY=VALUE would carry; the owner checks the value. A comma
+      // would make it a list on the command line: in a file, lists are arrays.
+      if (v.is_string()) {
+        if (v.get<std::string>().find(',') != std::string::npos)
+          fail(name, path, "a comma in a parameter value; give several values as an array");
+        return v;
+      }
+      if (v.is_boolean()) return json(v.get<bool>() ? "true" : "false");
+      if (v.is_number_unsigned()) return json(std::to_string(v.get<uint64_t>()));
+      if (v.is_number_integer()) return json(std::to_string(v.get<int64_t>()));
+      if (v.is_number_float()) {
+        if (!std::isfinite(v.get<double>())) fail(name, path, "not a finite number");
+        char buffer[32];
+        std::snprintf(buffer, sizeof buffer, "%.9g", v.get<double>());
+        return json(std::string(buffer));
+      }
+      fail(name, path, "expected a parameter value (string, number or boolean), got " + type_name(v));
+    }
+  }
+  fail(name, path, "unhandled axis kind");
+}
+
+// The rule of an axis key: a named axis, or OWNER:KEY (a --param of a structure or pass).
+const AxisRule* find_rule(const std::vector<AxisRule>& rules, const std::string& key) {
+  for (const auto& r : rules)
+    if (r.key == key) return &r;
+  return nullptr;
+}
+
+AxisRule param_rule(const std::string& key, const SweepVocabulary& v, const std::string& name,
+                    const std::string& path) {
+  const auto colon = key.find(':');
+  if (colon == 0 || colon + 1 >= key.size() || key.find(':', colon + 1) != std::string::npos)
+    fail(name, path, "expected OWNER:KEY (a --param of a structure or pass, e.g. \"ppfla:k\")");
+  const std::string owner = key.substr(0, colon);
+  const bool known = std::find(v.structures.begin(), v.structures.end(), owner) != v.structures.end() ||
+                     std::find(v.passes.begin(), v.passes.end(), owner) != v.passes.end();
+  if (!known)
+    fail(name, path, "unknown structure or pass \"" + owner + "\" (known: " + joined(v.structures) +
+                         ", " + joined(v.passes) + ")");
+  return {key, Kind::Param, 0, 0, {}, "parameter"};
+}
+
+// The values of one axis (an array, or a single value), canonical, duplicates refused;
+// "all" structures expanded.
+std::vector<json> axis_values(const std::vector<AxisRule>& rules, const std::string& key,
+                              const json& value, const SweepVocabulary& vocabulary,
+                              const std::string& name, const std::string& path) {
+  const AxisRule* known = find_rule(rules, key);
+  if (!known && key.find(':') == std::string::npos)
+    fail(name, path, "unknown axis \"" + key + "\" (axes: " + joined(sweep_axis_names()) +
+                         ", or OWNER:KEY for a --param)");
+  const AxisRule rule = known ? *known : param_rule(key, vocabulary, name, path);
+  const json items = value.is_array() ? value : json::array({value});
+  if (items.empty()) fail(name, path, "an axis needs at least one value");
+  std::vector<json> out;
+  for (size_t i = 0; i < items.size(); ++i) {
+    const std::string item_path = value.is_array() ? path + "[" + std::to_string(i) + "]" : path;
+    if (rule.kind == Kind::Structure && items[i] == "all") {
+      for (const auto& s : vocabulary.structures)
+        if (std::find(out.begin(), out.end(), json(s)) == out.end()) out.push_back(json(s));
+      continue;
+    }
+    json v = canonical_value(rule, items[i], name, item_path);
+    if (std::find(out.begin(), out.end(), v) != out.end())
+      fail(name, item_path, v.dump() + " appears twice");
+    out.push_back(std::move(v));
+  }
+  return out;
+}
+
+void require_object(const json& v, const std::string& name, const std::string& path) {
+  if (!v.is_object()) fail(name, path, "expected an object, got " + type_name(v));
+}
+
+// axis -> values, the form of the axes, of include blocks and of exclude filters.
+std::map<std::string, std::vector<json>> axis_block(const std::vector<AxisRule>& rules,
+                                                    const json& object,
+                                                    const SweepVocabulary& vocabulary,
+                                                    const std::string& name,
+                                                    const std::string& path) {
+  require_object(object, name, path);
+  std::map<std::string, std::vector<json>> out;
+  for (const auto& [key, value] : object.items()) {
+    if (key == "comment") continue;  // a note for readers
+    out[key] = axis_values(rules, key, value, vocabulary, name, path + "." + key);
+  }
+  return out;
+}
+
+void check_settings(const json& settings, const std::string& name) {
+  require_object(settings, name, "settings");
+  for (const auto& [key, value] : settings.items()) {
+    const std::string path = "settings." + key;
+    if (key == "comment") continue;
+    if (key == "images") {
+      if (!value.is_boolean()) fail(name, path, "expected true or false, got " + type_name(value));
+    } else if (key == "timer") {
+      static const std::vector<std::string> timers = {"auto", "gl_timestamp", "fenced_wall_clock"};
+      if (!value.is_string() ||
+          std::find(timers.begin(), timers.end(), value.get<std::string>()) == timers.end())
+        fail(name, path, "expected one of " + joined(timers) + ", got " + value.dump());
+    } else if (key == "reference") {
+      require_object(value, name, path);
+      for (const auto& [rkey, rvalue] : value.items()) {
+        const std::string rpath = path + "." + rkey;
+        if (rkey == "enabled") {
+          if (!rvalue.is_boolean()) fail(name, rpath, "expected true or false, got " + type_name(rvalue));
+        } else if (rkey == "spp" || rkey == "max_spp" || rkey == "seed") {
+          const double max = rkey == "seed" ? 4294967295.0 : double(1u << 20);
+          const double min = rkey == "max_spp" ? 1 : 0;
+          if (!rvalue.is_number_unsigned() || double(rvalue.get<uint64_t>()) > max ||
+              double(rvalue.get<uint64_t>()) < min)
+            fail(name, rpath, "expected an integer in [" + number_text(min) + ", " + number_text(max) +
+                                  "], got " + rvalue.dump());
+        } else if (rkey == "noise") {
+          if (!rvalue.is_number() || !(rvalue.get<double>() > 0) || !std::isfinite(rvalue.get<double>()))
+            fail(name, rpath, "expected a positive number, got " + rvalue.dump());
+        } else {
+          fail(name, rpath, "unknown key (known: enabled, spp, noise, max_spp, seed)");
+        }
+      }
+      if (value.contains("spp") && value.contains("max_spp") &&
+          value["spp"].get<uint64_t>() > value["max_spp"].get<uint64_t>())
+        fail(name, path + ".spp", "exceeds settings.reference.max_spp");
+    } else {
+      fail(name, path, "unknown key (known: images, timer, reference, comment)");
+    }
+  }
+}
+
+size_t axis_order(const std::string& key) {
+  const auto& names = sweep_axis_names();
+  const auto it = std::find(names.begin(), names.end(), key);
+  return it == names.end() ? names.size() : size_t(it - names.begin());
+}
+
+// What identifies a sweep: its content without notes (description, comment), dumped with
+// sorted keys (nlohmann::json's order), so formatting, key order and notes do not count.
+std::string identity_text(json root) {
+  root.erase("description");
+  root.erase("comment");
+  for (const char* key : {"axes", "settings"})
+    if (root.contains(key) && root[key].is_object()) root[key].erase("comment");
+  for (const char* list : {"include", "exclude"})
+    if (root.contains(list) && root[list].is_array())
+      for (auto& block : root[list])
+        if (block.is_object()) block.erase("comment");
+  return root.dump();
+}
+
+}  // namespace
+
+const std::vector<std::string>& sweep_axis_names() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out;
+    for (const auto& rule : axis_rules({})) out.push_back(rule.key);
+    return out;
+  }();
+  return names;
+}
+
+SweepSpec parse_sweep_spec(const std::string& text, const std::string& name,
+                           const SweepVocabulary& vocabulary) {
+  SweepSpec spec;
+  spec.name = name;
+  json root;
+  try {
+    root = json::parse(text);
+  } catch (const json::exception& e) {  // parse_error, and out_of_range for 1e400 (fuzzer finding)
+    throw UserError(name + ": not valid JSON (" + e.what() + ")");
+  }
+  require_object(root, name, "(top level)");
+  const auto rules = axis_rules(vocabulary);
+  for (const auto& [key, value] : root.items()) {
+    if (key == "axes" || key == "include" || key == "exclude" || key == "settings") continue;
+    if (key == "description" || key == "comment") {
+      const bool text_or_lines = value.is_string() ||
+          (value.is_array() && std::all_of(value.begin(), value.end(), [](const json& l) { return l.is_string(); }));
+      if (!text_or_lines) fail(name, key, "expected a string or an array of strings");
+      if (key == "description" && value.is_string()) spec.description = value.get<std::string>();
+      continue;
+    }
+    fail(name, key, "unknown key (known: description, comment, axes, include, exclude, settings)");
+  }
+  if (!root.contains("axes")) fail(name, "axes", "missing (the object of axes to sweep)");
+  const auto axes = axis_block(rules, root["axes"], vocabulary, name, "axes");
+  for (const auto& [key, values] : axes) spec.axes.emplace_back(key, values);
+  std::stable_sort(spec.axes.begin(), spec.axes.end(), [](const auto& a, const auto& b) {
+    const size_t oa = axis_order(a.first), ob = axis_order(b.first);
+    return oa != ob ? oa < ob : a.first < b.first;
+  });
+  for (const char* list : {"include", "exclude"}) {
+    if (!root.contains(list)) continue;
+    const json& entries = root[list];
+    if (!entries.is_array()) fail(name, list, "expected an array of objects, got " + type_name(entries));
+    for (size_t i = 0; i < entries.size(); ++i) {
+      const std::string path = std::string(list) + "[" + std::to_string(i) + "]";
+      auto block = axis_block(rules, entries[i], vocabulary, name, path);
+      if (block.empty()) fail(name, path, "names no axis");
+      for (const auto& [key, values] : block) {
+        (void)values;
+        // A filter on an axis the sweep does not vary would compare with a default it
+        // cannot see; an include block may add any axis (its first values are new).
+        if (std::string(list) == "exclude" && !axes.count(key))
+          fail(name, path + "." + key, "not an axis of this sweep (axes: " + [&] {
+            std::vector<std::string> keys;
+            for (const auto& a : spec.axes) keys.push_back(a.first);
+            return joined(keys);
+          }() + ")");
+      }
+      (std::string(list) == "include" ? spec.include : spec.exclude).push_back(std::move(block));
+    }
+  }
+  if (root.contains("settings")) {
+    check_settings(root["settings"], name);
+    spec.settings = root["settings"];
+  }
+  spec.canonical = identity_text(root);
+  return spec;
+}
+
+std::vector<SweepAssignment> sweep_combinations(SweepSpec& spec) {
+  std::vector<std::map<std::string, std::vector<json>>> blocks;
+  std::map<std::string, std::vector<json>> main;
+  for (const auto& [key, values] : spec.axes) main[key] = values;
+  blocks.push_back(main);
+  for (const auto& include : spec.include) {
+    auto block = main;
+    for (const auto& [key, values] : include) block[key] = values;
+    blocks.push_back(std::move(block));
+  }
+  std::vector<std::string> order;  // canonical order over every axis any block names
+  for (const auto& block : blocks)
+    for (const auto& [key, values] : block) {
+      (void)values;
+      if (std::find(order.begin(), order.end(), key) == order.end()) order.push_back(key);
+    }
+  std::stable_sort(order.begin(), order.end(), [](const std::string& a, const std::string& b) {
+    const size_t oa = axis_order(a), ob = axis_order(b);
+    return oa != ob ? oa < ob : a < b;
+  });
+
+  size_t total = 0;
+  for (const auto& block : blocks) {
+    size_t size = 1;
+    for (const auto& [key, values] : block) {
+      (void)key;
+      if (size > kMaxSweepCombinations / values.size()) size = kMaxSweepCombinations + 1;
+      else size *= values.size();
+    }
+    total += size;
+    if (total > kMaxSweepCombinations)
+      throw UserError(spec.name + ": the sweep has more than " + std::to_string(kMaxSweepCombinations) +
+                      " combinations");
+  }
+
+  std::vector<size_t> matched(spec.exclude.size(), 0);
+  auto excluded = [&](const SweepAssignment& a) {
+    bool any = false;
+    for (size_t f = 0; f < spec.exclude.size(); ++f) {
+      bool all = true;
+      for (const auto& [key, values] : spec.exclude[f]) {
+        const auto it = a.find(key);
+        if (it == a.end() || std::find(values.begin(), values.end(), it->second) == values.end()) {
+          all = false;
+          break;
+        }
+      }
+      if (all) {
+        ++matched[f];
+        any = true;
+      }
+    }
+    return any;
+  };
+
+  std::vector<SweepAssignment> out;
+  std::set<std::string> seen;
+  for (const auto& block : blocks) {
+    std::vector<std::string> keys;
+    for (const auto& key : order)
+      if (block.count(key)) keys.push_back(key);
+    std::vector<size_t> index(keys.size(), 0);
+    for (bool more = true; more;) {
+      SweepAssignment a;
+      for (size_t k = 0; k < keys.size(); ++k) a[keys[k]] = block.at(keys[k])[index[k]];
+      if (!excluded(a) && seen.insert(json(a).dump()).second) out.push_back(std::move(a));
+      // Odometer: the last axis fastest.
+      more = false;
+      for (size_t k = keys.size(); k-- > 0;) {
+        if (++index[k] < block.at(keys[k]).size()) {
+          more = true;
+          break;
+        }
+        index[k] = 0;
+      }
+    }
+  }
+  for (size_t f = 0; f < spec.exclude.size(); ++f)
+    if (matched[f] == 0)
+      spec.warnings.push_back(spec.name + ": exclude[" + std::to_string(f) +
+                              "] matches no combination (it removes nothing)");
+  return out;
+}
+
+}  // namespace ldm

@@ -1,0 +1,94 @@
+// `ldmbench sweep FILE`: the configurations of a sweep file (harness/app/sweep_plan.h),
+// measured by the same run_configurations() as `ldmbench run`, resumable, sharded.
+#include <iostream>
+#include <memory>
+
+#include "harness/app/sweep_plan.h"
+#include "harness/cli/commands.h"
+#include "harness/util/error.h"
+
+namespace ldm::cli {
+namespace {
+
+struct SweepOptions {
+  std::string file, out_dir, shard = "0/1", cache_dir, platform = "auto";
+  bool overwrite = false, redo_failed = false, dry_run = false, gl_debug = false;
+};
+
+void list_configurations(const SweepPlan& plan, const Shard& shard, std::ostream& out) {
+  size_t listed = 0;
+  for (size_t k = 0; k < plan.configurations.size(); ++k) {
+    if (!shard.contains(k)) continue;
+    const auto& [config, settings] = plan.configurations[k];
+    out << k << "\t" << config.id() << "\t" << settings.width << "x" << settings.height << "\t"
+        << settings.frames << "+" << settings.warmup << " frames\n";
+    ++listed;
+  }
+  out << plan.path << ": " << plan.configurations.size() << " configurations ("
+      << plan.combinations << " combinations of the axes)";
+  if (shard.count > 1) out << "; shard " << shard.text() << ": " << listed;
+  out << "\n";
+}
+
+}  // namespace
+
+Runner add_sweep_command(CLI::App& app, const std::string& command_line) {
+  auto o = std::make_shared<SweepOptions>();
+  auto* sweep = app.add_subcommand(
+      "sweep", "Measure the configurations of a sweep file (README \"Sweep files\"): resumable, "
+               "shardable (--shard), through the same path as `ldmbench run`");
+  sweep->add_option("FILE", o->file, "Sweep file (JSON)")->required();
+  sweep->add_option("--out", o->out_dir,
+                    "Output folder (default: results/runs/<timestamp>). A folder holding the same "
+                    "sweep (and shard) is resumed: finished configurations are skipped");
+  sweep->add_option("--shard", o->shard,
+                    "Run only slice INDEX of COUNT: configuration k when k mod COUNT = INDEX "
+                    "(0-based, e.g. $SLURM_ARRAY_TASK_ID/8); join slices with `ldmbench merge`")
+      ->capture_default_str();
+  sweep->add_flag("--redo-failed", o->redo_failed,
+                  "Measure again the configurations the folder holds as failed (else kept)");
+  sweep->add_flag("--overwrite", o->overwrite,
+                  "Replace the records and images in --out when they belong to another sweep");
+  sweep->add_flag("--dry-run", o->dry_run,
+                  "List the configurations (index, id, image size, frames) and write nothing");
+  sweep->add_option("--cache-dir", o->cache_dir,
+                    "Reference cache folder (default: results/cache/references)");
+  sweep->add_option("--egl-platform", o->platform, "EGL platform: auto, device, surfaceless")
+      ->check(CLI::IsMember({"auto", "device", "surfaceless"}))
+      ->capture_default_str();
+  sweep->add_flag("--gl-debug", o->gl_debug, "Print OpenGL debug messages");
+
+  return [o, command_line]() {
+    const Shard shard = parse_shard(o->shard);
+    RunSettings base;
+    base.reference.cache_dir = o->cache_dir;
+    const SweepPlan plan = plan_sweep(o->file, base);
+    for (const auto& warning : plan.spec.warnings) std::cerr << "ldmbench: warning: " << warning << "\n";
+    if (o->dry_run) {
+      list_configurations(plan, shard, std::cout);
+      return kExitOk;
+    }
+    bool references = false;
+    for (const auto& planned : plan.configurations) references |= planned.settings.reference.enabled;
+    if (references) check_cache_dir(o->cache_dir);
+
+    ConfigurationRun run;
+    for (size_t k = 0; k < plan.configurations.size(); ++k)
+      if (shard.contains(k)) run.configurations.push_back(plan.configurations[k]);
+    run.scenes = &plan.scenes;
+    run.out_dir = o->out_dir;
+    run.overwrite = o->overwrite;
+    run.redo_failed = o->redo_failed;
+    run.context = default_context_options();
+    run.context.platform = parse_egl_platform(o->platform);
+    run.context.debug_output = o->gl_debug;
+    run.sweep_key = sweep_key({"sweep", plan.sweep_hash, "shard", shard.text()}, plan.scenes);
+    run.metadata.set("sweep_file", o->file);
+    run.metadata.set("sweep_hash", plan.sweep_hash);
+    run.metadata.set("shard", shard.text());
+    run.metadata.set("sweep_configurations", uint64_t(plan.configurations.size()));
+    return run_configurations(run, command_line, std::cout);
+  };
+}
+
+}  // namespace ldm::cli

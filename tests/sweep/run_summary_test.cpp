@@ -1,0 +1,80 @@
+// The end-of-run table (harness/app/run_summary.h) and the sweep's progress bar text.
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+#include "harness/app/run_summary.h"
+#include "harness/app/sweep_progress.h"
+
+namespace ldm {
+namespace {
+
+Record measured(const std::string& id, double build_ms) {
+  Record r;
+  r.set("config_id", id);
+  r.set("status", "ok");
+  r.set("pass", "ao");
+  r.set("build_ms_median", build_ms);
+  r.set("gbuffer_ms_median", 1.25);
+  r.set("ao_ms_median", 47.258949);
+  r.set("frame_ms_median", 73.5);
+  r.set("bytes_allocated", int64_t(3) << 20);
+  r.set("bytes_used", int64_t(1) << 19);
+  r.set("mse", 0.0012345678);
+  r.set("mssim", 0.987654);
+  r.set("mse_over_noise", 123.456);
+  return r;
+}
+
+TEST(RunSummary, FourSignificantDigits) {
+  EXPECT_EQ(four_digits(24.99757), "25");
+  EXPECT_EQ(four_digits(47.258949), "47.26");
+  EXPECT_EQ(four_digits(0.0012345678), "0.001235");
+  EXPECT_EQ(four_digits(123456.0), "1.235e+05");
+}
+
+TEST(RunSummary, AlignedRowsWithTheColumnsAReaderWants) {
+  Record failed;
+  failed.set("config_id", "a-much-longer-configuration-id");
+  failed.set("status", "failed");
+  failed.set("pass", "ao");
+  const std::string table = summary_table({measured("short", 24.99757), failed}, 10);
+  std::istringstream lines(table);
+  std::string header, first, second;
+  std::getline(lines, header);
+  std::getline(lines, first);
+  std::getline(lines, second);
+  EXPECT_EQ(header.rfind("configuration", 0), 0u) << table;
+  for (const char* column : {"status", "build ms", "pass ms", "frame ms", "MiB alloc", "MiB used", "MSE",
+                             "MSSIM", "x noise"})
+    EXPECT_NE(header.find(column), std::string::npos) << column;
+  // pass ms = gbuffer + ao medians; MiB from bytes; 4 digits everywhere.
+  for (const char* cell : {" 25 ", " 48.51 ", " 73.5 ", " 3 ", " 0.5 ", " 0.001235 ", " 0.9877 ", " 123.5"})
+    EXPECT_NE((first + " ").find(cell), std::string::npos) << cell << "\n" << table;
+  EXPECT_NE(second.find("failed"), std::string::npos);
+  EXPECT_NE(second.find(" - "), std::string::npos) << table;  // no value, no number
+  // Columns line up: the status column starts at the same offset in every row.
+  EXPECT_EQ(first.find("ok"), header.find("status"));
+  EXPECT_EQ(second.find("failed"), header.find("status"));
+  // Numbers are right-aligned: the rows end at the same column as the header.
+  EXPECT_EQ(first.size(), header.size()) << table;
+}
+
+TEST(RunSummary, LongTablesAreCut) {
+  std::vector<Record> records;
+  for (int i = 0; i < 5; ++i) records.push_back(measured("c" + std::to_string(i), 1.0));
+  const std::string table = summary_table(records, 3);
+  EXPECT_NE(table.find("c2"), std::string::npos);
+  EXPECT_EQ(table.find("c3"), std::string::npos);
+  EXPECT_NE(table.find("2 more configuration(s) in records.csv"), std::string::npos) << table;
+  EXPECT_EQ(summary_table({}, 3), "");
+}
+
+TEST(SweepProgress, BarCountsAndEta) {
+  EXPECT_EQ(SweepProgress::format(0, 4, 0), "sweep [------------------------] 0/4 0% 0s");
+  EXPECT_EQ(SweepProgress::format(1, 4, 30), "sweep [######------------------] 1/4 25% 30s, ETA 1m30s");
+  EXPECT_EQ(SweepProgress::format(4, 4, 7300), "sweep [########################] 4/4 100% 2h01m");
+}
+
+}  // namespace
+}  // namespace ldm
