@@ -67,7 +67,6 @@ std::vector<std::pair<std::string, RecordValue>> IndirectLighting::describe(
           {"splat_scale", double(s.splat_scale)},
           {"topological_bias", double(s.a())},
           {"footprint_threshold", double(s.footprint_threshold)},
-          {"depth_threshold", double(s.depth_threshold_for(scene))},
           {"trace", ao_trace_name(s.trace)},
           {"normal_offset_pixels", double(s.normal_offset_pixels)}};
 }
@@ -105,6 +104,7 @@ std::vector<std::pair<std::string, RecordValue>> IndirectLighting::results() con
       {"photons_degenerate", int64_t(c.degenerate)},
       {"photons_stored", int64_t(c.stored)},
       {"photons_overflow", int64_t(c.overflow)},
+      {"depth_threshold", double(lighting_->depth_threshold())},
       {"photon_rebuilds", int64_t(lighting_->rebuilds())},
       {"photon_reallocations", int64_t(lighting_->reallocations())}};
   for (const auto& [key, value] : lighting_->sizing()) out.emplace_back("sizing_" + key, value);

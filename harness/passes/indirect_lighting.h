@@ -10,7 +10,7 @@
 //   s                 footprint scale (> 0; 1: one light texel's beam), default 4
 //   a                 topological bias (>= 0), default a = s
 //   t_foot            footprint threshold, scene units (max norm of s * D x), default inf (off)
-//   depth_threshold   camera depth test tolerance, scene units, default 1% of the scene radius
+//   depth_threshold   camera depth test tolerance, scene units, default 3 LDM pixels
 //   r_light           R_light, the light G-buffer's side, default 64
 //   photon_capacity   fixes the photon buffer (photons) under every sizing policy
 //   photon_budget_mib the photon buffer's budget under --sizing budget (default: the run's)

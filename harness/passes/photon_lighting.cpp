@@ -92,7 +92,7 @@ PhotonLighting::PhotonLighting(const LdmStructure& structure, const BuildInputs&
       width_(width),
       height_(height),
       settings_(settings),
-      depth_threshold_(settings.depth_threshold_for(scene)),
+      depth_threshold_(settings.depth_threshold_for(in.views.views())),
       light_camera_(light_camera(scene.light)),
       light_gbuffer_(int(settings.light_resolution), int(settings.light_resolution), true),
       indirect_(GL_RGBA32F, width, height),
@@ -330,6 +330,16 @@ void PhotonLighting::render(const GBufferPass& camera, GpuTimer* timer) {
     composite();
   }
   read_counts();  // untimed: for the record
+}
+
+void PhotonLighting::splat_photons(const GBufferPass& camera,
+                                   const std::vector<StoredPhoton>& photons) {
+  if (photons.size() > capacity_) allocate_photons(photons.size());
+  if (!photons.empty()) photons_.upload(photons.data(), photons.size() * kPhotonBytes);
+  uint32_t counters[kCounterCount] = {uint32_t(photons.size())};
+  counters_.upload(counters, sizeof counters);
+  splat(camera);
+  read_counts();
 }
 
 Image PhotonLighting::read_indirect() const {

@@ -32,16 +32,20 @@ struct IndirectSettings {
   float splat_scale = 4.0f;             // s: footprints scaled by s (1: one light texel's beam)
   std::optional<float> topological_bias;  // a; unset: a = s (the thesis's choice)
   float footprint_threshold = INFINITY;  // T_foot: max norm of s * D x, scene units (inf: off)
-  std::optional<float> depth_threshold;  // scene units; unset: 1% of the scene's radius
+  // scene units; unset: kDefaultDepthThresholdPixels LDM pixels (an LDM hit lies at its
+  // pixel's depth, off the true surface by up to about a pixel times the slope)
+  std::optional<float> depth_threshold;
   AoTrace trace = kDefaultAoTrace;       // the LDM trace variant (as the AO pass's)
   float normal_offset_pixels = 0.5f;     // the §4.4.2 offset at the traced point x1
   std::optional<uint64_t> photon_capacity;  // fixes the photon buffer (photons)
   std::optional<double> photon_budget_mib;  // budget policy: the photon buffer's own budget
 
   float a() const { return topological_bias.value_or(splat_scale); }
-  float depth_threshold_for(const Scene& scene) const {
-    return depth_threshold.value_or(0.01f * scene.bounding_sphere().radius);
+  float depth_threshold_for(const ViewSet& views) const {
+    return depth_threshold.value_or(kDefaultDepthThresholdPixels *
+                                    (views.views.empty() ? 0.0f : views.views[0].pixel_size()));
   }
+  static constexpr float kDefaultDepthThresholdPixels = 3.0f;
 };
 
 // The photon tracing pass's counts (shaders/passes/indirect/photon.glsl).
@@ -81,6 +85,10 @@ class PhotonLighting {
   // sizing policy), splatting, direct light, composite.
   void render(const GBufferPass& camera, GpuTimer* timer);
 
+  // Splats exactly `photons` (in place of a trace's) into the indirect image: the splatting
+  // stage alone, for tests of the kernel and footprint.
+  void splat_photons(const GBufferPass& camera, const std::vector<StoredPhoton>& photons);
+
   Image read_indirect() const;  // rgb
   Image read_direct() const;
   Image read_sum() const;
@@ -99,6 +107,7 @@ class PhotonLighting {
   std::vector<std::pair<std::string, std::string>> sizing() const;
   uint64_t rebuilds() const { return rebuilds_; }
   uint64_t reallocations() const { return reallocations_; }
+  float depth_threshold() const { return depth_threshold_; }  // the effective one
 
  private:
   void compile();

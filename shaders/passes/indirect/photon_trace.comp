@@ -39,7 +39,7 @@ uniform vec3 light_forward, light_right, light_up;  // unit axes of the light's 
 uniform float light_tan_half;                        // tan(outer angle)
 uniform mat4 camera_view_projection;
 uniform vec3 camera_eye;
-uniform float depth_threshold;  // scene units
+uniform float depth_threshold;  // scene units (default: a few LDM pixels, the hits' error)
 uniform float footprint_threshold;  // max norm of s * D x, scene units
 uniform float splat_scale;          // s
 uniform float normal_offset_pixels;
@@ -49,7 +49,10 @@ uint counts[PHOTON_COUNTERS];
 // Where x2 falls in the camera's image, and whether the camera sees it there: the distance
 // from the eye to x2 within depth_threshold of the G-buffer's, and x2 on the lit side of the
 // surface the camera sees.
-bool camera_sees(vec3 x2, vec3 w_o, out vec3 n2) {
+// x2 is moved along n2 onto the plane of the surface point the camera sees there: the LDM
+// hit lies at its LDM pixel's depth, up to a pixel times the slope off the surface, and the
+// splat's kernel (its topological bias) measures distances from the photon's tangent plane.
+bool camera_sees(inout vec3 x2, vec3 w_o, out vec3 n2) {
   const vec4 clip = camera_view_projection * vec4(x2, 1.0);
   n2 = vec3(0.0);
   if (!(clip.w > 0.0)) return false;
@@ -61,7 +64,9 @@ bool camera_sees(vec3 x2, vec3 w_o, out vec3 n2) {
   if (seen.w == 0.0) return false;
   if (distance(x2, camera_eye) > distance(seen.xyz, camera_eye) + depth_threshold) return false;
   n2 = texelFetch(camera_normal, pixel, 0).xyz;
-  return dot(n2, w_o) < 0.0;  // the photon arrives on the side the camera looks at
+  if (!(dot(n2, w_o) < 0.0)) return false;  // it arrives on the side the camera does not see
+  x2 -= dot(x2 - seen.xyz, n2) * n2;
+  return true;
 }
 
 void emit_secondary(uint texel_index, uint view, bool ahead, vec3 x1, vec3 n1, vec3 d1,
@@ -78,7 +83,7 @@ void emit_secondary(uint texel_index, uint view, bool ahead, vec3 x1, vec3 n1, v
     ++counts[PHOTON_COUNT_ESCAPED];
     return;
   }
-  const vec3 x2 = offset_x + t * w_o;
+  vec3 x2 = offset_x + t * w_o;
   vec3 n2;
   if (!camera_sees(x2, w_o, n2)) {
     ++counts[PHOTON_COUNT_CULLED_DEPTH];
