@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <tuple>
 
@@ -39,14 +40,16 @@ double sphere_error(uint32_t n, int r_light) {
 
 TEST(IndirectPass, ApproachesTheIntegratingSphereAsNGrows) {
   const double e8 = sphere_error(8, 48), e32 = sphere_error(32, 48), e128 = sphere_error(128, 48);
-  EXPECT_LT(e32, 0.7 * e8);
-  EXPECT_LT(e128, 0.7 * e32);
+  std::printf("mean relative error N = 8, 32, 128: %.4f %.4f %.4f\n", e8, e32, e128);
+  EXPECT_LT(e32, 0.6 * e8);  // measured 0.57, 0.25, 0.16 on llvmpipe
+  EXPECT_LT(e128, 0.8 * e32);
   EXPECT_LT(e128, 0.2);
 }
 
 TEST(IndirectPass, ApproachesTheIntegratingSphereAsRLightGrows) {
   const double e8 = sphere_error(32, 8), e24 = sphere_error(32, 24), e64 = sphere_error(32, 64);
-  EXPECT_LT(e24, e8);
+  std::printf("mean relative error R_light = 8, 24, 64: %.4f %.4f %.4f\n", e8, e24, e64);
+  EXPECT_LT(e24, 0.6 * e8);  // measured 0.65, 0.30, 0.25 on llvmpipe
   EXPECT_LT(e64, e24);
 }
 
@@ -93,10 +96,13 @@ TEST(IndirectPass, ExactStructuresGiveTheSamePhotons) {
   }
 }
 
-// A spot grazing an open floor (its rays meet the floor at cos < 1e-3 near the cone's edge)
-// and photons sent along view directions tangent to a sphere: the degenerate differentials
-// are culled and counted, and no image holds NaN or infinity.
+// Photons sent along view directions nearly tangent to the receiving surface (inside a
+// sphere, N = 32, R_light = 64 meets some): their degenerate differentials are culled and
+// counted, and no image holds NaN or infinity; nor with a spot grazing an open floor. (The
+// functions' every degenerate case: indirect_degenerate_test.cpp.)
 TEST(IndirectPass, DegenerateDifferentialsAreCountedNeverNaN) {
+  const test::IndirectRun sphere(load_scene("closed-sphere"), "psppsll", 32, 64, 64, {{"r_light", "64"}});
+  EXPECT_GT(sphere.lighting().counts().degenerate, 0u);
   Scene grazing = load_scene("plane");
   grazing.light.position = {0.0f, 0.002f, 0.0f};
   grazing.light.direction = glm::normalize(glm::vec3(1.0f, -0.05f, 0.0f));
@@ -105,17 +111,9 @@ TEST(IndirectPass, DegenerateDifferentialsAreCountedNeverNaN) {
   grazing.camera.eye = {2.0f, 3.0f, 0.0f};
   grazing.camera.target = {2.0f, 0.0f, 0.0f};
   const test::IndirectRun flat(grazing, "psppsll", 4, 64, 64, {{"r_light", "64"}});
-  EXPECT_GT(flat.lighting().counts().primary_degenerate, 0u);
-  uint64_t degenerate = 0;
-  for (uint32_t n : {2u, 16u, 64u}) {
-    const test::IndirectRun sphere(load_scene("closed-sphere"), "psppsll", n, 64, 64, {{"r_light", "32"}});
-    degenerate += sphere.lighting().counts().degenerate;
-    for (const Image& image : {sphere.indirect(), sphere.lighting().read_direct(), sphere.lighting().read_sum()})
+  for (const auto* run : {&sphere, &flat})
+    for (const Image& image : {run->indirect(), run->lighting().read_direct(), run->lighting().read_sum()})
       for (float v : image.pixels) ASSERT_TRUE(std::isfinite(v));
-  }
-  EXPECT_GT(degenerate, 0u);
-  for (const Image& image : {flat.indirect(), flat.lighting().read_direct()})
-    for (float v : image.pixels) ASSERT_TRUE(std::isfinite(v));
 }
 
 MeasurementRequest small_request(std::map<std::string, std::string> pass_params, SizingPolicy policy) {
