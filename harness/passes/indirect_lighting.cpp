@@ -49,11 +49,11 @@ std::vector<TimedSubpass> IndirectLighting::subpasses() const {
   return {{"gbuffer", "camera G-buffer: positions, camera-facing normals, albedo"},
           {"light_gbuffer", "the spot light's G-buffer, R_light^2 (positions, normals, albedo): "
                             "primary photons and the shadow map"},
-          {"photon_census", "sizing policy census: a counting photon trace (census only)"},
-          {"photon_reallocate", "sizing policy census: growing the photon buffer"},
+          {"photon_census", "sizing policy census: a counting photon trace (census only)", false},
+          {"photon_reallocate", "sizing policy census: growing the photon buffer", false},
           {"photon_tracing", "photon differentials traced through the LDM (thesis §5.4.1)"},
-          {"photon_readback", "sizing policy previous_frame: the photon counter read back"},
-          {"photon_rebuild", "previous_frame: the photon buffer grown and the trace run again"},
+          {"photon_readback", "sizing policy previous_frame: the photon counter read back", false},
+          {"photon_rebuild", "previous_frame: the photon buffer grown and the trace run again", false},
           {"splatting", "photon splats: point -> footprint quad -> Silverman kernel, additive "
                         "(§5.4.2)"},
           {"direct", "shadow-mapped direct light from the spot"},

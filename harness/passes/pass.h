@@ -43,6 +43,9 @@ struct PassRequirements {
 struct TimedSubpass {
   std::string name;         // as given to ScopedSubpass; the record's <name>_ms_* columns
   std::string description;  // one line, for `ldmbench columns`
+  // false: only some frames or sizing policies run it (a rebuild, a census); ldmbench_gbench
+  // times only the sub-passes every frame runs.
+  bool every_frame = true;
 };
 
 // One output image; `name` becomes the file stem's suffix: <config_id>-<name>.exr.
