@@ -33,9 +33,11 @@ GBufferPass::GBufferPass(int width, int height, bool albedo)
 }
 
 std::vector<BufferMemory> GBufferPass::memory() const {
-  return {{"gbuffer_positions", positions_.bytes(), positions_.bytes()},
-          {"gbuffer_normals", normals_.bytes(), normals_.bytes()},
-          {"gbuffer_depth", depth_.bytes(), depth_.bytes()}};
+  std::vector<BufferMemory> out = {{"gbuffer_positions", positions_.bytes(), positions_.bytes()},
+                                   {"gbuffer_normals", normals_.bytes(), normals_.bytes()},
+                                   {"gbuffer_depth", depth_.bytes(), depth_.bytes()}};
+  if (with_albedo_) out.push_back({"gbuffer_albedo", albedo_.bytes(), albedo_.bytes()});
+  return out;
 }
 
 void GBufferPass::render(const GpuScene& scene, const Scene& description, GpuTimer* timer) {

@@ -92,9 +92,6 @@ class Pass {
   virtual std::vector<PassImage> images() const = 0;
   // Record fields computed from the last render() (e.g. AO's range of values); none by default.
   virtual std::vector<std::pair<std::string, RecordValue>> results() const { return {}; }
-  // What a pass that reads no structure allocates (its targets), for the record's memory
-  // columns; none by default (an LDM pass's memory is its structure's).
-  virtual std::vector<BufferMemory> memory() const { return {}; }
   // Settings that run but are known to give a biased image, one sentence each, for the
   // record's status_detail; none by default.
   virtual std::vector<std::string> warnings() const { return {}; }
@@ -102,8 +99,10 @@ class Pass {
   // indirect pass's photon-buffer overflow), one sentence; empty when nothing was dropped. A
   // non-empty answer makes the record lossy, as a structure's counted loss does.
   virtual std::string loss() const { return {}; }
-  // The pass's own buffers (allocated, used by the last render()), recorded as
-  // mem_<name>_allocated/_used beside the structure's but not in bytes_allocated/_used.
+  // The pass's own buffers (allocated, used by the last render()), for the record's
+  // mem_<name>_* columns; none by default. A pass that reads no structure (hbao) lists its
+  // targets, which are its bytes_allocated; an LDM pass's (the indirect pass's photons) are
+  // recorded beside the structure's, not in bytes_allocated/_used (the structure's storage).
   virtual std::vector<BufferMemory> memory() const { return {}; }
 
   // The converged image the first output estimates, width x height, for this scene and the
