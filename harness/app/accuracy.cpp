@@ -16,10 +16,29 @@ void append_status_detail(Record& r, const std::string& text) {
   r.set("status_detail", before.empty() ? text : before + "; " + text);
 }
 
-void add_accuracy(Record& r, const ReferenceResult& reference, const Image& image,
-                  const OutputFolder* images, const std::string& stem) {
+namespace {
+
+// Every column under a reference's prefix; status and its detail are the record's own.
+struct PrefixedRecord {
+  Record& r;
+  const std::string& prefix;
+  template <typename T>
+  void set(const std::string& key, T value) {
+    if (key == "status") r.set(key, value);
+    else r.set(prefix + key, value);
+  }
+};
+
+}  // namespace
+
+void add_accuracy(Record& record, const ReferenceResult& reference, const Image& image,
+                  const OutputFolder* images, const std::string& stem,
+                  const std::string& prefix, double ssim_exposure) {
+  PrefixedRecord r{record, prefix};
   // The noise floor: how far two independent halves of the reference differ.
-  const ImageComparison noise = compare_images(reference.half_a, reference.half_b, {});
+  MetricOptions options;
+  options.ssim_exposure = ssim_exposure;
+  const ImageComparison noise = compare_images(reference.half_a, reference.half_b, options);
   r.set("ref_spp", reference.spp_total);
   r.set("ref_noise_mse", reference.noise_mse);
   r.set("ref_noise_mssim", noise.mssim);
@@ -30,21 +49,22 @@ void add_accuracy(Record& r, const ReferenceResult& reference, const Image& imag
   if (reference.ray_offset > 0) {
     r.set("ref_ray_offset", reference.ray_offset);
     r.set("ref_ray_offset_ok", reference.ray_offset_warning.empty());
-    if (!reference.ray_offset_warning.empty()) append_status_detail(r, reference.ray_offset_warning);
+    if (!reference.ray_offset_warning.empty()) append_status_detail(record, reference.ray_offset_warning);
   }
   if (!reference.noise_target_met) {
     // Not an invalid measurement, but its error floor is higher than asked: say so where a
     // reader of the record looks first.
-    append_status_detail(r, "reference noise target not met at the spp cap (see ref_noise_mse)");
+    append_status_detail(record, prefix + "reference noise target not met at the spp cap (see " +
+                                     prefix + "ref_noise_mse)");
   }
 
   ImageComparison metrics;
   try {
-    metrics = compare_images(reference.image, image, {});
+    metrics = compare_images(reference.image, image, options);
   } catch (const UserError& e) {
     r.set("metrics_error", e.what());
     r.set("status", "invalid");
-    append_status_detail(r, std::string("image not measured: ") + e.what());
+    append_status_detail(record, std::string("image not measured: ") + e.what());
     return;
   }
   r.set("mse", metrics.mse);

@@ -17,8 +17,11 @@ namespace ldm {
 // reference, SSIM-map and difference images named after `image_stem`. An image holding NaN
 // or infinity is not measured: the record gets metrics_error and its status becomes
 // "invalid".
+// Every column name is prefixed with `column_prefix` (a further reference of the pass, e.g.
+// "multi_"); SSIM sees both images scaled by `ssim_exposure`.
 void add_accuracy(Record& record, const ReferenceResult& reference, const Image& image,
-                  const OutputFolder* images, const std::string& image_stem);
+                  const OutputFolder* images, const std::string& image_stem,
+                  const std::string& column_prefix = "", double ssim_exposure = 1.0);
 
 // Appends `text` to the record's status_detail ("; "-separated) unless it is already there.
 void append_status_detail(Record& record, const std::string& text);

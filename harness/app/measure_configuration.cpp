@@ -122,6 +122,10 @@ void add_measurement(Record& r, const Measurement& m) {
     r.set("mem_" + b.name + "_allocated", b.allocated);
     r.set("mem_" + b.name + "_used", b.used);
   }
+  for (const auto& b : m.pass_memory) {
+    r.set("mem_" + b.name + "_allocated", b.allocated);
+    r.set("mem_" + b.name + "_used", b.used);
+  }
   r.set("bytes_allocated", m.bytes_allocated());
   r.set("bytes_used", m.bytes_used());
 }
@@ -140,11 +144,19 @@ Record measure_configuration(const Scene& scene, const Configuration& config,
   if (settings.write_images) {
     r.set("image_exr", folder.write_exr(stem + ".exr", image));
     r.set("image_png", folder.write_png(stem + ".png", image));
+    // The pass's further images (e.g. the indirect pass's direct light and sum), unscored.
+    for (size_t i = 1; i < m.images.size(); ++i) {
+      const std::string other = config.id() + "-" + m.images[i].name;
+      r.set("image_" + m.images[i].name + "_exr", folder.write_exr(other + ".exr", m.images[i].image));
+      r.set("image_" + m.images[i].name + "_png", folder.write_png(other + ".png", m.images[i].image));
+    }
   }
   if (settings.reference.enabled) {
     const auto pass = make_pass(config.pass, StructureParams(config.pass_params, "--pass " + config.pass));
-    add_accuracy(r, pass->reference(scene, image.width, image.height, settings.reference), image,
-                 settings.write_images ? &folder : nullptr, stem);
+    for (const auto& scored : pass->references(scene, image.width, image.height, settings.reference))
+      add_accuracy(r, scored.reference, image, settings.write_images ? &folder : nullptr,
+                   stem + (scored.column_prefix.empty() ? "" : "-" + scored.column_prefix),
+                   scored.column_prefix, scored.ssim_exposure);
   }
   // Last, so that a configuration abandoned on the way (an interrupted reference) leaves no
   // samples behind, as it leaves no record.

@@ -74,6 +74,7 @@ struct Measurement {
   // Rebuilds after an overflow (all builds; in measured frames) and reallocations.
   uint64_t sizing_rebuilds = 0, sizing_rebuilds_measured = 0, sizing_reallocations = 0;
   std::vector<BufferMemory> memory;  // the structure's and the sizing policy's buffers
+  std::vector<BufferMemory> pass_memory;  // Pass::memory(): the pass's own (not in bytes_*)
 
   // Every measured frame, in order: each sub-pass's milliseconds, then "build" (the
   // structure's sub-passes) and "frame" (everything but the raster baselines).

@@ -215,6 +215,14 @@ Measurement MeasurementSession::result() const {
     m.sizing_reallocations = s.sizer->reallocations();
     m.memory = s.structure->memory();
     for (const auto& buffer : s.sizer->memory()) m.memory.push_back(buffer);
+    m.pass_memory = s.pass->memory();  // beside the structure's, not in bytes_*
+    // The pass's own counted loss (e.g. photons beyond the photon buffer) is lossy, as a
+    // structure's is; it never hides an invalid verdict.
+    const std::string pass_loss = s.pass->loss();
+    if (!pass_loss.empty()) {
+      if (m.status == BuildStatus::Ok) m.status = BuildStatus::Lossy;
+      m.status_detail += (m.status_detail.empty() ? "" : "; ") + pass_loss;
+    }
   }
   for (const auto& warning : s.pass->warnings())  // measured, but known to be off: say so
     m.status_detail += (m.status_detail.empty() ? "" : "; ") + warning;

@@ -1,5 +1,6 @@
 #include "harness/app/run_settings.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
@@ -34,6 +35,13 @@ std::string Configuration::id() const {
   if (ldm) id += "-" + ao_trace_name(trace);  // LDM AO only
   if (estimator != AoEstimatorChoice::Eq13) id += "-" + ao_estimator_name(estimator);
   for (const auto& [key, value] : params) id += "-" + key + "=" + value;
+  // A pass's own --param values (not the AO axes above, which the id already names).
+  static const char* const kAoAxes[] = {"d_max", "visibility", "normal_offset_pixels", "trace",
+                                        "ao_estimator"};
+  if (ldm)
+    for (const auto& [key, value] : pass_params)
+      if (std::find(std::begin(kAoAxes), std::end(kAoAxes), key) == std::end(kAoAxes))
+        id += "-" + key + "=" + value;
   if (ldm) switch (sizing.policy) {
     case SizingPolicy::Oracle: id += "-oracle"; break;
     case SizingPolicy::Census: id += "-census"; break;
@@ -136,8 +144,10 @@ std::vector<Configuration> expand_configurations(const RunSettings& s) {
               for (Visibility v : s.visibility)
                 for (AoTrace trace : s.traces)
                   for (AoEstimatorChoice estimator : s.estimators)
-                    for (SizingPolicy sizing : s.sizing) {
+                    for (SizingPolicy sizing : s.sizing)
+                    for (const auto& own : parameter_combinations(pass, params_of(s, pass))) {
                     Configuration c;
+                    c.pass_params = own;  // the pass's own --param pass:KEY=VALUE
                     c.scene = scene;
                     c.structure = structure;
                     c.pass = pass;

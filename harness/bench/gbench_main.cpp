@@ -189,7 +189,7 @@ int main(int argc, char** argv) {
             // "build" and each sub-pass the pass declares, e.g. Build/..., ao:gbuffer/...
             std::vector<std::pair<std::string, std::string>> timed = {{"Build", "build"}};
             for (const auto& s : make_pass(pass, StructureParams())->subpasses())
-              timed.emplace_back(pass + ":" + s.name, s.name);
+              if (s.every_frame) timed.emplace_back(pass + ":" + s.name, s.name);
             for (const auto& [label, subpass] : timed)
               benchmark::RegisterBenchmark((label + suffix).c_str(), run_measurement,
                                            &scenes.at(scene), structure, axes.params[structure],

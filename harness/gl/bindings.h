@@ -13,6 +13,10 @@ constexpr uint32_t kViewsBinding = 4;
 constexpr uint32_t kCensusBinding = 5;
 constexpr uint32_t kValidationBinding = 6;
 constexpr uint32_t kPassBinding0 = 7;  // passes: 7, 8, ...
+// The scene's per-triangle material index and material albedo (GpuScene::bind_materials),
+// read by lighting passes' G-buffers: after the passes' first four.
+constexpr uint32_t kMaterialsBinding = kPassBinding0 + 4;
+constexpr uint32_t kMaterialAlbedoBinding = kPassBinding0 + 5;
 // The synthetic fragment source (ldm_impls/common/synthetic_fragments.h) feeds construction
 // passes, which never run together with a pass, so it borrows the passes' bindings.
 constexpr uint32_t kSyntheticFragmentsBinding = kPassBinding0;

@@ -6,27 +6,38 @@
 
 namespace ldm {
 
-GBufferPass::GBufferPass(int width, int height)
+GBufferPass::GBufferPass(int width, int height, bool albedo)
     : width_(width),
       height_(height),
       positions_(GL_RGBA32F, width, height),
       normals_(GL_RGBA32F, width, height),
-      depth_(GL_DEPTH_COMPONENT32F, width, height) {
+      depth_(GL_DEPTH_COMPONENT32F, width, height),
+      with_albedo_(albedo) {
   framebuffer_.attach_color(0, positions_);
   framebuffer_.attach_color(1, normals_);
+  if (albedo) {
+    albedo_ = GlTexture2D(GL_RGBA32F, width, height);
+    framebuffer_.attach_color(2, albedo_);
+  }
   framebuffer_.attach_depth(depth_);
-  const GLenum targets[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-  glNamedFramebufferDrawBuffers(framebuffer_.id(), 2, targets);
+  const GLenum targets[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+  glNamedFramebufferDrawBuffers(framebuffer_.id(), albedo ? 3 : 2, targets);
   framebuffer_.check_complete("G-buffer");
+  ShaderDefines defines = binding_defines();
+  defines.set("GBUFFER_ALBEDO", albedo ? 1 : 0);
+  defines.set("INDIRECT_MATERIALS_BINDING", kMaterialsBinding);
+  defines.set("INDIRECT_ALBEDO_BINDING", kMaterialAlbedoBinding);
   program_ = build_program({{GL_VERTEX_SHADER, "passes/gbuffer.vert", {}},
                             {GL_FRAGMENT_SHADER, "passes/gbuffer.frag", {}}},
-                           binding_defines());
+                           defines);
 }
 
 std::vector<BufferMemory> GBufferPass::memory() const {
-  return {{"gbuffer_positions", positions_.bytes(), positions_.bytes()},
-          {"gbuffer_normals", normals_.bytes(), normals_.bytes()},
-          {"gbuffer_depth", depth_.bytes(), depth_.bytes()}};
+  std::vector<BufferMemory> out = {{"gbuffer_positions", positions_.bytes(), positions_.bytes()},
+                                   {"gbuffer_normals", normals_.bytes(), normals_.bytes()},
+                                   {"gbuffer_depth", depth_.bytes(), depth_.bytes()}};
+  if (with_albedo_) out.push_back({"gbuffer_albedo", albedo_.bytes(), albedo_.bytes()});
+  return out;
 }
 
 void GBufferPass::render(const GpuScene& scene, const Scene& description, GpuTimer* timer) {
@@ -35,23 +46,31 @@ void GBufferPass::render(const GpuScene& scene, const Scene& description, GpuTim
   if (scene.frame_origin() != description.frame_origin)
     throw GpuError("G-buffer pass: the camera's scene and the uploaded geometry are in "
                    "different frames (pass LdmSetup::scene, not the scene as loaded)");
-  ScopedSubpass timed(timer, "gbuffer");
+  const glm::mat4 vp = camera_view_projection(description.camera, width_, height_,
+                                              description.bounding_sphere());
+  render_view(scene, vp, description.camera.eye, timer, "gbuffer");
+}
+
+void GBufferPass::render_view(const GpuScene& scene, const glm::mat4& vp, glm::vec3 eye,
+                              GpuTimer* timer, const char* subpass) {
+  if (with_albedo_ && !scene.attributes().materials)
+    throw GpuError("G-buffer pass with albedo needs the scene's materials uploaded");
+  ScopedSubpass timed(timer, subpass);
+  if (with_albedo_) scene.bind_materials(kMaterialsBinding, kMaterialAlbedoBinding);
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
   glViewport(0, 0, width_, height_);
   const float zero[4] = {0, 0, 0, 0};
   const float far_depth = 1.0f;
   glClearNamedFramebufferfv(framebuffer_.id(), GL_COLOR, 0, zero);
   glClearNamedFramebufferfv(framebuffer_.id(), GL_COLOR, 1, zero);
+  if (with_albedo_) glClearNamedFramebufferfv(framebuffer_.id(), GL_COLOR, 2, zero);
   glClearNamedFramebufferfv(framebuffer_.id(), GL_DEPTH, 0, &far_depth);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glDisable(GL_CULL_FACE);
   glDisable(GL_BLEND);
   program_.use();
-  const glm::mat4 vp = camera_view_projection(description.camera, width_, height_,
-                                              description.bounding_sphere());
   program_.set_mat4("camera_view_projection", &vp[0][0]);
-  const glm::vec3 eye = description.camera.eye;
   program_.set("camera_eye", eye.x, eye.y, eye.z);
   scene.draw();
   glDisable(GL_DEPTH_TEST);
@@ -60,6 +79,10 @@ void GBufferPass::render(const GpuScene& scene, const Scene& description, GpuTim
 
 Image GBufferPass::read_positions() const {
   return image_from_gl_rows(positions_.read_floats(4), width_, height_, 4);
+}
+
+Image GBufferPass::read_albedo() const {
+  return image_from_gl_rows(albedo_.read_floats(4), width_, height_, 4);
 }
 
 Image GBufferPass::read_normals() const {

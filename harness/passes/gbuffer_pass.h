@@ -2,6 +2,8 @@
 // Rasterises the scene from the user's camera into positions (in the scene's frame,
 // Scene::frame_origin: centred for LdmSetup's scene) and camera-facing
 // normals, one sample per pixel centre (the points the AO pass and the reference shade).
+// With `albedo`, also each point's diffuse albedo (lighting passes; the scene must be uploaded
+// with materials), and from any pinhole view (the indirect pass's light G-buffer).
 #include "harness/gl/gl_objects.h"
 #include "harness/image/image.h"
 #include "harness/measure/gpu_timer.h"
@@ -12,8 +14,12 @@ namespace ldm {
 
 class GBufferPass {
  public:
-  GBufferPass(int width, int height);
+  GBufferPass(int width, int height, bool albedo = false);
   void render(const GpuScene& scene, const Scene& description, GpuTimer* timer);
+  // From `eye` through `view_projection` (normals face `eye`), timed as `subpass`.
+  void render_view(const GpuScene& scene, const glm::mat4& view_projection, glm::vec3 eye,
+                   GpuTimer* timer, const char* subpass);
+  const GlTexture2D& albedo() const { return albedo_; }  // empty without `albedo`
   const GlTexture2D& positions() const { return positions_; }
   const GlTexture2D& normals() const { return normals_; }
   int width() const { return width_; }
@@ -23,10 +29,12 @@ class GBufferPass {
   // Top-row-first copies (xyzw), for tests and the reference renderer's cross-checks.
   Image read_positions() const;
   Image read_normals() const;
+  Image read_albedo() const;  // rgba
 
  private:
   int width_, height_;
-  GlTexture2D positions_, normals_, depth_;
+  GlTexture2D positions_, normals_, albedo_, depth_;
+  bool with_albedo_ = false;
   GlFramebuffer framebuffer_;
   GlProgram program_;
 };

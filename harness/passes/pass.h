@@ -43,12 +43,25 @@ struct PassRequirements {
 struct TimedSubpass {
   std::string name;         // as given to ScopedSubpass; the record's <name>_ms_* columns
   std::string description;  // one line, for `ldmbench columns`
+  // false: only some frames or sizing policies run it (a rebuild, a census); ldmbench_gbench
+  // times only the sub-passes every frame runs.
+  bool every_frame = true;
 };
 
 // One output image; `name` becomes the file stem's suffix: <config_id>-<name>.exr.
 struct PassImage {
   std::string name;
   Image image;
+};
+
+// A reference the scored (first) image is measured against, with the prefix of its record
+// columns ("" for the pass's main reference: mse, ref_noise_mse, ...; "multi_" for e.g. the
+// indirect pass's multi-bounce one: multi_mse, multi_ref_noise_mse, ...) and the exposure
+// SSIM sees the images at (1 for AO; lighting: harness/reference/lighting_reference.h).
+struct ScoredReference {
+  std::string column_prefix;
+  ReferenceResult reference;
+  double ssim_exposure = 1.0;
 };
 
 // What prepare() is given. `ldm` and `structure` are null when the pass needs no structure.
@@ -79,18 +92,30 @@ class Pass {
   virtual std::vector<PassImage> images() const = 0;
   // Record fields computed from the last render() (e.g. AO's range of values); none by default.
   virtual std::vector<std::pair<std::string, RecordValue>> results() const { return {}; }
-  // What a pass that reads no structure allocates (its targets), for the record's memory
-  // columns; none by default (an LDM pass's memory is its structure's).
-  virtual std::vector<BufferMemory> memory() const { return {}; }
   // Settings that run but are known to give a biased image, one sentence each, for the
   // record's status_detail; none by default.
   virtual std::vector<std::string> warnings() const { return {}; }
+  // Work the pass's own configured capacity dropped in the last render(), counted (e.g. the
+  // indirect pass's photon-buffer overflow), one sentence; empty when nothing was dropped. A
+  // non-empty answer makes the record lossy, as a structure's counted loss does.
+  virtual std::string loss() const { return {}; }
+  // The pass's own buffers (allocated, used by the last render()), for the record's
+  // mem_<name>_* columns; none by default. A pass that reads no structure (hbao) lists its
+  // targets, which are its bytes_allocated; an LDM pass's (the indirect pass's photons) are
+  // recorded beside the structure's, not in bytes_allocated/_used (the structure's storage).
+  virtual std::vector<BufferMemory> memory() const { return {}; }
 
   // The converged image the first output estimates, width x height, for this scene and the
   // pass's settings: from the cache under settings.cache_dir when an entry matches, else
   // rendered (and stored). Needs no GL context.
   virtual ReferenceResult reference(const Scene& scene, int width, int height,
                                     const ReferenceSettings& settings) const = 0;
+  // Every reference the first image is scored against, the main one first with prefix "".
+  // By default reference() alone at exposure 1.
+  virtual std::vector<ScoredReference> references(const Scene& scene, int width, int height,
+                                                  const ReferenceSettings& settings) const {
+    return {{"", reference(scene, width, height, settings), 1.0}};
+  }
 };
 
 std::vector<std::string> pass_names();

@@ -3,6 +3,7 @@
 
 #include "harness/passes/ambient_occlusion.h"
 #include "harness/passes/hbao.h"
+#include "harness/passes/indirect_lighting.h"
 #include "harness/passes/pass.h"
 #include "harness/passes/rtao.h"
 #include "harness/util/error.h"
@@ -20,6 +21,7 @@ const std::vector<Entry>& registry() {
       {"ao", [](StructureParams& p) { return std::make_unique<AmbientOcclusion>(p); }},
       {"hbao", [](StructureParams& p) { return std::make_unique<Hbao>(p); }},
       {"rtao", [](StructureParams& p) { return std::make_unique<Rtao>(p); }},
+      {"indirect", [](StructureParams& p) { return std::make_unique<IndirectLighting>(p); }},
   };
   return entries;
 }

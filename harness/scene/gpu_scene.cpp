@@ -53,6 +53,11 @@ void GpuScene::draw_instanced(uint32_t instances) const {
                           GLsizei(instances));
 }
 
+void GpuScene::bind_materials(uint32_t triangle_materials_binding, uint32_t albedo_binding) const {
+  triangle_materials_.bind_storage(triangle_materials_binding);
+  albedo_.bind_storage(albedo_binding);
+}
+
 std::vector<const GlBuffer*> GpuScene::buffers() const {
   std::vector<const GlBuffer*> out;
   for (const GlBuffer* b : {&positions_, &normals_, &indices_, &triangle_materials_, &albedo_})

@@ -30,6 +30,9 @@ class GpuScene {
   // Draws every triangle `instances` times in one call (gl_InstanceID 0 .. instances - 1).
   void draw_instanced(uint32_t instances) const;
   const AttributeSet& attributes() const { return attributes_; }
+  // Binds the per-triangle material indices and the albedo table (vec4 per material) as
+  // storage buffers; needs materials uploaded.
+  void bind_materials(uint32_t triangle_materials_binding, uint32_t albedo_binding) const;
   // The frame the positions were uploaded in (Scene::frame_origin): a pass that draws this
   // geometry with a camera must take the camera from a scene in the same frame.
   glm::vec3 frame_origin() const { return frame_origin_; }

@@ -3,6 +3,10 @@ in vec3 v_normal;
 uniform vec3 camera_eye;
 layout(location = 0) out vec4 out_position;  // xyz world position, w = 1 (0: background)
 layout(location = 1) out vec4 out_normal;    // xyz unit normal facing the camera
+#if GBUFFER_ALBEDO
+#include "passes/indirect/surface_albedo.glsl"
+layout(location = 2) out vec4 out_albedo;    // rgb diffuse albedo (lighting passes)
+#endif
 
 void main() {
   vec3 n = normalize(v_normal);
@@ -10,4 +14,7 @@ void main() {
   if (dot(n, camera_eye - v_position) < 0.0) n = -n;
   out_position = vec4(v_position, 1.0);
   out_normal = vec4(n, 0.0);
+#if GBUFFER_ALBEDO
+  out_albedo = vec4(surface_albedo(gl_PrimitiveID), 1.0);
+#endif
 }

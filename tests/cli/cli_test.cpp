@@ -278,7 +278,7 @@ TEST(Gbench, TimesBuildAndEveryPassSubpassOfEveryStructure) {
   const std::string json = (fs::path(test::make_temp_dir("ldm-gbench")) / "out.json").string();
   std::string output;
   const int status = test::run_command(
-      std::string(LDM_GBENCH_PATH) + " --ldm_scenes=cornell --ldm_views=4 --ldm_r=32 "
+      std::string(LDM_GBENCH_PATH) + " --ldm_scenes=cornell --ldm_passes=ao --ldm_views=4 --ldm_r=32 "
       "--ldm_width=32 --ldm_height=32 --benchmark_min_time=0.01 --benchmark_out_format=json "
       "--benchmark_out=" + json, &output);
   ASSERT_EQ(status, 0) << output;
@@ -305,7 +305,7 @@ TEST(Gbench, LossyBuildsAreTimedLikeRunMeasuresThem) {
   const std::string json = (fs::path(test::make_temp_dir("ldm-gbench")) / "out.json").string();
   std::string output;
   const int status = test::run_command(
-      std::string(LDM_GBENCH_PATH) + " --ldm_scenes=cornell --ldm_structures=ppfla "
+      std::string(LDM_GBENCH_PATH) + " --ldm_scenes=cornell --ldm_structures=ppfla --ldm_passes=ao "
       "--ldm_views=4 --ldm_r=32 --ldm_width=16 --ldm_height=16 --ldm_param=ppfla:k=1 "
       "--benchmark_filter=Build --benchmark_min_time=0.01 --benchmark_out_format=json "
       "--benchmark_out=" + json, &output);

@@ -1,0 +1,60 @@
+#pragma once
+// Indirect lighting with photon differentials traced through the LDM (thesis §5) as a
+// measured pass: the camera G-buffer (with albedo), then PhotonLighting (light G-buffer,
+// photon tracing through the structure's query API, splatting, direct light, sum). Its first
+// image, `indirect`, is scored against the single-bounce Embree reference (what the method
+// approximates) and, under the prefix multi_, against the multi-bounce one
+// (harness/reference/lighting_reference.h).
+//
+// Parameters (--param indirect:KEY=VALUE, comma lists are run axes):
+//   s                 footprint scale (> 0; 1: one light texel's beam), default 4
+//   a                 topological bias (>= 0), default a = s
+//   t_foot            footprint threshold, scene units (max norm of s * D x), default inf (off)
+//   depth_threshold   camera depth test tolerance, scene units, default 3 LDM pixels
+//   r_light           R_light, the light G-buffer's side, default 64
+//   photon_capacity   fixes the photon buffer (photons) under every sizing policy
+//   photon_budget_mib the photon buffer's budget under --sizing budget (default: the run's)
+// and from the run's axes: trace, normal_offset_pixels (as the AO pass's).
+#include <memory>
+
+#include "harness/passes/gbuffer_pass.h"
+#include "harness/passes/pass.h"
+#include "harness/passes/photon_lighting.h"
+
+namespace ldm {
+
+class IndirectLighting : public Pass {
+ public:
+  explicit IndirectLighting(StructureParams& params);
+
+  std::string name() const override { return "indirect"; }
+  PassRequirements requirements() const override;
+  std::vector<TimedSubpass> subpasses() const override;
+  std::vector<std::pair<std::string, RecordValue>> describe(const Scene& scene) const override;
+  void prepare(const PassInputs& in) override;
+  void render(GpuTimer* timer) override;
+  std::vector<PassImage> images() const override;
+  std::vector<std::pair<std::string, RecordValue>> results() const override;
+  std::string loss() const override;
+  std::vector<BufferMemory> memory() const override;
+  ReferenceResult reference(const Scene& scene, int width, int height,
+                            const ReferenceSettings& settings) const override;
+  std::vector<ScoredReference> references(const Scene& scene, int width, int height,
+                                          const ReferenceSettings& settings) const override;
+
+  // The scene's settings (its AO trace settings) with this pass's parameters applied.
+  IndirectSettings settings_for(const Scene& scene) const;
+  const PhotonLighting& lighting() const { return *lighting_; }
+  const GBufferPass& camera_gbuffer() const { return *gbuffer_; }
+
+ private:
+  IndirectSettings settings_;
+  std::optional<float> normal_offset_pixels_;  // unset: the scene's
+  const Scene* scene_ = nullptr;
+  const GpuScene* gpu_scene_ = nullptr;
+  const LdmStructure* structure_ = nullptr;
+  std::unique_ptr<GBufferPass> gbuffer_;
+  std::unique_ptr<PhotonLighting> lighting_;
+};
+
+}  // namespace ldm

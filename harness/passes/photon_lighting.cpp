@@ -1,0 +1,382 @@
+#include "harness/passes/photon_lighting.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+
+#include "harness/gl/bindings.h"
+#include "harness/scene/camera.h"
+#include "harness/util/error.h"
+
+namespace ldm {
+namespace {
+
+// The pass's storage bindings (after kPassBinding0; the materials follow at +4, +5).
+constexpr uint32_t kPhotonsBinding = kPassBinding0;
+constexpr uint32_t kCountersBinding = kPassBinding0 + 1;
+constexpr uint32_t kTallyBinding = kPassBinding0 + 2;
+constexpr uint32_t kDrawBinding = kPassBinding0 + 3;
+constexpr uint32_t kCounterCount = 8;  // PHOTON_COUNTERS
+constexpr uint64_t kPhotonBytes = sizeof(StoredPhoton);
+constexpr float kMaxOuterAngleDeg = 89.0f;
+
+std::string glsl_float(double value) {
+  char buffer[48];
+  std::snprintf(buffer, sizeof buffer, "%.9g", value);
+  std::string text = buffer;
+  if (text.find_first_of(".e") == std::string::npos) text += ".0";
+  return text;
+}
+
+std::string upper(std::string text) {
+  for (char& c : text) c = char(std::toupper(static_cast<unsigned char>(c)));
+  return text;
+}
+
+ShaderDefines indirect_defines() {
+  ShaderDefines d = binding_defines();
+  d.set("INDIRECT_PHOTONS_BINDING", kPhotonsBinding);
+  d.set("INDIRECT_COUNTERS_BINDING", kCountersBinding);
+  d.set("INDIRECT_TALLY_BINDING", kTallyBinding);
+  d.set("INDIRECT_DRAW_BINDING", kDrawBinding);
+  d.set("INDIRECT_MATERIALS_BINDING", kMaterialsBinding);
+  d.set("INDIRECT_ALBEDO_BINDING", kMaterialAlbedoBinding);
+  return d;
+}
+
+void set_spot(const GlProgram& program, const SpotLight& light) {
+  const glm::vec3 d = glm::normalize(light.direction);
+  program.use();
+  program.set("spot_position", light.position.x, light.position.y, light.position.z);
+  program.set("spot_direction", d.x, d.y, d.z);
+  program.set("spot_intensity", light.intensity.x, light.intensity.y, light.intensity.z);
+  program.set("spot_cos_inner", float(std::cos(glm::radians(double(light.inner_angle_deg)))));
+  program.set("spot_cos_outer", float(std::cos(glm::radians(double(light.outer_angle_deg)))));
+}
+
+void draw_fullscreen(const GlFramebuffer& fb, int width, int height, const GlVertexArray& vao) {
+  glBindFramebuffer(GL_FRAMEBUFFER, fb.id());
+  glViewport(0, 0, width, height);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  glBindVertexArray(vao.id());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+}  // namespace
+
+Camera light_camera(const SpotLight& light) {
+  if (!(light.outer_angle_deg > 0.0f && light.outer_angle_deg < kMaxOuterAngleDeg))
+    throw UserError("indirect pass: the spot light's outer angle must lie in (0, 89) degrees "
+                    "for its image plane (got " + std::to_string(light.outer_angle_deg) + ")");
+  Camera c;
+  c.eye = light.position;
+  const glm::vec3 d = glm::normalize(light.direction);
+  c.target = light.position + d;
+  // Any up that is not along the axis: the roll of the light's image is irrelevant.
+  c.up = std::abs(d.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+  c.fov_y_deg = 2.0f * light.outer_angle_deg;
+  return c;
+}
+
+PhotonLighting::PhotonLighting(const LdmStructure& structure, const BuildInputs& in,
+                               const Scene& scene, int width, int height,
+                               const IndirectSettings& settings)
+    : structure_(structure),
+      views_(in.views),
+      gpu_scene_(in.scene),
+      scene_(scene),
+      policy_(in.sizing.policy),
+      width_(width),
+      height_(height),
+      settings_(settings),
+      depth_threshold_(settings.depth_threshold_for(in.views.views())),
+      light_camera_(light_camera(scene.light)),
+      light_gbuffer_(int(settings.light_resolution), int(settings.light_resolution), true),
+      indirect_(GL_RGBA32F, width, height),
+      direct_(GL_RGBA32F, width, height),
+      sum_(GL_RGBA32F, width, height) {
+  if (!in.scene.attributes().materials || !in.scene.attributes().normals)
+    throw GpuError("indirect pass: the scene must be uploaded with normals and materials");
+  const int r = int(settings.light_resolution);
+  light_vp_ = camera_view_projection(light_camera_, r, r, scene.bounding_sphere());
+  camera_vp_ = camera_view_projection(scene.camera, width, height, scene.bounding_sphere());
+  indirect_fb_.attach_color(0, indirect_);
+  indirect_fb_.check_complete("indirect target");
+  direct_fb_.attach_color(0, direct_);
+  direct_fb_.check_complete("direct target");
+  sum_fb_.attach_color(0, sum_);
+  sum_fb_.check_complete("sum target");
+  counters_ = GlBuffer("photon_counters", kCounterCount * sizeof(uint32_t));
+  tally_ = GlBuffer("photon_tally", uint64_t(r) * r * 2 * sizeof(glm::vec4));
+  draw_command_ = GlBuffer("photon_draw_command", 4 * sizeof(uint32_t));
+
+  // The photon buffer's first size, by policy (an explicit capacity wins).
+  if (settings.photon_capacity) {
+    capacity_fixed_ = true;
+    capacity_source_ = "parameter";
+    allocate_photons(*settings.photon_capacity);
+  } else if (policy_ == SizingPolicy::Budget) {
+    const double mib = settings.photon_budget_mib.value_or(double(in.sizing.budget_bytes) /
+                                                           double(1u << 20));
+    budget_bytes_ = uint64_t(mib * double(1u << 20));
+    capacity_fixed_ = true;
+    capacity_source_ = "budget";
+    allocate_photons(budget_bytes_ / kPhotonBytes);
+  } else if (policy_ == SizingPolicy::PreviousFrame) {
+    capacity_source_ = "previous_frame";
+    allocate_photons(uint64_t(r) * r);  // the first guess: one photon per light texel
+  } else {
+    capacity_source_ = sizing_policy_name(policy_);
+    allocate_photons(0);  // oracle and census size it from a counting trace
+  }
+  compile();
+}
+
+void PhotonLighting::allocate_photons(uint64_t capacity) {
+  const uint64_t bytes = checked_storage_block("indirect", "photons",
+                                               std::max<uint64_t>(capacity, 1) * kPhotonBytes);
+  photons_ = GlBuffer("photons", bytes);
+  capacity_ = capacity;
+}
+
+void PhotonLighting::compile() {
+  generation_ = structure_.storage_generation();
+  ShaderDefines defines = indirect_defines();
+  const ShaderDefines query = structure_.query_defines();
+  defines.values.insert(defines.values.end(), query.values.begin(), query.values.end());
+  defines.set("LDM_VIEW_COUNT", std::to_string(views_.views().size()) + "u");
+  defines.set("LDM_TRACE", "LDM_TRACE_" + upper(ao_trace_name(settings_.trace)));
+  defines.set("LDM_PLANE_TOLERANCE_CONSTANT", glsl_float(kPlaneToleranceConstant));
+  defines.set("LDM_PLANE_TOLERANCE_SLOPE", glsl_float(kPlaneToleranceSlope));
+  defines.set("LDM_PLANE_MAX_SLOPE", glsl_float(kPlaneMaxSlope));
+  trace_program_ = build_program(
+      {{GL_COMPUTE_SHADER, "passes/indirect/photon_trace.comp", structure_.query_sources()}},
+      defines);
+  set_spot(trace_program_, scene_.light);
+  const CameraFrame light = camera_frame(light_camera_, 1, 1);
+  trace_program_.set("light_resolution", int(settings_.light_resolution));
+  trace_program_.set("light_forward", light.forward.x, light.forward.y, light.forward.z);
+  trace_program_.set("light_right", light.right.x, light.right.y, light.right.z);
+  trace_program_.set("light_up", light.up.x, light.up.y, light.up.z);
+  trace_program_.set("light_tan_half", light.tan_half_fov_y);
+  trace_program_.set_mat4("camera_view_projection", &camera_vp_[0][0]);
+  const glm::vec3 eye = scene_.camera.eye;
+  trace_program_.set("camera_eye", eye.x, eye.y, eye.z);
+  trace_program_.set("depth_threshold", depth_threshold_);
+  trace_program_.set("footprint_threshold", settings_.footprint_threshold);
+  trace_program_.set("splat_scale", settings_.splat_scale);
+  trace_program_.set("normal_offset_pixels", settings_.normal_offset_pixels);
+
+  if (draw_count_program_) return;  // the rest does not read the structure
+  const ShaderDefines plain = indirect_defines();
+  draw_count_program_ = build_program(
+      {{GL_COMPUTE_SHADER, "passes/indirect/splat_draw_count.comp", {}}}, plain);
+  splat_program_ = build_program({{GL_VERTEX_SHADER, "passes/indirect/photon_splat.vert", {}},
+                                  {GL_GEOMETRY_SHADER, "passes/indirect/photon_splat.geom", {}},
+                                  {GL_FRAGMENT_SHADER, "passes/indirect/photon_splat.frag", {}}},
+                                 plain);
+  splat_program_.use();
+  splat_program_.set("splat_scale", settings_.splat_scale);
+  splat_program_.set("topological_bias", settings_.a());
+  splat_program_.set_mat4("camera_view_projection", &camera_vp_[0][0]);
+  direct_program_ = build_program({{GL_VERTEX_SHADER, "passes/fullscreen.vert", {}},
+                                   {GL_FRAGMENT_SHADER, "passes/indirect/direct_light.frag", {}}},
+                                  plain);
+  set_spot(direct_program_, scene_.light);
+  direct_program_.set_mat4("light_view_projection", &light_vp_[0][0]);
+  direct_program_.set("light_texel_angle",
+                      2.0f * light.tan_half_fov_y / float(settings_.light_resolution));
+  composite_program_ = build_program({{GL_VERTEX_SHADER, "passes/fullscreen.vert", {}},
+                                      {GL_FRAGMENT_SHADER, "passes/indirect/composite.frag", {}}},
+                                     plain);
+}
+
+void PhotonLighting::trace(const GBufferPass& camera, uint64_t capacity) {
+  counters_.clear_to_zero();
+  trace_program_.use();
+  trace_program_.set("photon_capacity", unsigned(capacity));
+  glBindTextureUnit(0, light_gbuffer_.positions().id());
+  glBindTextureUnit(1, light_gbuffer_.normals().id());
+  glBindTextureUnit(2, light_gbuffer_.albedo().id());
+  glBindTextureUnit(3, camera.positions().id());
+  glBindTextureUnit(4, camera.normals().id());
+  photons_.bind_storage(kPhotonsBinding);
+  counters_.bind_storage(kCountersBinding);
+  tally_.bind_storage(kTallyBinding);
+  structure_.bind_for_query();
+  views_.bind();
+  const GLuint groups = (settings_.light_resolution + 7) / 8;
+  glDispatchCompute(groups, groups, 1);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT |
+                  GL_COMMAND_BARRIER_BIT);
+  check_gl("photon tracing");
+}
+
+void PhotonLighting::read_counts() {
+  uint32_t c[kCounterCount] = {};
+  counters_.download(c, sizeof c);
+  PhotonCounts& k = counts_;
+  k.appended = c[0];
+  k.primary = c[1];
+  k.primary_degenerate = c[2];
+  k.emitted = c[3];
+  k.escaped = c[4];
+  k.culled_depth = c[5];
+  k.culled_footprint = c[6];
+  k.degenerate = c[7];
+  k.capacity = capacity_;
+  k.stored = std::min<uint64_t>(k.appended, capacity_);
+  k.overflow = k.appended - k.stored;
+}
+
+void PhotonLighting::splat(const GBufferPass& camera) {
+  const float zero[4] = {0, 0, 0, 0};
+  glClearNamedFramebufferfv(indirect_fb_.id(), GL_COLOR, 0, zero);
+  draw_count_program_.use();
+  draw_count_program_.set("photon_capacity", unsigned(capacity_));
+  counters_.bind_storage(kCountersBinding);
+  draw_command_.bind_storage(kDrawBinding);
+  glDispatchCompute(1, 1, 1);
+  glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
+  glBindFramebuffer(GL_FRAMEBUFFER, indirect_fb_.id());
+  glViewport(0, 0, width_, height_);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  glEnable(GL_BLEND);
+  glBlendEquation(GL_FUNC_ADD);
+  glBlendFunc(GL_ONE, GL_ONE);
+  photons_.bind_storage(kPhotonsBinding);
+  glBindTextureUnit(0, camera.positions().id());
+  glBindTextureUnit(1, camera.albedo().id());
+  splat_program_.use();
+  glBindVertexArray(empty_vao_.id());
+  glBindBuffer(GL_DRAW_INDIRECT_BUFFER, draw_command_.id());
+  glDrawArraysIndirect(GL_POINTS, nullptr);
+  glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+  glDisable(GL_BLEND);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  check_gl("photon splatting");
+}
+
+void PhotonLighting::direct(const GBufferPass& camera) {
+  glBindTextureUnit(0, camera.positions().id());
+  glBindTextureUnit(1, camera.normals().id());
+  glBindTextureUnit(2, camera.albedo().id());
+  glBindTextureUnit(3, light_gbuffer_.positions().id());
+  direct_program_.use();
+  draw_fullscreen(direct_fb_, width_, height_, empty_vao_);
+}
+
+void PhotonLighting::composite() {
+  glBindTextureUnit(0, direct_.id());
+  glBindTextureUnit(1, indirect_.id());
+  composite_program_.use();
+  draw_fullscreen(sum_fb_, width_, height_, empty_vao_);
+}
+
+void PhotonLighting::render(const GBufferPass& camera, GpuTimer* timer) {
+  if (structure_.storage_generation() != generation_) compile();  // untimed, as AoPass
+  light_gbuffer_.render_view(gpu_scene_, light_vp_, scene_.light.position, timer,
+                             "light_gbuffer");
+  if (policy_ == SizingPolicy::Oracle && !capacity_fixed_ && !sized_) {
+    // The oracle: an untimed counting trace before the first frame's (a free pre-pass).
+    trace(camera, 0);
+    read_counts();
+    allocate_photons(counts_.appended);
+    sized_ = true;
+  }
+  if (policy_ == SizingPolicy::Census) {
+    {
+      ScopedSubpass timed(timer, "photon_census");
+      trace(camera, 0);
+      read_counts();
+    }
+    if (!capacity_fixed_ && counts_.appended > capacity_) {
+      ScopedSubpass timed(timer, "photon_reallocate");
+      allocate_photons(counts_.appended);
+      ++reallocations_;
+    }
+  }
+  {
+    ScopedSubpass timed(timer, "photon_tracing");
+    trace(camera, capacity_);
+  }
+  if (policy_ == SizingPolicy::PreviousFrame) {
+    {
+      ScopedSubpass timed(timer, "photon_readback");
+      read_counts();
+    }
+    if (!capacity_fixed_ && counts_.overflow > 0) {
+      // Grown to what the counter asked for, and traced again (as a structure's rebuild).
+      ScopedSubpass timed(timer, "photon_rebuild");
+      allocate_photons(counts_.appended);
+      trace(camera, capacity_);
+      ++rebuilds_;
+    }
+  }
+  {
+    ScopedSubpass timed(timer, "splatting");
+    splat(camera);
+  }
+  {
+    ScopedSubpass timed(timer, "direct");
+    direct(camera);
+  }
+  {
+    ScopedSubpass timed(timer, "composite");
+    composite();
+  }
+  read_counts();  // untimed: for the record
+}
+
+void PhotonLighting::splat_photons(const GBufferPass& camera,
+                                   const std::vector<StoredPhoton>& photons) {
+  if (photons.size() > capacity_) allocate_photons(photons.size());
+  if (!photons.empty()) photons_.upload(photons.data(), photons.size() * kPhotonBytes);
+  uint32_t counters[kCounterCount] = {uint32_t(photons.size())};
+  counters_.upload(counters, sizeof counters);
+  splat(camera);
+  read_counts();
+}
+
+Image PhotonLighting::read_indirect() const {
+  return image_from_gl_rows(indirect_.read_floats(3), width_, height_, 3);
+}
+Image PhotonLighting::read_direct() const {
+  return image_from_gl_rows(direct_.read_floats(3), width_, height_, 3);
+}
+Image PhotonLighting::read_sum() const {
+  return image_from_gl_rows(sum_.read_floats(3), width_, height_, 3);
+}
+
+std::vector<StoredPhoton> PhotonLighting::read_photons() const {
+  std::vector<StoredPhoton> out(counts_.stored);
+  if (!out.empty()) photons_.download(out.data(), out.size() * kPhotonBytes);
+  return out;
+}
+
+std::vector<glm::vec4> PhotonLighting::read_tally() const { return tally_.download_all<glm::vec4>(); }
+
+std::vector<BufferMemory> PhotonLighting::memory() const {
+  return {{"photons", photons_.bytes(), counts_.stored * kPhotonBytes},
+          {"photon_counters", counters_.bytes(), counters_.bytes()},
+          {"photon_tally", tally_.bytes(), tally_.bytes()},
+          {"photon_draw_command", draw_command_.bytes(), draw_command_.bytes()}};
+}
+
+std::vector<std::pair<std::string, std::string>> PhotonLighting::sizing() const {
+  std::vector<std::pair<std::string, std::string>> out = {
+      {"photon_capacity", std::to_string(capacity_)},
+      {"photon_capacity_source", capacity_source_}};
+  if (budget_bytes_) out.emplace_back("photon_budget_bytes", std::to_string(budget_bytes_));
+  if (policy_ == SizingPolicy::PreviousFrame && !capacity_fixed_)
+    out.emplace_back("photon_initial", "guess: one photon per light texel");
+  if (policy_ == SizingPolicy::Oracle && !capacity_fixed_)
+    out.emplace_back("photon_note", "untimed counting trace before the first frame");
+  return out;
+}
+
+}  // namespace ldm
