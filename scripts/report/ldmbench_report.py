@@ -47,6 +47,8 @@ def parse_arguments(argv):
     parser.add_argument("--from-csv", metavar="TIDY_CSV", help="redraw from a report's tidy.csv")
     parser.add_argument("--out", required=True, metavar="DIR", help="the report folder")
     parser.add_argument("--svg", action="store_true", help="also write every figure as SVG")
+    parser.add_argument("--dpi", type=int, default=100,
+                        help="resolution of the PNG figures (e.g. 50 for a report to commit)")
     parser.add_argument("--title", default="ldmbench report", help="title of the pages")
     parser.add_argument("--axis", action="append", default=[], metavar="COLUMN",
                         help="another record column that tells configurations apart (a new "
@@ -153,7 +155,7 @@ def main(argv):
     runs.write_tidy_csv(tidy_path, columns, rows)
 
     table = Table(columns, rows, extra_axes=args.axis)
-    canvas = figures.Canvas(args.out, svg=args.svg)
+    canvas = figures.Canvas(args.out, svg=args.svg, dpi=args.dpi)
     note = collision_note(table)
     if note:
         canvas.note(note)

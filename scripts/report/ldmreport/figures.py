@@ -25,8 +25,8 @@ HOLLOW_NOTE = "hollow markers: lossy / invalid / failed (not ranked, off the fro
 class Canvas:
     """Where figures go: <out>/figures/<name>.png (and .svg), listed for the pages."""
 
-    def __init__(self, out_dir, svg=False):
-        self.out_dir, self.svg = out_dir, svg
+    def __init__(self, out_dir, svg=False, dpi=100):
+        self.out_dir, self.svg, self.dpi = out_dir, svg, dpi
         self.figures, self.notes = [], []
         os.makedirs(os.path.join(out_dir, "figures"), exist_ok=True)
 
@@ -35,7 +35,7 @@ class Canvas:
         files = []
         for ext in ("png", "svg") if self.svg else ("png",):
             rel = f"figures/{name}.{ext}"
-            fig.savefig(os.path.join(self.out_dir, rel), dpi=100, bbox_inches="tight")
+            fig.savefig(os.path.join(self.out_dir, rel), dpi=self.dpi, bbox_inches="tight")
             files.append(rel)
         plt.close(fig)
         self.figures.append({"section": section, "name": name, "title": title,

@@ -27,11 +27,28 @@ def fmt(value, digits=4):
 
 
 def ranking_groups(table):
-    """Rows whose times compare: per scene, and per device when the runs span several."""
-    keys = table.text("scene")
+    """Rows that compare: per scene (and per device when the runs span several), and per
+    reference image. Records scored against the same reference (the same ref_cache_key)
+    estimate the same image, so their errors and times compare; an AO record and an
+    indirect-light record, or AO at two d_max, do not. Without a reference: per pass."""
+    scene = table.text("scene")
     if table.text("device").nunique() > 1:
-        keys = keys + " on " + table.text("device")
-    return [(k, keys == k) for k in dict.fromkeys(keys)]
+        scene = scene + " on " + table.text("device")
+    reference = table.text("ref_cache_key").replace("nan", "")
+    passes = table.text("pass")
+    identity = reference.where(reference != "", "pass " + passes)
+    keys = scene + "|" + identity
+    groups = []
+    for key in dict.fromkeys(keys):
+        in_group = keys == key
+        label = scene[in_group].iloc[0] + ": " + "/".join(sorted(set(passes[in_group])))
+        d_max = table.text("d_max")[in_group].replace("nan", "")
+        if d_max.nunique() == 1 and d_max.iloc[0] and passes[in_group].isin(["ao", "hbao", "rtao"]).all():
+            label += f" at d_max {d_max.iloc[0]}"
+        if identity[in_group].iloc[0].startswith("pass "):
+            label += " (no reference)"
+        groups.append((label, in_group))
+    return groups
 
 
 def best_rows(table):
