@@ -234,6 +234,40 @@ TEST(Report, RegeneratesEveryFigureFromTheTidyCsvAlone) {
   EXPECT_TRUE(fs::is_regular_file(again / "index.html"));
 }
 
+// Errors compare only between records scored against the same reference: AO and indirect
+// light (or AO at two d_max) estimate different images, so each gets its own ranking.
+// Records from the committed default report: AO (an LDM structure and HBAO) and indirect
+// light on the Cornell box.
+TEST(Report, RanksErrorsOnlyAmongRecordsOfTheSameReference) {
+  const std::string tidy =
+      read_text(fs::path(LDM_TEST_SOURCE_DIR) / ".." / "docs" / "reports" / "default" / "tidy.csv");
+  const std::vector<std::string> lines = lines_of(tidy);
+  ASSERT_FALSE(lines.empty());
+  const fs::path dir = fs::path(test::make_temp_dir("ldm-report-groups"));
+  {
+    std::ofstream subset(dir / "tidy.csv");
+    subset << lines[0] << "\n";
+    int kept = 0;
+    for (const char* id : {",cornell-psppsll-ao-n32-r128-plane-prevframe,", ",cornell-none-hbao,",
+                           ",cornell-psppsll-indirect-n16-r64-plane-r_light=64-prevframe,"})
+      for (const auto& line : lines)
+        if (line.find(id) != std::string::npos) subset << line << "\n", ++kept;
+    ASSERT_EQ(kept, 3) << "the committed report no longer holds the three records";
+  }
+  const Outcome o = shell(std::string(LDM_PYTHON) + " " + script() + " --from-csv " +
+                          (dir / "tidy.csv").string() + " --out " + (dir / "report").string() +
+                          " --dpi 20");
+  ASSERT_EQ(o.status, 0) << o.output;
+  std::vector<std::string> lowest_mse;
+  for (const auto& line : lines_of(read_text(dir / "report" / "summary.md")))
+    if (line.rfind("| lowest mse |", 0) == 0) lowest_mse.push_back(line);
+  ASSERT_EQ(lowest_mse.size(), 2u) << "AO and indirect light ranked together";
+  for (const auto& row : lowest_mse) {
+    const bool indirect_group = row.find(": indirect |") != std::string::npos;
+    EXPECT_EQ(row.find("-indirect-") != std::string::npos, indirect_group) << row;
+  }
+}
+
 // Bad input: exit 2, a message naming the culprit, `out` not created.
 void expect_rejected(const std::string& args, const std::string& culprit, const fs::path& out,
                      const std::string& environment = "") {
