@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <functional>
 
+#include <nlohmann/json.hpp>
+
 namespace ldm {
 namespace {
 
@@ -81,6 +83,58 @@ std::string run_command_line(const RunSettings& s, const std::string& program,
   if (!s.write_images) line += " --no-images";
   if (!out_dir.empty()) add("--out", out_dir);
   return line;
+}
+
+std::string sweep_file_json(const RunSettings& s, const std::string& description) {
+  using nlohmann::json;
+  json axes = json::object();
+  axes["scenes"] = s.scenes;
+  axes["structures"] = s.structures;
+  axes["passes"] = s.passes;
+  axes["views"] = s.views;
+  axes["r_ldm"] = s.resolutions;
+  if (!s.d_max.empty()) {
+    json d_max = json::array();
+    for (float d : s.d_max) d_max.push_back(double(d));  // exact: every float is a double
+    axes["d_max"] = d_max;
+  }
+  auto names = [](const auto& values, auto name) {
+    json out = json::array();
+    for (const auto& v : values) out.push_back(std::string(name(v)));
+    return out;
+  };
+  axes["visibility"] = names(s.visibility, visibility_name);
+  axes["trace"] = names(s.traces, ao_trace_name);
+  axes["ao_estimator"] = names(s.estimators, ao_estimator_name);
+  axes["sizing"] = names(s.sizing, [](SizingPolicy p) { return sizing_policy_name(p); });
+  for (SizingPolicy p : s.sizing)
+    if (p == SizingPolicy::Budget) axes["sizing_budget_mib"] = s.sizing_budget_mib;
+  axes["sizing_initial_per_pixel"] = s.sizing_initial_per_pixel;
+  if (s.normal_offset_pixels) axes["normal_offset"] = double(*s.normal_offset_pixels);
+  axes["image_size"] = std::to_string(s.width) + "x" + std::to_string(s.height);
+  axes["frames"] = s.frames;
+  axes["warmup"] = s.warmup;
+  // Parameters of a structure or pass not measured are left out, as on the command line.
+  auto measured = [&s](const std::string& owner) {
+    return std::find(s.structures.begin(), s.structures.end(), owner) != s.structures.end() ||
+           std::find(s.passes.begin(), s.passes.end(), owner) != s.passes.end();
+  };
+  for (const auto& [owner, params] : s.structure_params)
+    if (measured(owner))
+      for (const auto& [key, value] : params) axes[owner + ":" + key] = value;
+
+  json reference = {{"enabled", s.reference.enabled}};
+  if (s.reference.enabled) {
+    reference["spp"] = s.reference.spp.spp_per_half;
+    reference["noise"] = s.reference.spp.target_noise_mse;
+    reference["max_spp"] = s.reference.spp.max_spp_per_half;
+    reference["seed"] = s.reference.seed;
+  }
+  json file = json::object();
+  if (!description.empty()) file["description"] = description;
+  file["axes"] = axes;
+  file["settings"] = {{"reference", reference}, {"images", s.write_images}, {"timer", s.timer}};
+  return file.dump(2) + "\n";
 }
 
 }  // namespace ldm

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <future>
 #include <iostream>
@@ -314,7 +315,13 @@ void Viewer::save_run(const std::string& path) {
   std::ofstream out(path);
   out << line << "\n";
   if (!out) throw UserError("cannot write '" + path + "'");
-  message_ = "saved the run command to " + path;
+  // The same configuration as a sweep file beside it, for `ldmbench sweep`.
+  const std::string sweep_path =
+      (std::filesystem::path(path).replace_extension("").string()) + ".sweep.json";
+  std::ofstream sweep(sweep_path);
+  sweep << sweep_file_json(settings_, "saved by ldmbench view");
+  if (!sweep) throw UserError("cannot write '" + sweep_path + "'");
+  message_ = "saved the run command to " + path + " and the sweep file " + sweep_path;
   std::cout << "ldmbench view: " << message_ << ": " << line << std::endl;
 }
 

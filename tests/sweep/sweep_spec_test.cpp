@@ -7,6 +7,7 @@
 #include <fstream>
 #include <set>
 
+#include "harness/app/run_command_line.h"
 #include "harness/app/sweep_plan.h"
 #include "harness/app/sweep_spec.h"
 #include "harness/util/error.h"
@@ -175,6 +176,56 @@ TEST(SweepPlan, VaryingImageSizeOrFramesNamesThemInTheId) {
   const SweepPlan fixed = plan_sweep(write_sweep(dir, R"({"axes": {"image_size": "32x24"}})"), RunSettings());
   EXPECT_EQ(fixed.configurations[0].config.id(), "cornell-psppsll-ao-n32-r128-plane-prevframe");
   EXPECT_EQ(fixed.configurations[0].settings.height, 24);
+}
+
+// What `ldmbench view` saves beside its command line: a sweep file that plans exactly the
+// configurations and settings of those run settings (every setting away from its default).
+TEST(SweepPlan, SweepFileOfRunSettingsPlansTheSameConfigurations) {
+  RunSettings s;
+  s.scenes = {"cornell"};
+  s.structures = {"ppfla", "psppsll"};
+  s.passes = {"ao"};
+  s.views = {8, 16};
+  s.resolutions = {48};
+  s.d_max = {0.75f, 1.1f};
+  s.traces = {AoTrace::Listing5};
+  s.estimators = {AoEstimatorChoice::Normalized};
+  s.sizing = {SizingPolicy::Census};
+  s.sizing_initial_per_pixel = 3;
+  s.structure_params["ppfla"]["k"] = "4";
+  s.normal_offset_pixels = 1.25f;
+  s.width = 40;
+  s.height = 24;
+  s.frames = 2;
+  s.warmup = 1;
+  s.timer = "fenced_wall_clock";
+  s.write_images = false;
+  s.reference.spp.spp_per_half = 8;
+  s.reference.spp.target_noise_mse = 3e-5;
+  s.reference.spp.max_spp_per_half = 64;
+  s.reference.seed = 7;
+
+  const std::string dir = test::make_temp_dir("ldm-sweep");
+  const SweepPlan plan = plan_sweep(write_sweep(dir, sweep_file_json(s, "round trip")), RunSettings());
+  std::vector<std::string> planned, expected;
+  for (const auto& p : plan.configurations) planned.push_back(p.config.id());
+  for (const auto& c : expand_configurations(s)) expected.push_back(c.id());
+  EXPECT_EQ(planned, expected);
+  ASSERT_FALSE(plan.configurations.empty());
+  const RunSettings& got = plan.configurations.front().settings;
+  EXPECT_EQ(got.width, 40);
+  EXPECT_EQ(got.height, 24);
+  EXPECT_EQ(got.frames, 2);
+  EXPECT_EQ(got.warmup, 1);
+  EXPECT_EQ(got.timer, "fenced_wall_clock");
+  EXPECT_FALSE(got.write_images);
+  EXPECT_EQ(got.sizing_initial_per_pixel, 3u);
+  EXPECT_EQ(got.reference.spp.spp_per_half, 8u);
+  EXPECT_EQ(got.reference.spp.target_noise_mse, 3e-5);
+  EXPECT_EQ(got.reference.spp.max_spp_per_half, 64u);
+  EXPECT_EQ(got.reference.seed, 7u);
+  ASSERT_TRUE(got.normal_offset_pixels.has_value());
+  EXPECT_EQ(*got.normal_offset_pixels, 1.25f);
 }
 
 TEST(SweepPlan, ValuesAreCheckedByTheirOwnersAtTheirPath) {
