@@ -17,26 +17,14 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Outcome {
-  int status;
-  std::string output;
-};
+using test::Outcome;
 
+using test::ldmbench;
 Outcome ldmbench_with_env(const std::string& environment, const std::string& args) {
-  Outcome o;
-  o.status = test::run_command(environment + " " + std::string(LDM_BINARY_PATH) + " " + args,
-                               &o.output);
-  return o;
+  return ldmbench(args, environment);
 }
 
-Outcome ldmbench(const std::string& args) { return ldmbench_with_env("", args); }
-
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::read_text;
 
 // Bad input: exit status 2, a message naming the culprit, and nothing written.
 void expect_rejected(const std::string& args, const std::string& culprit) {

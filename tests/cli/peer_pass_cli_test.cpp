@@ -26,10 +26,7 @@ TEST(PeerPassCli, HbaoRecordIsCompleteAndScored) {
           "--cache-dir " + cache + " --out " + out.string() + " 2>&1",
       &output);
   ASSERT_EQ(status, 0) << output;
-  std::ifstream in(out / "records.json");
-  std::stringstream text;
-  text << in.rdbuf();
-  const auto json = nlohmann::json::parse(text.str());
+  const auto json = nlohmann::json::parse(test::read_text(out / "records.json"));
   ASSERT_EQ(json["records"].size(), 2u) << "one configuration per blur, not one per structure";
   for (size_t i = 0; i < 2; ++i) {
     const auto& r = json["records"][i];
@@ -63,10 +60,7 @@ TEST(PeerPassCli, RtaoSppAxisRecordsCpuTime) {
           cache + " --out " + out.string() + " 2>&1",
       &output);
   ASSERT_EQ(status, 0) << output;
-  std::ifstream in(out / "records.json");
-  std::stringstream text;
-  text << in.rdbuf();
-  const auto json = nlohmann::json::parse(text.str());
+  const auto json = nlohmann::json::parse(test::read_text(out / "records.json"));
   ASSERT_EQ(json["records"].size(), 2u) << "one configuration per spp";
   for (size_t i = 0; i < 2; ++i) {
     const auto& r = json["records"][i];

@@ -195,15 +195,8 @@ TEST(CompareRuns, IgnoredParameterLeavesTheIdentity) {
 }
 
 // The command: exit 0 without selected regressions, 1 with, 2 for bad input.
-struct Outcome {
-  int status;
-  std::string output;
-};
-Outcome ldmbench(const std::string& args) {
-  Outcome o;
-  o.status = test::run_command(std::string(LDM_BINARY_PATH) + " " + args, &o.output);
-  return o;
-}
+using test::Outcome;
+using test::ldmbench;
 
 fs::path write_run(const fs::path& dir, const std::vector<json>& records) {
   fs::create_directories(dir);

@@ -20,18 +20,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Outcome {
-  int status;
-  std::string output;
-};
+using test::Outcome;
 
 Outcome guard(const std::string& environment) {
   const fs::path script = fs::path(LDM_TEST_SOURCE_DIR) / ".." / "scripts" / "regression-guard.sh";
-  Outcome o;
-  o.status = test::run_command(environment + " LDMBENCH=" + std::string(LDM_BINARY_PATH) + " " +
-                                   script.string(),
-                               &o.output);
-  return o;
+  return test::run_shell(environment + " LDMBENCH=" + std::string(LDM_BINARY_PATH) + " " +
+                         script.string());
 }
 
 TEST(RegressionGuard, PassesOnTheCommittedBaseline) {

@@ -15,23 +15,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Outcome {
-  int status;
-  std::string output;
-};
+using test::Outcome;
 
-Outcome ldmbench(const std::string& args) {
-  Outcome o;
-  o.status = test::run_command(std::string(LDM_BINARY_PATH) + " " + args, &o.output);
-  return o;
-}
+using test::ldmbench;
 
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::read_text;
 
 size_t count_lines(const std::string& text, const std::string& prefix = "") {
   size_t n = 0;

@@ -28,10 +28,7 @@ TEST(IndirectCli, RecordsAreCompleteAndScoredTwice) {
           "--warmup 1 --reference-spp 8 --cache-dir " + cache + " --out " + out.string() + " 2>&1",
       &output);
   ASSERT_EQ(status, 0) << output;
-  std::ifstream in(out / "records.json");
-  std::stringstream text;
-  text << in.rdbuf();
-  const auto json = nlohmann::json::parse(text.str());
+  const auto json = nlohmann::json::parse(test::read_text(out / "records.json"));
   ASSERT_EQ(json["records"].size(), 4u) << "2 structures x 2 values of s";
   std::set<std::string> ids;
   for (const auto& r : json["records"]) {

@@ -19,31 +19,16 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Outcome {
-  int status;
-  std::string output;
-};
+using test::Outcome;
 
-Outcome shell(const std::string& command) {
-  Outcome o;
-  o.status = test::run_command(command, &o.output);
-  return o;
-}
-
-Outcome ldmbench(const std::string& args, const std::string& environment = "") {
-  return shell(environment + " " + std::string(LDM_BINARY_PATH) + " " + args);
-}
+using test::ldmbench;
+Outcome shell(const std::string& command) { return test::run_shell(command); }
 
 std::string script() {
   return (fs::path(LDM_TEST_SOURCE_DIR) / ".." / "scripts" / "report" / "ldmbench_report.py").string();
 }
 
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::read_text;
 
 std::vector<std::string> lines_of(const std::string& text) {
   std::vector<std::string> lines;

@@ -5,6 +5,8 @@
 #include <array>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <random>
 #include <vector>
 #include <sys/wait.h>
@@ -55,6 +57,24 @@ std::string make_temp_dir(const std::string& prefix) {
   std::filesystem::create_directories(dir);
   temp_dirs().push_back(dir);
   return dir.string();
+}
+
+Outcome run_shell(const std::string& command) {
+  Outcome o;
+  o.status = run_command(command, &o.output);
+  return o;
+}
+
+Outcome ldmbench(const std::string& args, const std::string& environment) {
+  return run_shell((environment.empty() ? "" : environment + " ") + std::string(LDM_BINARY_PATH) +
+                   " " + args);
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
 }
 
 }  // namespace ldm::test

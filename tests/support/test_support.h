@@ -13,6 +13,19 @@ HeadlessContext& gl_context();
 // Runs a shell command; returns its exit status and captures stdout+stderr into *output.
 int run_command(const std::string& command, std::string* output);
 
+// A command's exit status and its stdout+stderr.
+struct Outcome {
+  int status = 0;
+  std::string output;
+};
+Outcome run_shell(const std::string& command);
+// The ldmbench binary under test with `args`, after the shell assignments in `environment`
+// (e.g. "LDM_FOO=1").
+Outcome ldmbench(const std::string& args, const std::string& environment = "");
+
+// A whole file as text ("" when it cannot be read).
+std::string read_text(const std::string& path);
+
 // A fresh empty directory under the system temp dir, removed when the test process ends.
 std::string make_temp_dir(const std::string& prefix);
 
