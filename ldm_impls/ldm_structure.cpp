@@ -76,14 +76,15 @@ void StructureParams::finish(const std::string& owner) const {
 }
 
 uint64_t checked_storage_block(const std::string& structure, const std::string& buffer,
-                               uint64_t bytes) {
+                               uint64_t bytes, uint32_t entries_per_pixel) {
   GLint64 limit = 0;
   glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &limit);
   if (bytes > uint64_t(limit)) {
     auto mib = [](uint64_t b) { return std::to_string((b + (1u << 20) - 1) >> 20) + " MiB"; };
-    throw UserError(structure + " needs " + mib(bytes) + " in its storage block '" + buffer +
-                    "', more than this device's GL_MAX_SHADER_STORAGE_BLOCK_SIZE of " +
-                    mib(uint64_t(limit)) + "; lower N or R_LDM");
+    throw StorageBlockExceeded(structure + " needs " + mib(bytes) + " in its storage block '" +
+                                   buffer + "', more than this device's GL_MAX_SHADER_STORAGE_BLOCK_SIZE of " +
+                                   mib(uint64_t(limit)) + "; lower N or R_LDM",
+                               structure, buffer, bytes, uint64_t(limit), entries_per_pixel);
   }
   return bytes;
 }

@@ -22,6 +22,7 @@
 #include "harness/gl/shader_program.h"
 #include "harness/measure/gpu_timer.h"
 #include "harness/scene/gpu_scene.h"
+#include "harness/util/error.h"
 #include "harness/views/view_set.h"
 #include "ldm_impls/common/fragment_source.h"
 #include "ldm_impls/common/sizing.h"
@@ -151,9 +152,28 @@ std::vector<std::string> structure_names();
 // Throws UserError for an unknown name (listing the known ones) or bad parameters.
 std::unique_ptr<LdmStructure> make_structure(const std::string& name, StructureParams params);
 
+// checked_storage_block's refusal, with what did not fit, so that a caller who knows the
+// scene's census can say what would (ldm_impls/common/storage_fit.h).
+class StorageBlockExceeded : public UserError {
+ public:
+  StorageBlockExceeded(const std::string& message, std::string structure, std::string buffer,
+                       uint64_t bytes, uint64_t limit, uint32_t entries_per_pixel)
+      : UserError(message),
+        structure(std::move(structure)),
+        buffer(std::move(buffer)),
+        bytes(bytes),
+        limit(limit),
+        entries_per_pixel(entries_per_pixel) {}
+  std::string structure, buffer;
+  uint64_t bytes, limit;
+  uint32_t entries_per_pixel;  // a fixed array's k (its bytes grow with it); 0 otherwise
+};
+
 // Helpers shared by implementations.
+// Throws StorageBlockExceeded when `bytes` exceed the device's block size; a fixed array
+// passes its k as `entries_per_pixel`.
 uint64_t checked_storage_block(const std::string& structure, const std::string& buffer,
-                               uint64_t bytes);  // throws when over the device's block size
+                               uint64_t bytes, uint32_t entries_per_pixel = 0);
 // LDM_HEADS_TOTAL and LDM_MAX_LIST_LENGTH = kMaxListWalk.
 ShaderDefines common_structure_defines(const BuildInputs& in);
 ShaderDefines common_structure_defines(uint64_t ldm_pixels);

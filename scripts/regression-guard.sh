@@ -45,4 +45,5 @@ if [ "$update" -eq 1 ]; then
   echo "regression-guard: baseline $baseline updated"
   exit 0
 fi
-"$ldmbench" compare "$baseline" "$work/run" --fail-on accuracy,memory,status "${extra_compare[@]}"
+# --no-time: nothing time-based, not even a printed verdict (CI's times are noise).
+"$ldmbench" compare "$baseline" "$work/run" --no-time --fail-on accuracy,memory,status "${extra_compare[@]}"

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # AddressSanitizer + UndefinedBehaviorSanitizer build of the test suites into build-asan/
 # (-O1: sanitizer-friendly and quick to compile), then runs the suites that do not need the
-# GPU path: scene, metrics, reference, views and the CPU-only extremes tests (scene parsing,
-# the reference far from the origin, the journal, the fuzz corpus). The GL suites are left
+# GPU path: scene, import (the mesh importer, Assimp in its child process), metrics,
+# reference, views, stats (the timing statistics), compare's verdicts on synthetic runs,
+# and the CPU-only extremes tests (scene parsing, the reference far from
+# the origin, the journal, the fuzz corpus). The GL suites are left
 # out: Mesa's llvmpipe is not instrumented, and its shader compiles under ASan take longer
 # than the CI budget. UB is fatal (-fno-sanitize-recover). Leak checking is off: every test
 # process, even one that never touches the GPU, reports the same 128-byte realloc from a
@@ -10,11 +12,11 @@
 # libraries every binary links), which no suppression can name.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-suites=(scene metrics reference views extremes)
+suites=(scene import metrics reference views stats compare extremes)
 cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=None -DCMAKE_CXX_FLAGS="-O1" \
   -DLDMBENCH_SANITIZE=ON -DLDMBENCH_BUILD_BENCHMARKS=OFF > /dev/null
 cmake --build build-asan -j "$(nproc)" --target "${suites[@]/#/test_}"
 export ASAN_OPTIONS="detect_leaks=0:strict_string_checks=1:detect_stack_use_after_return=1"
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 ctest --test-dir build-asan --output-on-failure -j "$(nproc)" --timeout 600 \
-  -R '^(scene|metrics|reference|views)\.|^extremes\.(ExtremesScene|ExtremesReference|ExtremesJournal|FuzzCorpus)\.'
+  -R '^(scene|import|metrics|reference|views|stats)\.|^compare\.(CompareRuns|Samples)\.|^extremes\.(ExtremesScene|ExtremesReference|ExtremesJournal|FuzzCorpus)\.'

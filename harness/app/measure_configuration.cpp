@@ -3,6 +3,8 @@
 #include <filesystem>
 
 #include "harness/app/accuracy.h"
+#include "harness/app/scene_profile.h"
+#include "harness/app/timing_columns.h"
 #include "harness/passes/raster_baseline.h"
 #include "harness/records/output_folder.h"
 #include "harness/util/error.h"
@@ -16,15 +18,6 @@ TimerSource timer_source(const std::string& option, const DeviceInfo& device) {
   if (option == "gl_timestamp") return TimerSource::GpuTimestamps;
   if (option == "fenced_wall_clock") return TimerSource::FencedWallClock;
   return default_timer_source(device.gl_renderer);
-}
-
-void add_timings(Record& r, const std::vector<TimingSummary>& summaries) {
-  for (const auto& s : summaries) {
-    r.set(s.subpass + "_ms_median", s.median);
-    r.set(s.subpass + "_ms_min", s.min);
-    r.set(s.subpass + "_ms_max", s.max);
-    r.set(s.subpass + "_ms_stddev", s.stddev);
-  }
 }
 
 }  // namespace
@@ -72,11 +65,12 @@ MeasurementRequest measurement_request(const Configuration& config, const RunSet
   request.height = settings.height;
   request.warmup = settings.warmup;
   request.frames = settings.frames;
+  request.precision = settings.precision;
   request.timer = timer_source(settings.timer, device);
   return request;
 }
 
-void add_measurement(Record& r, const Measurement& m) {
+void add_measurement(Record& r, const Measurement& m, const TimePrecision& precision) {
   r.set("scene_name", m.scene_name);
   r.set("scene_hash", m.scene_hash);
   r.set("triangles", m.triangles);
@@ -105,18 +99,19 @@ void add_measurement(Record& r, const Measurement& m) {
   r.set("sizing_rebuilds_measured", m.sizing_rebuilds_measured);
   r.set("sizing_reallocations", m.sizing_reallocations);
 
-  const auto summaries = m.summaries();
-  add_timings(r, summaries);
-  const TimingSummary* build = find_summary(summaries, "build");
-  const TimingSummary* raster = find_summary(summaries, kRasterBaselineSubpass);
-  if (build && raster && raster->median > 0)
-    r.set("build_vs_raster", build->median / raster->median);
-  const TimingSummary* touch = find_summary(summaries, kRasterTouchSubpass);
-  if (build && touch && touch->median > 0)
-    r.set("build_vs_raster_touch", build->median / touch->median);
   r.set("raster_touch_fragments", m.raster_touch_fragments);
-  if (build && build->median > 0)
-    r.set("fragments_per_second", double(m.census.fragments) / (build->median * 1e-3));
+  TimingOutcome timing;
+  timing.summaries = m.summaries();
+  timing.frames_per_repetition = {m.frames.size()};
+  timing.target_met = m.time_target_met;
+  timing.precision = precision;
+  add_timing_columns(r, timing);
+  const std::string warning = time_target_warning(timing);
+  if (!warning.empty()) {
+    const RecordValue* detail = r.get("status_detail");
+    const std::string* text = detail ? std::get_if<std::string>(detail) : nullptr;
+    r.set("status_detail", (text && !text->empty() ? *text + "; " : std::string()) + warning);
+  }
 
   for (const auto& b : m.memory) {
     r.set("mem_" + b.name + "_allocated", b.allocated);
@@ -132,16 +127,21 @@ void add_measurement(Record& r, const Measurement& m) {
 
 Record measure_configuration(const Scene& scene, const Configuration& config,
                              const RunSettings& settings, const DeviceInfo& device,
-                             const MeasurementPaths& paths) {
+                             const MeasurementPaths& paths, Repetition repetition) {
   Record r;
   describe_configuration(r, config, settings, device);
   const Measurement m = measure(scene, measurement_request(config, settings, device));
-  add_measurement(r, m);
+  add_measurement(r, m, settings.precision);
+  add_scene_profile(r, scene, config, m);
+  if (repetition.count > 1) r.set("repetition", repetition.index);
+  // Images and accuracy once, from the first repetition: the image of an identical build
+  // is identical (later repetitions' lists are checked against the first's).
+  const bool whole = repetition.index == 0;
 
   const OutputFolder folder(paths.out_dir, paths.images_dir);
   const std::string stem = config.id() + "-" + m.images.front().name;
   const Image& image = m.images.front().image;
-  if (settings.write_images) {
+  if (whole && settings.write_images) {
     r.set("image_exr", folder.write_exr(stem + ".exr", image));
     r.set("image_png", folder.write_png(stem + ".png", image));
     // The pass's further images (e.g. the indirect pass's direct light and sum), unscored.
@@ -151,19 +151,26 @@ Record measure_configuration(const Scene& scene, const Configuration& config,
       r.set("image_" + m.images[i].name + "_png", folder.write_png(other + ".png", m.images[i].image));
     }
   }
-  if (settings.reference.enabled) {
+  if (whole && settings.reference.enabled) {
     const auto pass = make_pass(config.pass, StructureParams(config.pass_params, "--pass " + config.pass));
     for (const auto& scored : pass->references(scene, image.width, image.height, settings.reference))
       add_accuracy(r, scored.reference, image, settings.write_images ? &folder : nullptr,
                    stem + (scored.column_prefix.empty() ? "" : "-" + scored.column_prefix),
                    scored.column_prefix, scored.ssim_exposure);
   }
+  flag_degenerate_measurement(r);
   // Last, so that a configuration abandoned on the way (an interrupted reference) leaves no
   // samples behind, as it leaves no record.
   const OutputFolder samples(paths.out_dir,
                              (std::filesystem::path(paths.out_dir) / "samples").string());
-  r.set("frame_samples_csv", samples.write_text(config.id() + "-frames.csv", frame_samples_csv(m)));
+  r.set("frame_samples_csv",
+        samples.write_text(samples_file_name(config.id(), repetition), frame_samples_csv(m, repetition.index)));
   return r;
+}
+
+std::string samples_file_name(const std::string& config_id, Repetition repetition) {
+  if (repetition.count <= 1) return config_id + "-frames.csv";
+  return config_id + "-rep" + std::to_string(repetition.index) + "-frames.csv";
 }
 
 }  // namespace ldm

@@ -11,17 +11,36 @@
 
 namespace ldm {
 
-std::vector<TimingSummary> Measurement::summaries() const {
+TimingSeries Measurement::series() const {
   TimingSeries series;
   for (const auto& frame : frames) series.add_frame(frame);
-  return series.summarize();
+  return series;
 }
 
-std::string frame_samples_csv(const Measurement& m) {
-  std::string out = "frame,subpass,ms\n";
+std::vector<TimingSummary> Measurement::summaries() const { return series().summarize(); }
+
+namespace {
+constexpr const char* kSamplesHeader = "repetition,frame,subpass,ms\n";
+}  // namespace
+
+std::string frame_samples_csv(const Measurement& m, size_t repetition) {
+  std::string out = kSamplesHeader;
+  const std::string prefix = std::to_string(repetition) + ",";
   for (size_t frame = 0; frame < m.frames.size(); ++frame)
     for (const auto& [name, ms] : m.frames[frame])
-      out += std::to_string(frame) + "," + name + "," + format_csv_value(ms) + "\n";
+      out += prefix + std::to_string(frame) + "," + name + "," + format_csv_value(ms) + "\n";
+  return out;
+}
+
+std::string frame_samples_csv(const std::vector<TimingSeries>& repetitions) {
+  std::string out = kSamplesHeader;
+  for (size_t r = 0; r < repetitions.size(); ++r) {
+    const TimingSeries& series = repetitions[r];
+    for (size_t frame = 0; frame < series.frames(); ++frame)
+      for (size_t i = 0; i < series.subpasses().size(); ++i)
+        out += std::to_string(r) + "," + std::to_string(frame) + "," + series.subpasses()[i] +
+               "," + format_csv_value(series.samples(i)[frame]) + "\n";
+  }
   return out;
 }
 
@@ -65,16 +84,25 @@ std::string cpu_model_name() {
 
 Measurement measure(const Scene& scene, const MeasurementRequest& request) {
   MeasurementSession session(scene, request);
-  auto keep_running = [&, measured = 0]() mutable {
+  FrameStopRule stop_rule(request.frames, request.precision);
+  TimingSeries measured;
+  auto keep_running = [&]() {
     if (request.keep_running) return request.keep_running();
-    return measured++ < request.frames;
+    return stop_rule.want_another(measured);
   };
   while (session.in_warmup() || keep_running()) {
     const bool warmup = session.in_warmup();
     const FrameTimes times = session.run_frame();
-    if (!warmup && request.on_frame) request.on_frame(times);
+    if (warmup) continue;
+    measured.add_frame(times);
+    if (request.on_frame) request.on_frame(times);
   }
-  return session.result();
+  Measurement m = session.result();
+  if (!request.keep_running) {
+    m.time_target_met = stop_rule.target_met(measured);
+    m.time_half_width = FrameStopRule::worst_half_width(measured);
+  }
+  return m;
 }
 
 }  // namespace ldm

@@ -15,11 +15,13 @@
 #include <utility>
 #include <vector>
 
+#include "harness/measure/frame_stop_rule.h"
 #include "harness/measure/gpu_timer.h"
 #include "harness/measure/timing_stats.h"
 #include "harness/passes/pass.h"
 #include "harness/scene/scene.h"
 #include "ldm_impls/common/build_health.h"
+#include "ldm_impls/common/fragment_census.h"
 #include "ldm_impls/ldm_structure.h"
 
 namespace ldm {
@@ -34,9 +36,12 @@ struct MeasurementRequest {
   std::map<std::string, std::string> pass_params;
   uint32_t views = 32, resolution = 128;
   int width = 256, height = 256;
+  // At least `frames` measured frames, then more until `precision` is met or its cap
+  // reached (harness/measure/frame_stop_rule.h); precision.target 0: exactly `frames`.
   int warmup = 2, frames = 5;
+  TimePrecision precision{0.0};  // exactly `frames` unless asked (`ldmbench run` asks)
   TimerSource timer = TimerSource::FencedWallClock;
-  // Decides before each measured frame whether to run it; unset: exactly `frames` frames.
+  // Decides before each measured frame whether to run it; unset: the stop rule above.
   // Google Benchmark passes its own loop (State::KeepRunning) here.
   std::function<bool()> keep_running;
   // Called with every measured frame's times (sub-passes plus "build" and "frame").
@@ -49,6 +54,7 @@ struct CensusSummary {
   uint32_t max_depth_complexity = 0;
   double mean_depth_complexity = 0;
   double nonempty_pixel_fraction = 0;
+  DepthProfile profile;  // the list lengths' distribution (ldm_impls/common/fragment_census.h)
 };
 
 struct Measurement {
@@ -77,8 +83,13 @@ struct Measurement {
   std::vector<BufferMemory> pass_memory;  // Pass::memory(): the pass's own (not in bytes_*)
 
   // Every measured frame, in order: each sub-pass's milliseconds, then "build" (the
-  // structure's sub-passes) and "frame" (everything but the raster baselines).
+  // structure's sub-passes), "pass" (the pass's own) and "frame" (everything but the raster
+  // baselines).
   std::vector<FrameTimes> frames;
+  // Whether the frames reached the request's precision target (FrameStopRule), and the
+  // largest relative half-width of the watched sub-passes' intervals they did reach.
+  bool time_target_met = true;
+  double time_half_width = 0;
   // Fragments the last raster_touch pass shaded (harness/passes/raster_baseline.h): the
   // census total when the touch baseline really touched every fragment.
   uint64_t raster_touch_fragments = 0;
@@ -87,14 +98,17 @@ struct Measurement {
   std::vector<PassImage> images;
   std::vector<std::pair<std::string, RecordValue>> pass_results;  // Pass::results()
 
+  TimingSeries series() const;  // the measured frames
   std::vector<TimingSummary> summaries() const;  // per sub-pass, first-seen order
   uint64_t bytes_allocated() const;
   uint64_t bytes_used() const;
 };
 
-// Every measured frame's times as a tidy CSV: "frame,subpass,ms", one row per sub-pass and
-// sum of each frame, in order (for statistical comparisons of runs, beyond the summaries).
-std::string frame_samples_csv(const Measurement& measurement);
+// Every measured frame's times as a tidy CSV: "repetition,frame,subpass,ms", one row per
+// sub-pass and sum of each frame, in order (for statistical comparisons of runs, beyond the
+// summaries); `repetition` numbers the independent repetition these frames belong to.
+std::string frame_samples_csv(const Measurement& measurement, size_t repetition = 0);
+std::string frame_samples_csv(const std::vector<TimingSeries>& repetitions);
 
 // Why each image cannot be measured (a NaN or infinity), one sentence each; empty when all can.
 std::vector<std::string> image_problems(const std::vector<PassImage>& images);

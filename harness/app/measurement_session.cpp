@@ -11,6 +11,7 @@
 #include "harness/util/hash.h"
 #include "ldm_impls/common/ldm_inspector.h"
 #include "ldm_impls/common/sizing_driver.h"
+#include "ldm_impls/common/storage_fit.h"
 
 namespace ldm {
 namespace {
@@ -22,11 +23,13 @@ CensusSummary summarize_census(const FragmentCensus& census) {
   s.mean_depth_complexity = census.mean_depth_complexity();
   s.nonempty_pixel_fraction =
       census.total_pixels ? double(census.nonempty_pixels) / double(census.total_pixels) : 0.0;
+  s.profile = depth_profile(census);
   return s;
 }
 
 // Adds the sums "build" (the structure's sub-passes: all but the baselines and the pass's
-// own) and "frame" (all but the baselines) to one frame's times.
+// own), "pass" (the pass's own) and "frame" (all but the baselines) to one frame's times.
+// Summed per frame, so that each sum has its own interval (a sum of medians has none).
 void add_frame_sums(FrameTimes& times, const std::vector<std::string>& pass_subpasses) {
   double build_ms = 0, frame_ms = 0;
   for (const auto& [name, ms] : times) {
@@ -38,6 +41,7 @@ void add_frame_sums(FrameTimes& times, const std::vector<std::string>& pass_subp
       build_ms += ms;
   }
   times.emplace_back("build", build_ms);
+  times.emplace_back("pass", frame_ms - build_ms);
   times.emplace_back("frame", frame_ms);
 }
 
@@ -126,7 +130,11 @@ MeasurementSession::MeasurementSession(const Scene& scene, const MeasurementRequ
   m.payload = in.payload.describe();
   m.census = summarize_census(census);
 
-  s.structure = s.setup->prepare(request.structure, request.structure_params);
+  try {
+    s.structure = s.setup->prepare(request.structure, request.structure_params);
+  } catch (const StorageBlockExceeded& e) {  // say what would fit, from the census
+    throw explained_refusal(e, census, request.views, request.resolution);
+  }
   s.baseline = std::make_unique<RasterBaseline>(*s.setup->raster, s.setup->views);
   s.prepare_pass();
   // Verification reads the census (never sizing): a list longer than its deepest pixel is
@@ -154,7 +162,11 @@ FrameTimes MeasurementSession::run_frame() {
   s.timer.begin_frame();
   if (s.setup) {
     s.baseline->render(&s.timer);
-    s.sizer->build(&s.timer);  // the structure's build() under its sizing policy
+    try {
+      s.sizer->build(&s.timer);  // the structure's build() under its sizing policy
+    } catch (const StorageBlockExceeded& e) {  // grown past the device: say what would fit
+      throw explained_refusal(e, s.setup->census, s.request.views, s.request.resolution);
+    }
   }
   s.pass->render(&s.timer);
   FrameTimes times = s.timer.end_frame();
@@ -171,6 +183,7 @@ FrameTimes MeasurementSession::run_frame() {
     if (warmup) return times;
     double frame_ms = 0;
     for (const auto& [name, ms] : times) frame_ms += ms;
+    times.emplace_back("pass", frame_ms);
     times.emplace_back("frame", frame_ms);
   }
   s.m.frames.push_back(times);
@@ -203,6 +216,7 @@ Measurement MeasurementSession::result() const {
                             " fragments where the census counted " +
                             std::to_string(s.setup->census.total_fragments));
     for (const auto& problem : problems) health.report_problem(problem);
+    for (const auto& problem : s.pass->problems()) health.report_problem(problem);
     m.status = health.status();
     m.status_detail = health.detail();
     m.overflow = health.overflow();

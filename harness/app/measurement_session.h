@@ -25,7 +25,7 @@ class MeasurementSession {
 
   // Runs one frame and judges it. The first request.warmup frames are warm-up (judged, not
   // kept); every later frame is kept in result().frames. Returns the frame's times, with
-  // the sums "build" (LDM passes) and "frame" added for kept frames.
+  // the sums "build" (LDM passes), "pass" and "frame" added for kept frames.
   FrameTimes run_frame();
   int frames_run() const;
   bool in_warmup() const;

@@ -12,10 +12,13 @@
 #include <sstream>
 
 #include "harness/app/measure_configuration.h"
+#include "harness/app/repetitions.h"
+#include "harness/app/timing_columns.h"
 #include "harness/app/run_summary.h"
 #include "harness/app/sweep_progress.h"
 #include "harness/passes/pass.h"
 #include "harness/records/journal.h"
+#include "harness/records/output_folder.h"
 #include "harness/records/record.h"
 #include "harness/records/run_folder.h"
 #include "harness/reference/reference_cache.h"
@@ -23,6 +26,7 @@
 #include "harness/util/error.h"
 #include "harness/util/hash.h"
 #include "harness/util/interrupt.h"
+#include "harness/util/process.h"
 #include "harness/util/version.h"
 #include "ldm_impls/ldm_structure.h"
 
@@ -64,24 +68,6 @@ void validate_axes(const RunSettings& s) {
 
 namespace {
 
-// Identifies a sweep of `ldmbench run` for resuming: the command's arguments without the
-// program path, --out, --overwrite and --redo-failed.
-std::vector<std::string> run_key_parts(const std::string& command_line) {
-  std::istringstream words(command_line);
-  std::vector<std::string> args;
-  for (std::string word; words >> word;) args.push_back(word);
-  std::vector<std::string> parts;
-  for (size_t i = 1; i < args.size(); ++i) {
-    if (args[i] == "--out") {
-      ++i;
-      continue;
-    }
-    if (args[i].rfind("--out=", 0) == 0 || args[i] == "--overwrite" || args[i] == "--redo-failed") continue;
-    parts.push_back(args[i]);
-  }
-  return parts;
-}
-
 std::string config_id_of(const Record& r) {
   const RecordValue* id = r.get("config_id");
   return id ? std::get<std::string>(*id) : std::string();
@@ -93,6 +79,31 @@ std::string status_of(const Record& r) {
 }
 
 }  // namespace
+
+std::vector<std::string> run_key_parts(const std::vector<std::string>& arguments) {
+  static const std::set<std::string> with_value = {"--out", "--step", "--interleaved-session"};
+  static const std::set<std::string> flags = {"--overwrite", "--redo-failed"};
+  std::vector<std::string> parts;
+  for (size_t i = 0; i < arguments.size(); ++i) {
+    const std::string& a = arguments[i];
+    if (with_value.count(a)) {
+      ++i;
+      continue;
+    }
+    const size_t equals = a.find('=');
+    if (flags.count(a) || (equals != std::string::npos && with_value.count(a.substr(0, equals)))) continue;
+    parts.push_back(a);
+  }
+  return parts;
+}
+
+void list_configurations(const std::vector<PlannedConfiguration>& configurations, std::ostream& out) {
+  for (size_t k = 0; k < configurations.size(); ++k) {
+    const auto& [config, settings] = configurations[k];
+    out << k << "\t" << config.id() << "\t" << settings.width << "x" << settings.height << "\t"
+        << settings.frames << "+" << settings.warmup << " frames\n";
+  }
+}
 
 void check_cache_dir(const std::string& cache_dir) {
   std::filesystem::path dir = cache_dir.empty() ? kDefaultReferenceCacheDir : cache_dir;
@@ -120,7 +131,8 @@ std::string sweep_key(const std::vector<std::string>& parts, const std::map<std:
   return hex64(h.value());
 }
 
-int run_benchmark(const RunSettings& settings, const std::string& command_line, std::ostream& log) {
+int run_benchmark(const RunSettings& settings, const std::string& command_line,
+                  const std::vector<std::string>& arguments, std::ostream& log) {
   validate_axes(settings);
   std::map<std::string, Scene> scenes;
   for (const auto& spec : settings.scenes) scenes.emplace(spec, load_scene(spec));
@@ -132,134 +144,141 @@ int run_benchmark(const RunSettings& settings, const std::string& command_line, 
   run.out_dir = settings.out_dir;
   run.overwrite = settings.overwrite;
   run.redo_failed = settings.redo_failed;
+  run.repetitions = settings.repetitions;
+  run.isolation = settings.isolation;
+  run.arguments = arguments;
+  run.step = settings.step;
   run.context = settings.context;
-  run.sweep_key = sweep_key(run_key_parts(command_line), scenes);
+  if (!settings.interleaved_session.empty()) run.metadata.set("interleaved_session", settings.interleaved_session);
+  if (settings.dry_run) {
+    list_configurations(run.configurations, log);
+    log << run.configurations.size() << " configurations\n";
+    return kExitOk;
+  }
+  run.sweep_key = sweep_key(run_key_parts(arguments), scenes);
   return run_configurations(run, command_line, log);
 }
 
-int run_configurations(const ConfigurationRun& job, const std::string& command_line, std::ostream& log) {
-  const std::string out_dir = job.out_dir.empty()
-                                  ? (std::filesystem::path("results") / "runs" /
-                                     timestamp("%Y%m%d-%H%M%S")).string()
-                                  : job.out_dir;
-  const RunFolderPlan plan = plan_run_folder(out_dir, job.sweep_key, job.overwrite);
+namespace {
 
-  auto context = HeadlessContext::create(job.context);
-  const DeviceInfo& device = context->device();
-  log << "device: " << device.gl_renderer << " (" << device.gl_version << ", EGL "
-      << device.egl_platform << ")\n";
+double number_of(const Record& r, const std::string& key) {
+  const RecordValue* v = r.get(key);
+  if (!v) return -1;
+  if (const double* d = std::get_if<double>(v)) return *d;
+  if (const int64_t* i = std::get_if<int64_t>(v)) return double(*i);
+  return -1;
+}
 
-  const MeasurementPaths paths{out_dir, (std::filesystem::path(out_dir) / "images").string()};
-  prepare_run_folder(out_dir, plan);
-  const std::string csv_path = (std::filesystem::path(out_dir) / "records.csv").string();
-  const std::string json_path = (std::filesystem::path(out_dir) / "records.json").string();
-  RecordJournal journal((std::filesystem::path(out_dir) / kJournalFile).string());
-  install_stop_handlers();
+// "  build 12.3 ±1.2% ms  frame 45.6 ±0.8% ms": the progress line's times with their
+// intervals, to the digits the intervals support (the record keeps every digit).
+std::string timed_sums(const Record& r) {
+  std::string out;
+  for (const char* subpass : {"build", "frame"}) {
+    const std::string name = subpass;
+    const double median = number_of(r, name + "_ms_median");
+    if (median < 0) continue;
+    out += "  ";
+    out += name;
+    out += ' ';
+    out += format_time_with_interval(median, number_of(r, name + "_ms_ci_low"),
+                                     number_of(r, name + "_ms_ci_high"));
+    out += " ms";
+  }
+  return out;
+}
 
+int64_t repetition_of(const Record& r) {
+  const RecordValue* v = r.get("repetition");
+  const int64_t* i = v ? std::get_if<int64_t>(v) : nullptr;
+  return i ? *i : -1;
+}
+
+// The repetitions a folder holds of each unfinished configuration: for each, the journaled
+// repetitions 0, 1, ... in turn (the latest of each index), as far as their samples files
+// exist; a gap or a missing file ends the prefix (the rest is measured again). For a failed
+// configuration measured again, only the repetitions journaled after its failed record.
+std::map<std::string, std::vector<Record>> repetitions_in_progress(
+    const JournalContents& journal, const std::set<std::string>& finished,
+    const std::set<std::string>& redone, const std::string& out_dir) {
+  std::map<std::string, size_t> record_line;  // the latest record of each configuration
+  for (size_t i = 0; i < journal.records.size(); ++i)
+    record_line[config_id_of(journal.records[i])] = journal.record_lines[i];
+  std::map<std::string, std::map<int64_t, Record>> by_index;
+  for (size_t i = 0; i < journal.repetitions.size(); ++i) {
+    const Record& r = journal.repetitions[i];
+    const std::string id = config_id_of(r);
+    if (finished.count(id) || repetition_of(r) < 0) continue;
+    if (redone.count(id) && journal.repetition_lines[i] < record_line[id]) continue;
+    by_index[id][repetition_of(r)] = r;
+  }
+  std::map<std::string, std::vector<Record>> out;
+  for (auto& [id, reps] : by_index) {
+    std::vector<Record>& kept = out[id];
+    for (int64_t j = 0; reps.count(j); ++j) {
+      const RecordValue* file = reps[j].get("frame_samples_csv");
+      const std::string* name = file ? std::get_if<std::string>(file) : nullptr;
+      std::error_code error;
+      if (!name || !std::filesystem::is_regular_file(std::filesystem::path(out_dir) / *name, error)) break;
+      kept.push_back(reps[j]);
+    }
+  }
+  return out;
+}
+
+// Removes the samples files of repetitions that are combined into a record (or abandoned
+// with it).
+void remove_repetition_samples(const std::vector<Record>& repetitions, const std::string& out_dir) {
+  for (const Record& r : repetitions) {
+    const RecordValue* file = r.get("frame_samples_csv");
+    const std::string* name = file ? std::get_if<std::string>(file) : nullptr;
+    std::error_code error;
+    if (name) std::filesystem::remove(std::filesystem::path(out_dir) / *name, error);
+  }
+}
+
+}  // namespace
+
+namespace {
+
+// What a run folder holds already, as far as this sweep goes: the records (one per
+// configuration), which of them count as finished (failed ones do not when redone), and
+// the repetitions journaled of unfinished configurations.
+struct FolderProgress {
+  std::vector<Record> records;
+  std::set<std::string> finished, redone;
+  std::map<std::string, std::vector<Record>> partial;
+  size_t partial_repetitions = 0;
+};
+
+FolderProgress folder_progress(const JournalContents& journal, bool redo_failed, const std::string& out_dir) {
+  FolderProgress p;
   // Finished configurations of an interrupted run of the same sweep are kept, not redone;
   // failed ones are redone when asked (the new record takes the old one's place in the
   // tables; until then, and if the redo is interrupted, the old one stays).
-  std::vector<Record> records = latest_per_configuration(plan.previous.records);
-  std::set<std::string> finished;
-  size_t redone = 0;
-  for (const Record& r : records) {
-    if (job.redo_failed && status_of(r) == "failed")
-      ++redone;
+  p.records = latest_per_configuration(journal.records);
+  for (const Record& r : p.records) {
+    if (redo_failed && status_of(r) == "failed")
+      p.redone.insert(config_id_of(r));
     else
-      finished.insert(config_id_of(r));
+      p.finished.insert(config_id_of(r));
   }
+  // Repetitions of unfinished configurations a killed run journaled are kept too.
+  p.partial = repetitions_in_progress(journal, p.finished, p.redone, out_dir);
+  for (const auto& [id, reps] : p.partial) p.partial_repetitions += reps.size();
+  return p;
+}
 
-  Record run;
-  run.set("command", command_line);
-  run.set("sweep_key", job.sweep_key);
-  run.set("started", timestamp("%Y-%m-%dT%H:%M:%S%z"));
-  run.set("device", device.gl_renderer);
-  run.set("gl_version", device.gl_version);
-  run.set("egl_platform", device.egl_platform);
-  run.set("git_commit", git_commit());
-  run.set("ldmbench_version", ldmbench_version());
-  run.set("resumed_records", uint64_t(records.size()));
-  for (const auto& [key, value] : job.metadata.fields()) run.put(key, value);
-  journal.append_run(run);
-  if (!plan.previous.records.empty()) {
-    log << "resuming: " << records.size() << " configuration(s) already recorded in "
-        << out_dir << "/" << kJournalFile;
-    if (redone) log << " (" << redone << " failed one(s) to redo)";
-    log << "\n";
-    write_records(csv_path, json_path, records, run);  // re-derived: consistent after any kill
-  }
+std::string default_out_dir(const std::string& out_dir) {
+  return out_dir.empty() ? (std::filesystem::path("results") / "runs" / timestamp("%Y%m%d-%H%M%S")).string()
+                         : out_dir;
+}
 
-  const auto& configurations = job.configurations;
-  size_t to_measure = 0;
-  for (const auto& planned : configurations) to_measure += finished.count(planned.config.id()) ? 0 : 1;
-  SweepProgress progress(to_measure, SweepProgress::stderr_if_terminal());
-  int interrupted_by = 0;
-  for (size_t i = 0; i < configurations.size() && !interrupted_by; ++i) {
-    const Configuration& config = configurations[i].config;
-    const RunSettings& settings = configurations[i].settings;
-    if (finished.count(config.id())) continue;
-    if ((interrupted_by = stop_signal())) break;
-    // With the bar on a terminal, the bar shows the configuration in flight and its line is
-    // printed whole when it ends; otherwise (logs, pipes) the line starts at once.
-    const std::string prefix =
-        "[" + std::to_string(i + 1) + "/" + std::to_string(configurations.size()) + "] " + config.id() + " ... ";
-    if (progress.active())
-      progress.show(config.id());
-    else
-      log << prefix << std::flush;
-    auto begin_line = [&] {
-      if (!progress.active()) return;
-      progress.erase();
-      log << prefix;
-    };
-    Record record;
-    const auto started = std::chrono::steady_clock::now();
-    try {
-      record = measure_configuration(job.scenes->at(config.scene), config, settings, device, paths);
-    } catch (const Interrupted& e) {
-      // Abandoned cleanly: no record, no images; a rerun of the same command measures it.
-      remove_configuration_images(paths.images_dir, config.id() + "-" + config.pass);
-      begin_line();
-      log << "abandoned (" << e.what() << ")\n";
-      interrupted_by = e.signal();
-      break;
-    } catch (const std::exception& e) {
-      record = Record();
-      describe_configuration(record, config, settings, device);
-      record.set("status", "failed");
-      record.set("status_detail", e.what());
-    }
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    record.set("wall_seconds", seconds);
-    const std::string status = status_of(record);
-    begin_line();
-    log << status;
-    // Medians to 4 significant digits: a progress line, not the record (which keeps all).
-    for (const char* subpass : {"build", "frame"})
-      if (const RecordValue* ms = record.get(std::string(subpass) + "_ms_median"))
-        if (const double* value = std::get_if<double>(ms)) {
-          std::ostringstream text;  // leaves the log stream's own precision alone
-          text << std::setprecision(4) << *value;
-          log << "  " << subpass << " " << text.str() << " ms";
-        }
-    if (status != "ok") log << "  (" << std::get<std::string>(*record.get("status_detail")) << ")";
-    log << "\n" << std::flush;
-    journal.append_record(record);  // durable before the tables change
-    // A redone configuration takes its failed record's place.
-    const auto same = std::find_if(records.begin(), records.end(),
-                                   [&](const Record& r) { return config_id_of(r) == config.id(); });
-    if (same != records.end())
-      *same = std::move(record);
-    else
-      records.push_back(std::move(record));
-    run.set("finished", timestamp("%Y-%m-%dT%H:%M:%S%z"));
-    write_records(csv_path, json_path, records, run);
-    progress.finished_one();
-  }
-  progress.erase();
-  if (records.empty()) write_records(csv_path, json_path, records, run);
-
+// The end of a run: the summary table, the records' paths and outcome counts, the next
+// command; the exit status from the outcomes.
+int finish_run(const std::vector<Record>& records, size_t configurations, int interrupted_by,
+               const std::string& out_dir, const std::string& report_hint, std::ostream& log) {
+  const std::string csv_path = (std::filesystem::path(out_dir) / "records.csv").string();
+  const std::string json_path = (std::filesystem::path(out_dir) / "records.json").string();
   std::map<std::string, int> outcomes;
   for (const Record& r : records) ++outcomes[status_of(r)];
   log << summary_table(records, kSummaryTableRows);
@@ -272,13 +291,263 @@ int run_configurations(const ConfigurationRun& job, const std::string& command_l
   log << ")\n";
   if (interrupted_by) {
     log << "interrupted by signal " << interrupted_by << ": " << records.size() << " of "
-        << configurations.size() << " configurations recorded; run the same command again "
+        << configurations << " configurations recorded; run the same command again "
         << "to measure the rest\n";
     return kExitInterruptedBase + interrupted_by;
   }
-  log << "next: " << job.report_hint << " " << out_dir << "\n";
+  log << "next: " << report_hint << " " << out_dir << "\n";
   const bool all_measured = outcomes["failed"] == 0 && outcomes["invalid"] == 0;
   return all_measured ? kExitOk : kExitSomeFailed;
+}
+
+// --isolation process: this process measures nothing; each repetition is a child,
+// `<this program> <the same arguments> --out DIR --step ID`, round robin as in one process.
+// The folder is planned (and an --overwrite carried out) here, once; the children resume it.
+int drive_repetition_processes(const ConfigurationRun& job, const std::string& command_line,
+                               const std::string& out_dir, std::ostream& log) {
+  const RunFolderPlan plan = plan_run_folder(out_dir, job.sweep_key, job.overwrite);
+  prepare_run_folder(out_dir, plan);
+  {
+    // The folder is this sweep's from now on: its children resume it.
+    RecordJournal journal((std::filesystem::path(out_dir) / kJournalFile).string());
+    Record run;
+    run.set("command", command_line);
+    run.set("sweep_key", job.sweep_key);
+    run.set("started", timestamp("%Y-%m-%dT%H:%M:%S%z"));
+    run.set("repetitions", uint64_t(std::max(1, job.repetitions)));
+    run.set("isolation", repetition_isolation_name(job.isolation));
+    for (const auto& [key, value] : job.metadata.fields()) run.put(key, value);
+    journal.append_run(run);
+  }
+  install_stop_handlers();
+  const std::string program = executable_path();
+  if (program.empty()) throw UserError("--isolation process: cannot find this program's path (/proc/self/exe)");
+  std::vector<std::string> child = {program};
+  bool has_out = false;
+  for (size_t i = 0; i < job.arguments.size(); ++i) {
+    const std::string& a = job.arguments[i];
+    if (a == "--overwrite") continue;  // done here, once
+    if (a == "--out" || a.rfind("--out=", 0) == 0) has_out = true;
+    child.push_back(a);
+  }
+  if (!has_out) {
+    child.push_back("--out");
+    child.push_back(out_dir);
+  }
+  const size_t repetitions = size_t(std::max(1, job.repetitions));
+  const std::string journal_path = (std::filesystem::path(out_dir) / kJournalFile).string();
+  int interrupted_by = 0;
+  for (size_t round = 0; round < repetitions && !interrupted_by; ++round) {
+    for (size_t i = 0; i < job.configurations.size() && !interrupted_by; ++i) {
+      const std::string id = job.configurations[i].config.id();
+      const FolderProgress progress = folder_progress(read_journal(journal_path), job.redo_failed, out_dir);
+      if (progress.finished.count(id)) continue;
+      const auto partial = progress.partial.find(id);
+      if (partial != progress.partial.end() && partial->second.size() > round) continue;
+      if ((interrupted_by = stop_signal())) break;
+      std::vector<std::string> argv = child;
+      argv.push_back("--step");
+      argv.push_back(id);
+      log << std::flush;
+      const ProcessResult result = run_process(argv, false, true);
+      if (!result.started) throw UserError("--isolation process: cannot start " + program + ": " + result.output);
+      if (result.status > kExitInterruptedBase) interrupted_by = result.status - kExitInterruptedBase;
+      else if (result.status != kExitOk && result.status != kExitSomeFailed) {
+        log << "ldmbench: the child measuring " << id << " exited " << result.status << "\n";
+        return result.status == kExitUsage ? kExitUsage : kExitFailure;
+      }
+    }
+  }
+  if (!interrupted_by) interrupted_by = stop_signal();
+  const FolderProgress done = folder_progress(read_journal(journal_path), false, out_dir);
+  return finish_run(done.records, job.configurations.size(), interrupted_by, out_dir, job.report_hint, log);
+}
+
+}  // namespace
+
+std::map<std::string, size_t> recorded_repetitions(const std::string& out_dir, size_t repetitions) {
+  const FolderProgress p =
+      folder_progress(read_journal((std::filesystem::path(out_dir) / kJournalFile).string()), false, out_dir);
+  std::map<std::string, size_t> out;
+  for (const auto& id : p.finished) out[id] = repetitions;
+  for (const auto& [id, reps] : p.partial) out[id] = reps.size();
+  return out;
+}
+
+int run_configurations(const ConfigurationRun& job, const std::string& command_line, std::ostream& log) {
+  const std::string out_dir = default_out_dir(job.out_dir);
+  if (job.isolation == RepetitionIsolation::Process && job.step.empty())
+    return drive_repetition_processes(job, command_line, out_dir, log);
+  const RunFolderPlan plan = plan_run_folder(out_dir, job.sweep_key, job.overwrite);
+  const size_t repetitions = size_t(std::max(1, job.repetitions));
+  // A step (one repetition, in a child) says only what it measured: its parent has the rest.
+  const bool stepping = !job.step.empty();
+  std::ostringstream discarded;
+  std::ostream& detail = stepping ? discarded : log;
+  if (stepping && std::none_of(job.configurations.begin(), job.configurations.end(),
+                               [&](const PlannedConfiguration& p) { return p.config.id() == job.step; }))
+    throw UserError("--step " + job.step + ": no such configuration in this sweep");
+
+  auto context = HeadlessContext::create(job.context);
+  const DeviceInfo device = context->device();
+  detail << "device: " << device.gl_renderer << " (" << device.gl_version << ", EGL "
+         << device.egl_platform << ")\n";
+
+  const MeasurementPaths paths{out_dir, (std::filesystem::path(out_dir) / "images").string()};
+  prepare_run_folder(out_dir, plan);
+  const std::string csv_path = (std::filesystem::path(out_dir) / "records.csv").string();
+  const std::string json_path = (std::filesystem::path(out_dir) / "records.json").string();
+  RecordJournal journal((std::filesystem::path(out_dir) / kJournalFile).string());
+  install_stop_handlers();
+
+  FolderProgress state = folder_progress(plan.previous, job.redo_failed, out_dir);
+  std::vector<Record>& records = state.records;
+  std::set<std::string>& finished = state.finished;
+  std::map<std::string, std::vector<Record>>& partial = state.partial;
+
+  Record run;
+  run.set("command", command_line);
+  run.set("sweep_key", job.sweep_key);
+  run.set("started", timestamp("%Y-%m-%dT%H:%M:%S%z"));
+  run.set("device", device.gl_renderer);
+  run.set("gl_version", device.gl_version);
+  run.set("egl_platform", device.egl_platform);
+  run.set("git_commit", git_commit());
+  run.set("ldmbench_version", ldmbench_version());
+  run.set("repetitions", uint64_t(repetitions));
+  run.set("isolation", repetition_isolation_name(job.isolation));
+  run.set("resumed_records", uint64_t(records.size()));
+  if (state.partial_repetitions) run.set("resumed_repetitions", uint64_t(state.partial_repetitions));
+  for (const auto& [key, value] : job.metadata.fields()) run.put(key, value);
+  journal.append_run(run);
+  if (!plan.previous.records.empty() || state.partial_repetitions) {
+    detail << "resuming: " << records.size() << " configuration(s) already recorded in "
+           << out_dir << "/" << kJournalFile;
+    if (state.partial_repetitions)
+      detail << ", " << state.partial_repetitions << " repetition(s) of unfinished ones";
+    if (!state.redone.empty()) detail << " (" << state.redone.size() << " failed one(s) to redo)";
+    detail << "\n";
+    write_records(csv_path, json_path, records, run);  // re-derived: consistent after any kill
+  }
+
+  const auto& configurations = job.configurations;
+  size_t to_measure = 0;
+  for (const auto& planned : configurations)
+    if (!finished.count(planned.config.id()))
+      to_measure += repetitions - std::min(repetitions, partial[planned.config.id()].size());
+  SweepProgress progress(to_measure, SweepProgress::stderr_if_terminal());
+  int interrupted_by = 0;
+
+  // The record of a finished configuration: journaled (durable before the tables change),
+  // in the tables (a redone configuration takes its failed record's place).
+  auto finish = [&](Record record) {
+    journal.append_record(record);
+    const std::string id = config_id_of(record);
+    const auto same = std::find_if(records.begin(), records.end(),
+                                   [&](const Record& r) { return config_id_of(r) == id; });
+    if (same != records.end())
+      *same = std::move(record);
+    else
+      records.push_back(std::move(record));
+    finished.insert(id);
+    run.set("finished", timestamp("%Y-%m-%dT%H:%M:%S%z"));
+    write_records(csv_path, json_path, records, run);
+  };
+
+  // Round robin: repetition 1 of every configuration, then repetition 2, ... Each round
+  // after the first runs in a fresh GL context, so that no repetition shares another's.
+  bool stepped = false;  // a step measures one repetition, then stops
+  for (size_t round = 0; round < repetitions && !interrupted_by && !stepped; ++round) {
+    bool context_used = round == 0 || stepping;  // a step's process is fresh already
+    for (size_t i = 0; i < configurations.size() && !interrupted_by; ++i) {
+      const Configuration& config = configurations[i].config;
+      const RunSettings& settings = configurations[i].settings;
+      const std::string id = config.id();
+      if (finished.count(id) || (stepping && id != job.step)) continue;
+      std::vector<Record>& reps = partial[id];
+      if (reps.size() > round) continue;  // this round's repetition is already journaled
+      if ((interrupted_by = stop_signal())) break;
+      if (!context_used) {
+        context.reset();  // the old context goes before the new one is made current
+        context = HeadlessContext::create(job.context);
+        context_used = true;
+      }
+      const Repetition repetition{reps.size(), repetitions};
+      stepped = stepping;
+      // With the bar on a terminal, the bar shows the configuration in flight and its line
+      // is printed whole when it ends; otherwise (logs, pipes) the line starts at once.
+      std::ostringstream prefix_text;
+      prefix_text << "[" << i + 1 << "/" << configurations.size() << "] " << id;
+      if (repetitions > 1) prefix_text << " (repetition " << repetition.index + 1 << "/" << repetitions << ")";
+      prefix_text << " ... ";
+      const std::string prefix = prefix_text.str();
+      if (progress.active())
+        progress.show(id);
+      else
+        log << prefix << std::flush;
+      auto begin_line = [&] {
+        if (!progress.active()) return;
+        progress.erase();
+        log << prefix;
+      };
+      Record record;
+      bool failed = false;
+      const auto started = std::chrono::steady_clock::now();
+      try {
+        record = measure_configuration(job.scenes->at(config.scene), config, settings, device,
+                                       paths, repetition);
+      } catch (const Interrupted& e) {
+        // Abandoned cleanly: no record, no images; a rerun of the same command measures it.
+        if (repetition.index == 0) remove_configuration_images(paths.images_dir, id + "-" + config.pass);
+        begin_line();
+        log << "abandoned (" << e.what() << ")\n";
+        interrupted_by = e.signal();
+        break;
+      } catch (const std::exception& e) {
+        record = Record();
+        describe_configuration(record, config, settings, device);
+        record.set("status", "failed");
+        std::ostringstream why;
+        if (repetitions > 1) why << "repetition " << repetition.index + 1 << ": ";
+        why << e.what();
+        record.set("status_detail", why.str());
+        failed = true;
+      }
+      const double seconds =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+      record.set("wall_seconds", seconds);
+      const std::string status = status_of(record);
+      begin_line();
+      log << status << timed_sums(record);
+      if (status != "ok") log << "  (" << std::get<std::string>(*record.get("status_detail")) << ")";
+      log << "\n" << std::flush;
+      progress.finished_one();
+      if (repetitions == 1 || failed) {
+        if (failed) {
+          remove_repetition_samples(reps, out_dir);
+          progress.skip(repetitions - 1 - repetition.index);  // its later repetitions
+        }
+        finish(std::move(record));
+        continue;
+      }
+      journal.append_repetition(record);
+      reps.push_back(std::move(record));
+      if (reps.size() < repetitions) continue;
+      // The last repetition: one record of all of them, their frames in one samples file.
+      Record combined = combine_repetitions(reps, out_dir, settings.precision);
+      const OutputFolder samples(out_dir, (std::filesystem::path(out_dir) / "samples").string());
+      combined.set("frame_samples_csv", samples.write_text(samples_file_name(id, {}),
+                                                           combined_samples_csv(reps, out_dir)));
+      log << "    " << id << ": " << repetitions << " repetitions, " << status_of(combined)
+          << timed_sums(combined) << "\n";
+      finish(std::move(combined));
+      remove_repetition_samples(reps, out_dir);
+    }
+  }
+  progress.erase();
+  if (records.empty()) write_records(csv_path, json_path, records, run);
+  if (stepping) return interrupted_by ? kExitInterruptedBase + interrupted_by : kExitOk;
+  return finish_run(records, configurations.size(), interrupted_by, out_dir, job.report_hint, log);
 }
 
 }  // namespace ldm

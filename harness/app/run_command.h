@@ -14,6 +14,7 @@ namespace ldm {
 constexpr int kExitOk = 0;              // every configuration measured (ok or lossy)
 constexpr int kExitUsage = 2;           // bad options or input: nothing was run or written
 constexpr int kExitSomeFailed = 3;      // the sweep finished; some records are failed/invalid
+constexpr int kExitFailure = 1;         // an error that is not the input's (a child process died, ...)
 // Stopped by SIGINT or SIGTERM: 128 + the signal (130, 143), as a shell reports a process
 // killed by it. Every finished configuration is recorded; the one in flight was abandoned
 // (no record, no images); the same command resumes.
@@ -34,6 +35,12 @@ struct ConfigurationRun {
   std::string out_dir;  // empty: results/runs/<timestamp>
   bool overwrite = false;
   bool redo_failed = false;  // measure again what the folder holds as failed
+  int repetitions = 1;       // of every configuration, round robin (harness/app/repetitions.h)
+  RepetitionIsolation isolation = RepetitionIsolation::Context;
+  // The command's own arguments (after the program), which a child process of
+  // --isolation process repeats with --step ID.
+  std::vector<std::string> arguments;
+  std::string step;  // measure only the next repetition of this configuration, quietly
   ContextOptions context;
   std::string sweep_key;  // identity of the sweep for resuming (records/run_folder.h)
   Record metadata;        // extra fields of the journal's run entries (sweep file, shard)
@@ -59,7 +66,22 @@ std::string sweep_key(const std::vector<std::string>& parts, const std::map<std:
 // records.json are re-derived from the records. A configuration that throws becomes a
 // "failed" record and the sweep goes on. An --out folder holding the same sweep resumes it
 // (records/run_folder.h). `command_line` is stored in the run metadata.
-int run_benchmark(const RunSettings& settings, const std::string& command_line, std::ostream& log);
+// `arguments` are the command's own (argv after the program), for resuming and for child
+// processes; `command_line` the whole of it, for the records.
+int run_benchmark(const RunSettings& settings, const std::string& command_line,
+                  const std::vector<std::string>& arguments, std::ostream& log);
+
+// The arguments of a command line that identify a sweep of `ldmbench run` (without the
+// program, --out, --overwrite, --redo-failed, --step and --interleaved-session).
+std::vector<std::string> run_key_parts(const std::vector<std::string>& arguments);
+
+// How many repetitions of each configuration the run folder holds: a configuration with a
+// record (finished, failed included) counts `repetitions`; one in progress, those journaled.
+std::map<std::string, size_t> recorded_repetitions(const std::string& out_dir, size_t repetitions);
+
+// One line per configuration, "index<TAB>id<TAB>WxH<TAB>F+W frames", then a count: what
+// --dry-run prints (and `ldmbench interleave` reads back from each build).
+void list_configurations(const std::vector<PlannedConfiguration>& configurations, std::ostream& out);
 
 // The checks run_benchmark makes on every axis value before any GPU work (structures and
 // passes with their parameters, --param owners, the budget option); throws UserError.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
+#include <cstdlib>
 #include <functional>
 
 #include <nlohmann/json.hpp>
@@ -22,6 +23,15 @@ std::string joined(const std::vector<T>& values, Name name) {
   std::string out;
   for (const auto& v : values) out += (out.empty() ? "" : ",") + name(v);
   return out;
+}
+
+// The shortest text that reads back as the same double (0.03, not 0.029999999999999999).
+std::string shortest(double value) {
+  for (int digits = 1; digits < 17; ++digits) {
+    const std::string text = exact(value, digits);
+    if (std::strtod(text.c_str(), nullptr) == value) return text;
+  }
+  return exact(value, 17);
 }
 
 }  // namespace
@@ -70,6 +80,11 @@ std::string run_command_line(const RunSettings& s, const std::string& program,
       for (const auto& [key, value] : params) add("--param", owner + ":" + key + "=" + value);
   add("--frames", std::to_string(s.frames));
   add("--warmup", std::to_string(s.warmup));
+  add("--repetitions", std::to_string(s.repetitions));
+  add("--isolation", repetition_isolation_name(s.isolation));
+  add("--time-target", shortest(s.precision.target));
+  add("--time-cap", shortest(s.precision.cap_seconds));
+  add("--max-frames", std::to_string(s.precision.max_frames));
   add("--timer", s.timer);
   if (!s.reference.enabled) {
     line += " --no-reference";
@@ -133,7 +148,13 @@ std::string sweep_file_json(const RunSettings& s, const std::string& description
   json file = json::object();
   if (!description.empty()) file["description"] = description;
   file["axes"] = axes;
-  file["settings"] = {{"reference", reference}, {"images", s.write_images}, {"timer", s.timer}};
+  const json timing = {{"repetitions", s.repetitions},
+                       {"isolation", repetition_isolation_name(s.isolation)},
+                       {"target", s.precision.target},
+                       {"cap_s", s.precision.cap_seconds},
+                       {"max_frames", s.precision.max_frames}};
+  file["settings"] = {{"reference", reference}, {"images", s.write_images}, {"timer", s.timer},
+                      {"timing", timing}};
   return file.dump(2) + "\n";
 }
 

@@ -6,9 +6,20 @@
 #include <filesystem>
 
 #include "harness/passes/pass.h"
+#include "harness/scene/scene_loader.h"
 #include "harness/util/error.h"
 
 namespace ldm {
+
+const char* repetition_isolation_name(RepetitionIsolation isolation) {
+  return isolation == RepetitionIsolation::Process ? "process" : "context";
+}
+
+RepetitionIsolation parse_repetition_isolation(const std::string& name) {
+  if (name == "process") return RepetitionIsolation::Process;
+  if (name == "context") return RepetitionIsolation::Context;
+  throw UserError("--isolation: '" + name + "' is not context or process");
+}
 
 std::string visibility_name(Visibility v) {
   switch (v) {
@@ -19,7 +30,8 @@ std::string visibility_name(Visibility v) {
 }
 
 std::string Configuration::id() const {
-  std::string scene_name = std::filesystem::path(scene).stem().string();
+  // The scene's own name (a scene file's "name"), not its file name (issue 22).
+  std::string scene_name = scene_id_name(scene);
   // A pass that reads no LDM (structure none) has no N, R_LDM, trace or sizing: its id
   // names only what applies to it, scene-none-<pass>[-d..][-att][-k=v...].
   const bool ldm = structure != kNoStructure;
@@ -108,7 +120,21 @@ const std::map<std::string, std::string>& params_of(const RunSettings& s, const 
 
 }  // namespace
 
+// Two scenes known by one name would share configuration ids (and a journal would take one
+// for the other's finished configuration).
+void check_scene_names_are_distinct(const std::vector<std::string>& scenes) {
+  std::map<std::string, std::string> spec_of;
+  for (const auto& spec : scenes) {
+    const auto [it, added] = spec_of.emplace(scene_id_name(spec), spec);
+    if (!added && it->second != spec)
+      throw UserError("--scene: '" + it->second + "' and '" + spec + "' are both named '" +
+                      it->first + "', so their configurations would have the same ids; give one "
+                      "of them another \"name\"");
+  }
+}
+
 std::vector<Configuration> expand_configurations(const RunSettings& s) {
+  check_scene_names_are_distinct(s.scenes);
   std::vector<Configuration> out;
   const std::vector<std::optional<float>> d_values =
       s.d_max.empty() ? std::vector<std::optional<float>>{std::nullopt}

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "harness/gl/egl_context.h"
+#include "harness/measure/frame_stop_rule.h"
 #include "harness/reference/reference_settings.h"
 #include "harness/scene/ao_variants.h"
 #include "ldm_impls/common/sizing.h"
@@ -15,6 +16,12 @@
 namespace ldm {
 
 enum class Visibility { Scene, Attenuated, Unattenuated };
+
+// What keeps the repetitions of a configuration independent (harness/app/repetitions.h):
+// a fresh GL context per round in this process, or a process of its own per repetition.
+enum class RepetitionIsolation { Context, Process };
+const char* repetition_isolation_name(RepetitionIsolation isolation);
+RepetitionIsolation parse_repetition_isolation(const std::string& name);  // context | process
 
 struct RunSettings {
   // Axes.
@@ -37,11 +44,24 @@ struct RunSettings {
   // Shared.
   std::optional<float> normal_offset_pixels;  // empty: the scene's own
   int width = 256, height = 256;
+  // Measured frames: at least `frames` per repetition, more until `precision` is met
+  // (harness/measure/frame_stop_rule.h); warm-up frames before them are judged, not timed.
   int frames = 5, warmup = 2;
+  TimePrecision precision;
+  // Independent repetitions of every configuration, each in a fresh GL context, measured
+  // round robin over the configurations (harness/app/repetitions.h).
+  int repetitions = 1;
+  RepetitionIsolation isolation = RepetitionIsolation::Context;
   bool write_images = true;
   std::string out_dir;  // empty: results/runs/<timestamp>
   bool overwrite = false;  // replace another sweep's results in out_dir (else refuse)
   bool redo_failed = false;  // resuming: measure again what out_dir holds as failed
+  // Invocation, not measurement: measure only the next repetition of this configuration
+  // (a child of --isolation process or of `ldmbench interleave`), the session it belongs
+  // to, and listing the configurations instead of measuring them.
+  std::string step;
+  std::string interleaved_session;
+  bool dry_run = false;
   ContextOptions context = default_context_options();
   std::string timer = "auto";  // auto | gl_timestamp | fenced_wall_clock
   ReferenceSettings reference;

@@ -3,10 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <exception>
-#include <memory>
 
-#include "harness/passes/pass.h"
+#include "harness/app/timing_columns.h"
 
 namespace ldm {
 namespace {
@@ -34,24 +32,15 @@ std::string text(const Record& r, const std::string& key) {
   return s ? *s : "-";
 }
 
-// The summed medians of the pass's own sub-passes (AO: gbuffer + ao), "-" without them.
-std::string pass_ms(const Record& r) {
-  std::vector<TimedSubpass> subpasses;
-  try {
-    subpasses = make_pass(text(r, "pass"), StructureParams())->subpasses();
-  } catch (const std::exception&) {
-    return "-";
-  }
-  double total = 0;
-  bool any = false;
-  for (const auto& s : subpasses) {
-    double scratch = 0;
-    if (const double* ms = number(r, s.name + "_ms_median", &scratch)) {
-      total += *ms;
-      any = true;
-    }
-  }
-  return any ? four_digits(total) : "-";
+// A sum's median with its interval ("8.97 ±9.3%"), "-" when not timed.
+std::string time_cell(const Record& r, const std::string& subpass) {
+  double a = 0, b = 0, c = 0;
+  const double* median = number(r, subpass + "_ms_median", &a);
+  if (!median) return "-";
+  const double* low = number(r, subpass + "_ms_ci_low", &b);
+  const double* high = number(r, subpass + "_ms_ci_high", &c);
+  if (!low || !high) return four_digits(*median);
+  return format_time_with_interval(*median, *low, *high);
 }
 
 }  // namespace
@@ -74,8 +63,8 @@ std::string summary_table(const std::vector<Record>& records, size_t max_rows) {
   const size_t shown = std::min(records.size(), max_rows);
   for (size_t i = 0; i < shown; ++i) {
     const Record& r = records[i];
-    rows.push_back({text(r, "config_id"), text(r, "status"), cell(r, "build_ms_median"), pass_ms(r),
-                    cell(r, "frame_ms_median"), cell(r, "bytes_allocated", kMiB),
+    rows.push_back({text(r, "config_id"), text(r, "status"), time_cell(r, "build"), time_cell(r, "pass"),
+                    time_cell(r, "frame"), cell(r, "bytes_allocated", kMiB),
                     cell(r, "bytes_used", kMiB), cell(r, "mse"), cell(r, "mssim"),
                     cell(r, "mse_over_noise")});
   }

@@ -65,6 +65,14 @@ std::string resolve_scene(const std::string& spec, const fs::path& sweep_dir) {
 void apply_settings(const json& settings, RunSettings& s) {
   if (settings.contains("images")) s.write_images = settings["images"].get<bool>();
   if (settings.contains("timer")) s.timer = settings["timer"].get<std::string>();
+  if (settings.contains("timing")) {
+    const json& t = settings["timing"];
+    if (t.contains("repetitions")) s.repetitions = int(t["repetitions"].get<uint32_t>());
+    if (t.contains("isolation")) s.isolation = parse_repetition_isolation(t["isolation"].get<std::string>());
+    if (t.contains("target")) s.precision.target = t["target"].get<double>();
+    if (t.contains("cap_s")) s.precision.cap_seconds = t["cap_s"].get<double>();
+    if (t.contains("max_frames")) s.precision.max_frames = int(t["max_frames"].get<uint32_t>());
+  }
   if (settings.contains("reference")) {
     const json& r = settings["reference"];
     if (r.contains("enabled")) s.reference.enabled = r["enabled"].get<bool>();

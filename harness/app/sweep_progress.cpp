@@ -38,6 +38,8 @@ std::string SweepProgress::format(size_t done, size_t total, double elapsed) {
   return text;
 }
 
+void SweepProgress::skip(size_t count) { total_ -= std::min(count, total_ - std::min(total_, done_)); }
+
 void SweepProgress::finished_one() { ++done_; }
 
 void SweepProgress::show(const std::string& current) {

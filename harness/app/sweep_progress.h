@@ -18,7 +18,8 @@ class SweepProgress {
 
   bool active() const { return out_ != nullptr; }
   void show(const std::string& current);  // draws the bar and the configuration in flight
-  void finished_one();  // one more configuration done
+  void finished_one();  // one more configuration (or repetition of one) done
+  void skip(size_t count);  // `count` fewer to do (a failed configuration's other repetitions)
   void erase();         // clears the bar's line (before other output)
 
   // The bar's text for `done` of `total` after `elapsed` seconds (tests check it).

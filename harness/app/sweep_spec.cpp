@@ -249,8 +249,28 @@ void check_settings(const json& settings, const std::string& name) {
       if (value.contains("spp") && value.contains("max_spp") &&
           value["spp"].get<uint64_t>() > value["max_spp"].get<uint64_t>())
         fail(name, path + ".spp", "exceeds settings.reference.max_spp");
+    } else if (key == "timing") {
+      require_object(value, name, path);
+      for (const auto& [tkey, tvalue] : value.items()) {
+        const std::string tpath = path + "." + tkey;
+        if (tkey == "repetitions" || tkey == "max_frames") {
+          const double max = tkey == "repetitions" ? 1000 : 1000000;
+          if (!tvalue.is_number_unsigned() || tvalue.get<uint64_t>() < 1 || double(tvalue.get<uint64_t>()) > max)
+            fail(name, tpath, "expected an integer in [1, " + number_text(max) + "], got " + tvalue.dump());
+        } else if (tkey == "target" || tkey == "cap_s") {
+          const double max = tkey == "target" ? 1 : 86400;
+          const double v = tvalue.is_number() ? tvalue.get<double>() : -1;
+          if (!tvalue.is_number() || !(v >= 0) || v > max)
+            fail(name, tpath, "expected a number in [0, " + number_text(max) + "], got " + tvalue.dump());
+        } else if (tkey == "isolation") {
+          if (!tvalue.is_string() || (tvalue != "context" && tvalue != "process"))
+            fail(name, tpath, "expected \"context\" or \"process\", got " + tvalue.dump());
+        } else {
+          fail(name, tpath, "unknown key (known: repetitions, isolation, target, cap_s, max_frames)");
+        }
+      }
     } else {
-      fail(name, path, "unknown key (known: images, timer, reference, comment)");
+      fail(name, path, "unknown key (known: images, timer, reference, timing, comment)");
     }
   }
 }

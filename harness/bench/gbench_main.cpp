@@ -1,18 +1,29 @@
-// Google Benchmark front end: construction time of every structure and the time of each
-// sub-pass of every pass, per (scene, structure, pass, N, R_LDM), in Google Benchmark's
-// formats so that its compare.py tool works on the JSON (--benchmark_out=FILE
-// --benchmark_out_format=json). Each benchmark runs the frames of `ldmbench run` through
-// the same measure() (harness/app/measurement.h), one frame per iteration.
+// Google Benchmark front end: one benchmark per (pass, scene, structure, N, R_LDM), named
+// "<pass>/<scene>/<structure>/N:<n>/R:<r>" (unique per pass, so compare.py never pools two
+// passes), each running the frames of `ldmbench run` through the same measure()
+// (harness/app/measurement.h): --ldm_warmup frames judged and discarded, then exactly
+// --ldm_frames measured frames, one per iteration (fixed iterations).
 //
 // Each iteration is timed with ldmbench's own timer (GL timestamps on GPUs, a fenced wall
 // clock on software rasterisers; see harness/measure/gpu_timer.h) and reported as manual
-// time. Axes come from these flags, given before or among Google Benchmark's own:
+// time: Google Benchmark's time column is the *mean* frame time over the iterations. Every
+// sub-pass (and the sums build, pass, frame) is a counter holding the *median* over the
+// frames, in ms: what `ldmbench run` records. Repetitions are Google Benchmark's own
+// (--benchmark_repetitions=K with its mean/median/stddev/cv aggregates and compare.py's U
+// test over them); each repetition measures in a fresh GL context, as `ldmbench run
+// --repetitions` does. Axes come from these flags, given before or among Google
+// Benchmark's own:
 //   --ldm_scenes=cornell,atrium  --ldm_structures=all  --ldm_passes=all  --ldm_views=32
-//   --ldm_r=128  --ldm_width=256 --ldm_height=256
+//   --ldm_r=128  --ldm_width=256 --ldm_height=256  --ldm_frames=10  --ldm_warmup=2
 //   --ldm_param=STRUCTURE:KEY=VALUE (repeatable, as `ldmbench run --param`)
-// A configuration whose builds BuildHealth judges invalid (exactly those `ldmbench run`
-// records as "invalid") is reported as an error, not as a time; a lossy one is timed, with
-// its fragments_lost counter.
+// `ldmbench_gbench --help` lists them with Google Benchmark's flags. A configuration whose
+// builds BuildHealth judges invalid (exactly those `ldmbench run` records as "invalid") is
+// reported as an error, not as a time; a lossy one is timed, with its fragments_lost counter
+// (absent when nothing was lost, as is every counter that is 0).
+//
+// Debian's libbenchmark is built without NDEBUG and says "Library was built as DEBUG" in
+// its context: that is the harness library's build type only; ldmbench's own code is built
+// Release and the timed work runs on the GPU (or llvmpipe's threads), not in the library.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -27,6 +38,7 @@
 #include "harness/passes/pass.h"
 #include "harness/scene/scene_loader.h"
 #include "harness/util/error.h"
+#include "harness/util/version.h"
 
 namespace {
 
@@ -48,8 +60,24 @@ struct Axes {
   std::vector<uint32_t> views = {32};
   std::vector<uint32_t> resolutions = {128};
   int width = 256, height = 256;
+  int frames = 10, warmup = 2;
   std::map<std::string, std::map<std::string, std::string>> params;  // structure -> key -> value
 };
+
+constexpr const char* kLdmFlagsHelp =
+    "ldmbench_gbench: Google Benchmark over ldmbench's configurations.\n"
+    "ldmbench's own flags (before or among Google Benchmark's):\n"
+    "  --ldm_scenes=LIST       scenes (built-in names or scene files), default cornell,atrium\n"
+    "  --ldm_structures=LIST   structures, or all (default)\n"
+    "  --ldm_passes=LIST       passes that read a structure, or all (default)\n"
+    "  --ldm_views=LIST        N, default 32\n"
+    "  --ldm_r=LIST            R_LDM, default 128\n"
+    "  --ldm_width=W --ldm_height=H   image size, default 256x256\n"
+    "  --ldm_frames=F          measured frames per benchmark (its iterations), default 10\n"
+    "  --ldm_warmup=W          warm-up frames before them, default 2\n"
+    "  --ldm_param=S:K=V       a structure parameter, repeatable\n"
+    "Benchmarks are named <pass>/<scene>/<structure>/N:<n>/R:<r>; the time is the mean frame\n"
+    "time, the counters <subpass>_ms the medians. Google Benchmark's flags follow.\n\n";
 
 std::vector<std::string> split(const std::string& text) {
   std::vector<std::string> out;
@@ -91,6 +119,13 @@ Axes parse_axes(int* argc, char** argv) {
     else if (const char* v = value("--ldm_r")) axes.resolutions = split_numbers("--ldm_r", v);
     else if (const char* v = value("--ldm_width")) axes.width = int(split_numbers("--ldm_width", v).at(0));
     else if (const char* v = value("--ldm_height")) axes.height = int(split_numbers("--ldm_height", v).at(0));
+    else if (const char* v = value("--ldm_frames")) axes.frames = int(split_numbers("--ldm_frames", v).at(0));
+    else if (const char* v = value("--ldm_warmup")) {
+      const std::string text = v;
+      if (text.empty() || text.size() > 6 || text.find_first_not_of("0123456789") != std::string::npos)
+        throw UserError("--ldm_warmup: '" + text + "' is not a count in [0, 999999]");
+      axes.warmup = std::stoi(text);
+    }
     else if (const char* v = value("--ldm_param")) {
       const std::string text = v;
       const auto colon = text.find(':'), equals = text.find('=');
@@ -106,45 +141,47 @@ Axes parse_axes(int* argc, char** argv) {
   return axes;
 }
 
-HeadlessContext* g_context = nullptr;
+std::unique_ptr<HeadlessContext> g_context;
 
-// One benchmark times one sub-pass sum of the frame `ldmbench run` measures (raster
-// baseline, structure build, pass), through the same measure(): "build" (the structure's
-// sub-passes) or one of the pass's own. Every build is judged by the same BuildHealth, so a
-// configuration `ldmbench run` marks invalid is an error here, never a time.
+// One benchmark: a whole configuration's frames through the same measure() as `ldmbench
+// run`, every build judged by the same BuildHealth, so a configuration `ldmbench run` marks
+// invalid is an error here, never a time.
 void run_measurement(benchmark::State& state, const Scene* scene, std::string structure,
-                     std::map<std::string, std::string> params, std::string pass, std::string timed, uint32_t views, uint32_t resolution,
-                     int width, int height) {
+                     std::map<std::string, std::string> params, std::string pass, uint32_t views,
+                     uint32_t resolution, const Axes* axes) {
   try {
+    // A fresh context per run of the benchmark: Google Benchmark's repetitions are then
+    // independent the way `ldmbench run --repetitions` makes them.
+    g_context.reset();
+    g_context = HeadlessContext::create(default_context_options());
     MeasurementRequest request;
     request.structure = structure;
     request.structure_params = params;
     request.pass = pass;
     request.views = views;
     request.resolution = resolution;
-    request.width = width;
-    request.height = height;
-    request.warmup = 1;
+    request.width = axes->width;
+    request.height = axes->height;
+    request.warmup = axes->warmup;
+    request.frames = axes->frames;
     request.timer = default_timer_source(g_context->device().gl_renderer);
     request.keep_running = [&state] { return state.KeepRunning(); };
-    request.on_frame = [&state, &timed](const FrameTimes& times) {
+    request.on_frame = [&state](const FrameTimes& times) {
       for (const auto& [name, ms] : times)
-        if (name == timed) state.SetIterationTime(ms * 1e-3);
+        if (name == "frame") state.SetIterationTime(ms * 1e-3);
     };
     const Measurement m = measure(*scene, request);
     if (m.status == BuildStatus::Invalid) {
       state.SkipWithError(("invalid build: " + m.status_detail).c_str());
       return;
     }
+    // Counters that are 0 in every repetition are left out: Google Benchmark's cv aggregate
+    // of them is 0/0, which it writes as a NaN that is not JSON (compare.py then fails).
+    for (const TimingSummary& s : m.summaries())
+      if (s.median > 0) state.counters[s.subpass + "_ms"] = s.median;
     state.counters["fragments"] = double(m.census.fragments);
-    state.counters["fragments_lost"] = double(m.last_build.fragments_lost);
+    if (m.last_build.fragments_lost > 0) state.counters["fragments_lost"] = double(m.last_build.fragments_lost);
     state.counters["bytes_allocated"] = double(m.bytes_allocated());
-    if (timed == "build")
-      state.counters["fragments_per_second"] = benchmark::Counter(
-          double(m.census.fragments), benchmark::Counter::kIsIterationInvariantRate);
-    else
-      state.counters["pixels_per_second"] = benchmark::Counter(
-          double(width) * height, benchmark::Counter::kIsIterationInvariantRate);
     state.SetLabel(g_context->device().gl_renderer);
   } catch (const std::exception& e) {
     state.SkipWithError(e.what());
@@ -154,6 +191,8 @@ void run_measurement(benchmark::State& state, const Scene* scene, std::string st
 }  // namespace
 
 int main(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i)
+    if (std::string(argv[i]) == "--help" || std::string(argv[i]) == "-h") std::cout << kLdmFlagsHelp;
   Axes axes;
   std::map<std::string, Scene> scenes;
   try {
@@ -174,31 +213,31 @@ int main(int argc, char** argv) {
   }
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;
-  const auto context = HeadlessContext::create(default_context_options());
-  g_context = context.get();
-  benchmark::AddCustomContext("gl_renderer", context->device().gl_renderer);
-  benchmark::AddCustomContext("gl_version", context->device().gl_version);
-  benchmark::AddCustomContext("timer", timer_source_name(default_timer_source(context->device().gl_renderer)));
+  g_context = HeadlessContext::create(default_context_options());
+  const DeviceInfo device = g_context->device();
+  benchmark::AddCustomContext("gl_renderer", device.gl_renderer);
+  benchmark::AddCustomContext("gl_version", device.gl_version);
+  benchmark::AddCustomContext("timer", timer_source_name(default_timer_source(device.gl_renderer)));
+  benchmark::AddCustomContext("ldmbench_version", ldmbench_version());
+  benchmark::AddCustomContext("git_commit", git_commit());
+  benchmark::AddCustomContext("ldm_frames", std::to_string(axes.frames));
+  benchmark::AddCustomContext("ldm_warmup", std::to_string(axes.warmup));
+  benchmark::AddCustomContext("ldm_image", std::to_string(axes.width) + "x" + std::to_string(axes.height));
   for (const auto& scene : axes.scenes)
     for (const auto& structure : axes.structures)
       for (const auto& pass : axes.passes)
         for (uint32_t n : axes.views)
           for (uint32_t r : axes.resolutions) {
-            const std::string suffix = "/" + scene + "/" + structure + "/N:" + std::to_string(n) +
-                                       "/R:" + std::to_string(r);
-            // "build" and each sub-pass the pass declares, e.g. Build/..., ao:gbuffer/...
-            std::vector<std::pair<std::string, std::string>> timed = {{"Build", "build"}};
-            for (const auto& s : make_pass(pass, StructureParams())->subpasses())
-              if (s.every_frame) timed.emplace_back(pass + ":" + s.name, s.name);
-            for (const auto& [label, subpass] : timed)
-              benchmark::RegisterBenchmark((label + suffix).c_str(), run_measurement,
-                                           &scenes.at(scene), structure, axes.params[structure],
-                                           pass, subpass, n, r,
-                                           axes.width, axes.height)
-                  ->UseManualTime()
-                  ->Unit(benchmark::kMillisecond);
+            const std::string name = pass + "/" + scene + "/" + structure + "/N:" + std::to_string(n) +
+                                     "/R:" + std::to_string(r);
+            benchmark::RegisterBenchmark(name.c_str(), run_measurement, &scenes.at(scene), structure,
+                                         axes.params[structure], pass, n, r, &axes)
+                ->UseManualTime()
+                ->Iterations(axes.frames)
+                ->Unit(benchmark::kMillisecond);
           }
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
+  g_context.reset();
   return 0;
 }

@@ -4,16 +4,22 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace ldm::cli {
 
 using Runner = std::function<int()>;  // returns the process exit status
 
-Runner add_run_command(CLI::App& app, const std::string& command_line);
+// `arguments` are argv after the program: a child process (--isolation process) repeats them.
+Runner add_run_command(CLI::App& app, const std::string& command_line,
+                       const std::vector<std::string>& arguments);
 // CLI11 silently drops the empty item of "-N 4,,8"; its intended value is unknown, so the
 // comma lists of `run` are checked on the raw arguments first. Throws UserError.
 void reject_empty_list_items(int argc, const char* const* argv);
-Runner add_sweep_command(CLI::App& app, const std::string& command_line);  // ldmbench sweep FILE
+Runner add_sweep_command(CLI::App& app, const std::string& command_line,
+                         const std::vector<std::string>& arguments);  // ldmbench sweep FILE
+// ldmbench interleave: two builds alternately on one sweep (harness/app/interleaved_session.h)
+Runner add_interleave_command(CLI::App& app);
 Runner add_merge_command(CLI::App& app, const std::string& command_line);  // ldmbench merge OUT RUN...
 Runner add_reference_command(CLI::App& app);
 Runner add_report_command(CLI::App& app);  // ldmbench report RUN... (plots, pages)

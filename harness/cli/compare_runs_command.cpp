@@ -45,8 +45,9 @@ std::vector<std::string> fail_on_kinds(const std::string& text) {
 Runner add_compare_runs_command(CLI::App& app) {
   auto o = std::make_shared<CompareRunsOptions>();
   auto* cmd = app.add_subcommand(
-      "compare", "Compare two runs configuration by configuration: time (Mann-Whitney U over "
-                 "the frames), memory, accuracy against the reference noise, status");
+      "compare", "Compare two runs configuration by configuration: time (on the repetitions' "
+                 "medians, Holm-corrected, with the minimum detectable change), memory, accuracy "
+                 "against the reference noise, status");
   cmd->add_option("base", o->base, "The baseline: a run folder or its records.json")->required();
   cmd->add_option("new", o->next, "The run to judge: a run folder or its records.json")->required();
   cmd->add_option("--fail-on", o->fail_on,
@@ -57,12 +58,25 @@ Runner add_compare_runs_command(CLI::App& app) {
                   "Sub-passes whose per-frame times are compared (from the frame_samples_csv files)")
       ->delimiter(',')
       ->capture_default_str();
-  cmd->add_option("--alpha", o->thresholds.alpha, "Significance level of the U test")
+  cmd->add_option("--alpha", o->thresholds.alpha,
+                  "Family-wise significance level of the time tests: Holm's correction over "
+                  "every configuration and sub-pass keeps the chance of any false FAST/SLOW "
+                  "below it")
       ->check(CLI::Range(1e-9, 0.5))
       ->capture_default_str();
+  cmd->add_option("--power", o->thresholds.power,
+                  "Power at which each test's minimum detectable change is reported")
+      ->check(CLI::Range(0.5, 0.999))
+      ->capture_default_str();
   cmd->add_option("--min-time-change", o->thresholds.min_time_change,
-                  "Relative change of the median time FAST or SLOW needs (0.05: 5%)")
+                  "Relative time change of interest (0.05: 5%): FAST or SLOW need at least "
+                  "this and the test's minimum detectable change")
       ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--process-spread", o->thresholds.process_spread,
+                  "Assumed relative standard deviation between two processes' medians, for a "
+                  "run measured with one repetition (which cannot show it)")
+      ->check(CLI::Range(0.0, 10.0))
       ->capture_default_str();
   cmd->add_option("--memory-tolerance", o->thresholds.memory_tolerance,
                   "Relative growth of bytes_allocated/bytes_used allowed (0: exact)")
@@ -73,8 +87,11 @@ Runner add_compare_runs_command(CLI::App& app) {
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   cmd->add_option("--ignore-param", o->ignored_params,
-                  "Leave this structure parameter out of the identity, to compare two values "
-                  "of it as one configuration (repeatable)");
+                  "Leave this structure parameter (or n_views, r_ldm) out of the identity, to "
+                  "compare two values of it as one configuration (repeatable)");
+  cmd->add_flag("!--no-time", o->thresholds.compare_time,
+                "Compare no times (memory, accuracy and status only): what the CI guard does, "
+                "since a CI machine's times say nothing about a change");
   cmd->add_flag("--json", o->json, "Print the comparison as JSON instead of a table");
   return [o]() {
     const std::vector<std::string> fail_on = fail_on_kinds(o->fail_on);

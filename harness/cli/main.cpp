@@ -6,6 +6,7 @@
 //   ldmbench compare-images  error metrics between two images
 //   ldmbench report          tables, plots and pages from runs (scripts/report/)
 //   ldmbench compare         regressions between two runs (time, memory, accuracy, status)
+//   ldmbench interleave      two builds measured alternately on one sweep, then compared
 //   ldmbench view            interactive viewer of one configuration (GLFW, Dear ImGui)
 //   ldmbench scenes | structures | passes | columns | info
 #include <CLI/CLI.hpp>
@@ -20,12 +21,14 @@
 int main(int argc, char** argv) {
   std::string command_line;
   for (int i = 0; i < argc; ++i) command_line += (i ? " " : "") + std::string(argv[i]);
+  const std::vector<std::string> arguments(argv + 1, argv + argc);  // for child processes
 
   CLI::App app{"ldmbench: benchmark layered-depth-map structures on the GPU"};
   app.require_subcommand(1);
   std::map<std::string, ldm::cli::Runner> runners = {
-      {"run", ldm::cli::add_run_command(app, command_line)},
-      {"sweep", ldm::cli::add_sweep_command(app, command_line)},
+      {"run", ldm::cli::add_run_command(app, command_line, arguments)},
+      {"sweep", ldm::cli::add_sweep_command(app, command_line, arguments)},
+      {"interleave", ldm::cli::add_interleave_command(app)},
       {"merge", ldm::cli::add_merge_command(app, command_line)},
       {"reference", ldm::cli::add_reference_command(app)},
       {"compare-images", ldm::cli::add_compare_command(app)},

@@ -155,8 +155,34 @@ void add_run_options(CLI::App* run, RunOptions* o) {
   o->normal_offset_option = run->add_option("--normal-offset", o->normal_offset,
                   "Normal offset of thesis §4.4.2 in LDM pixels (default: the scene's; 0 = off)")
       ->check(CLI::Range(0.0f, 1000.0f));
-  run->add_option("--frames", s.frames, "Measured frames per configuration (median reported)")
+  run->add_option("--frames", s.frames,
+                  "Measured frames per repetition, at least (more until --time-target is met)")
       ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  run->add_option("--time-target", s.precision.target,
+                  "Measure frames until the 95% interval of the median (order statistics) is "
+                  "within this relative half-width for build and frame (0.03: +-3%), or "
+                  "--time-cap; 0: exactly --frames")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  run->add_option("--time-cap", s.precision.cap_seconds,
+                  "Seconds of measured frames per repetition after which it stops, target "
+                  "met or not (a miss is a warning in status_detail)")
+      ->check(CLI::Range(0.0, 86400.0))
+      ->capture_default_str();
+  run->add_option("--max-frames", s.precision.max_frames, "Measured frames per repetition, at most")
+      ->check(CLI::Range(1, 1000000))
+      ->capture_default_str();
+  run->add_option("--isolation", o->isolation,
+                  "What keeps repetitions independent: context (a fresh GL context per round, "
+                  "in this process) or process (a process of its own per repetition)")
+      ->check(CLI::IsMember({"context", "process"}))
+      ->capture_default_str();
+  run->add_option("--repetitions", s.repetitions,
+                  "Independent repetitions of every configuration, each in a fresh GL context, "
+                  "round robin over the configurations; the record's interval is then over the "
+                  "repetitions (what `ldmbench compare` needs to judge time)")
+      ->check(CLI::Range(1, 1000))
       ->capture_default_str();
   run->add_option("--warmup", s.warmup, "Warm-up frames discarded before measuring")
       ->check(CLI::Range(0, 100000))
@@ -229,20 +255,30 @@ RunSettings run_settings_from(RunOptions* o) {
       for (const auto& name : o->sizing) settings.sizing.push_back(parse_sizing_policy(name));
     }
     settings.context.platform = parse_egl_platform(o->platform);
+    settings.isolation = parse_repetition_isolation(o->isolation);
     if (settings.structures.size() == 1 && settings.structures[0] == "all")
       settings.structures = structure_names();
   }
   return o->settings;
 }
 
-Runner add_run_command(CLI::App& app, const std::string& command_line) {
+Runner add_run_command(CLI::App& app, const std::string& command_line,
+                       const std::vector<std::string>& arguments) {
   auto o = std::make_shared<RunOptions>();
   auto* run = app.add_subcommand(
       "run", "Measure every combination of the given axes (comma lists); write records.csv, "
              "records.json and images");
   add_run_options(run, o.get());
-  return [o, command_line]() {
-    return run_benchmark(run_settings_from(o.get()), command_line, std::cout);
+  RunSettings& s = o->settings;
+  run->add_option("--step", s.step,
+                  "Measure only the next repetition of this configuration id and stop (what "
+                  "--isolation process and `ldmbench interleave` run in each child)");
+  run->add_option("--interleaved-session", s.interleaved_session,
+                  "The `ldmbench interleave` session this run belongs to (recorded; compare "
+                  "pairs the repetitions of two runs of one session)");
+  run->add_flag("--dry-run", s.dry_run, "List the configurations (index, id, image size, frames) and write nothing");
+  return [o, command_line, arguments]() {
+    return run_benchmark(run_settings_from(o.get()), command_line, arguments, std::cout);
   };
 }
 

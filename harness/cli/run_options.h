@@ -14,6 +14,7 @@ struct RunOptions {
   RunSettings settings;
   std::vector<std::string> params, visibility, traces, estimators, sizing;
   std::string platform = "auto";
+  std::string isolation = "context";
   float normal_offset = 0.0f;
   CLI::Option* normal_offset_option = nullptr;
 };

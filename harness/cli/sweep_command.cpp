@@ -12,6 +12,8 @@ namespace {
 
 struct SweepOptions {
   std::string file, out_dir, shard = "0/1", cache_dir, platform = "auto";
+  std::string isolation, step, interleaved_session;
+  int repetitions = 0;  // 0: the file's (settings.timing.repetitions)
   bool overwrite = false, redo_failed = false, dry_run = false, gl_debug = false;
 };
 
@@ -32,7 +34,8 @@ void list_configurations(const SweepPlan& plan, const Shard& shard, std::ostream
 
 }  // namespace
 
-Runner add_sweep_command(CLI::App& app, const std::string& command_line) {
+Runner add_sweep_command(CLI::App& app, const std::string& command_line,
+                         const std::vector<std::string>& arguments) {
   auto o = std::make_shared<SweepOptions>();
   auto* sweep = app.add_subcommand(
       "sweep", "Measure the configurations of a sweep file (README \"Sweep files\"): resumable, "
@@ -57,8 +60,21 @@ Runner add_sweep_command(CLI::App& app, const std::string& command_line) {
       ->check(CLI::IsMember({"auto", "device", "surfaceless"}))
       ->capture_default_str();
   sweep->add_flag("--gl-debug", o->gl_debug, "Print OpenGL debug messages");
+  sweep->add_option("--repetitions", o->repetitions,
+                    "Independent repetitions of every configuration (default: the file's "
+                    "settings.timing.repetitions, else 1)")
+      ->check(CLI::Range(1, 1000));
+  sweep->add_option("--isolation", o->isolation,
+                    "What keeps repetitions independent: context or process (default: the file's, "
+                    "else context)")
+      ->check(CLI::IsMember({"context", "process"}));
+  sweep->add_option("--step", o->step,
+                    "Measure only the next repetition of this configuration id and stop (the "
+                    "children of --isolation process and `ldmbench interleave`)");
+  sweep->add_option("--interleaved-session", o->interleaved_session,
+                    "The `ldmbench interleave` session this run belongs to (recorded)");
 
-  return [o, command_line]() {
+  return [o, command_line, arguments]() {
     const Shard shard = parse_shard(o->shard);
     RunSettings base;
     base.reference.cache_dir = o->cache_dir;
@@ -79,10 +95,20 @@ Runner add_sweep_command(CLI::App& app, const std::string& command_line) {
     run.out_dir = o->out_dir;
     run.overwrite = o->overwrite;
     run.redo_failed = o->redo_failed;
+    const RunSettings& first = plan.configurations.front().settings;
+    run.repetitions = o->repetitions ? o->repetitions : first.repetitions;
+    run.isolation = o->isolation.empty() ? first.isolation : parse_repetition_isolation(o->isolation);
+    run.arguments = arguments;
+    run.step = o->step;
+    if (!o->interleaved_session.empty()) run.metadata.set("interleaved_session", o->interleaved_session);
     run.context = default_context_options();
     run.context.platform = parse_egl_platform(o->platform);
     run.context.debug_output = o->gl_debug;
-    run.sweep_key = sweep_key({"sweep", plan.sweep_hash, "shard", shard.text()}, plan.scenes);
+    // Repetitions and isolation change what is measured: another sweep for resuming.
+    run.sweep_key = sweep_key({"sweep", plan.sweep_hash, "shard", shard.text(), "repetitions",
+                               std::to_string(run.repetitions), "isolation",
+                               repetition_isolation_name(run.isolation)},
+                              plan.scenes);
     run.metadata.set("sweep_file", o->file);
     run.metadata.set("sweep_hash", plan.sweep_hash);
     run.metadata.set("shard", shard.text());

@@ -6,11 +6,17 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
+#include <optional>
 #include <sstream>
 
-#include "harness/compare/mann_whitney.h"
+#include <boost/math/distributions/normal.hpp>
+#include <boost/math/distributions/students_t.hpp>
+
 #include "harness/compare/samples.h"
+#include "harness/stats/intervals.h"
+#include "harness/stats/time_tests.h"
 #include "harness/util/error.h"
 
 namespace ldm {
@@ -29,16 +35,29 @@ double number(const json& record, const std::string& key) {
   return it != record.end() && it->is_number() ? it->get<double>() : -1;
 }
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2;
+double boost_quantile_t(double df, double p) {
+  return boost::math::quantile(boost::math::students_t(df), p);
+}
+double boost_quantile_normal(double p) { return boost::math::quantile(boost::math::normal(), p); }
+
+// The id fragment of an identity axis other than a structure parameter that --ignore-param
+// may leave out: N and R_LDM ("-n<N>", "-r<R>"), so that a configuration measured at two
+// view counts pairs as one (the timing calibration's genuinely slower configuration).
+std::string axis_fragment(const json& record, const std::string& axis) {
+  const auto it = record.find(axis);
+  if (it == record.end() || !it->is_number_integer()) return "";
+  if (axis == "n_views") return "-n" + std::to_string(it->get<int64_t>());
+  if (axis == "r_ldm") return "-r" + std::to_string(it->get<int64_t>());
+  return "";
 }
 
 // config_id writes each structure parameter as "-key=value" with odd characters as '_'
-// (Configuration::id); leaving a parameter out of the identity removes that part.
+// (Configuration::id); leaving a parameter (or N, R_LDM) out of the identity removes that part.
 std::string identity_of(const json& record, const std::set<std::string>& ignored) {
   std::string id = text(record, "config_id");
+  std::vector<std::string> parts;
+  for (const char* axis : {"n_views", "r_ldm"})
+    if (ignored.count(axis)) parts.push_back(axis_fragment(record, axis));
   std::stringstream params(text(record, "structure_params"));
   for (std::string item; std::getline(params, item, ';');) {
     const size_t eq = item.find('=');
@@ -47,8 +66,18 @@ std::string identity_of(const json& record, const std::set<std::string>& ignored
     for (char& c : part)
       if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.' || c == '='))
         c = '_';
-    const size_t at = id.find(part);
-    if (at != std::string::npos) id.erase(at, part.size());
+    parts.push_back(part);
+  }
+  for (const std::string& part : parts) {
+    if (part.empty()) continue;
+    // A whole fragment: "-n16" must not cut "-n160".
+    for (size_t at = id.find(part); at != std::string::npos; at = id.find(part, at + 1)) {
+      const size_t end = at + part.size();
+      if (end == id.size() || id[end] == '-') {
+        id.erase(at, part.size());
+        break;
+      }
+    }
   }
   return id;
 }
@@ -60,58 +89,135 @@ int status_rank(const std::string& status) {
   return it == ranks.end() ? 3 : it->second;
 }
 
-TimeChange compare_time(const std::string& subpass, const std::vector<double>& a,
-                        const std::vector<double>& b, const CompareThresholds& t) {
+// One side's times of a sub-pass: the medians of its repetitions, its frames, and (one
+// repetition) the relative standard error of its median from the frames' interval.
+struct SideTimes {
+  std::vector<double> medians;
+  size_t frames = 0;
+  double frame_se = std::numeric_limits<double>::infinity();
+  double median = 0;  // of the medians: the record's
+};
+
+std::optional<SideTimes> side_times(const std::vector<TimingSeries>& repetitions, const std::string& subpass) {
+  SideTimes side;
+  for (const TimingSeries& r : repetitions) {
+    const std::vector<double>* values = r.find(subpass);
+    if (!values || values->empty()) return std::nullopt;
+    side.medians.push_back(median_of(*values));
+    side.frames += values->size();
+    if (repetitions.size() == 1) {
+      const Interval interval = median_interval(*values, kTimeConfidence);
+      side.frame_se = median_relative_se(side.medians.back(), interval.low, interval.high, interval.coverage);
+    }
+  }
+  if (side.medians.empty()) return std::nullopt;
+  side.median = median_of(side.medians);
+  return side;
+}
+
+// The test of one sub-pass (verdicts come later, once every test's p is Holm-corrected).
+TimeChange test_time(const std::string& subpass, const SideTimes& a, const SideTimes& b, bool paired,
+                     const CompareThresholds& t) {
   TimeChange c;
   c.subpass = subpass;
-  c.base_samples = a.size();
-  c.new_samples = b.size();
-  c.base_median = median(a);
-  c.new_median = median(b);
-  c.relative_change = c.base_median > 0 ? (c.new_median - c.base_median) / c.base_median : 0;
-  const bool large = std::fabs(c.relative_change) >= t.min_time_change;
-  if (std::min(a.size(), b.size()) < kUTestMinSamples) {
-    c.warning = "fewer than " + std::to_string(kUTestMinSamples) + " samples: not tested";
-    c.verdict = large ? "UNSURE" : "SAME";
+  c.base_repetitions = a.medians.size();
+  c.new_repetitions = b.medians.size();
+  c.base_samples = a.frames;
+  c.new_samples = b.frames;
+  c.base_median = a.median;
+  c.new_median = b.median;
+  const auto positive = [](const std::vector<double>& v) {
+    return std::all_of(v.begin(), v.end(), [](double x) { return x > 0; });
+  };
+  if (!positive(a.medians) || !positive(b.medians)) {
+    // A sub-pass that (nearly) never runs: no ratio to test.
+    c.relative_change = a.median > 0 ? b.median / a.median - 1 : 0;
+    c.warning = "a repetition's median is 0 ms: not tested";
     return c;
   }
-  if (std::min(a.size(), b.size()) < kUTestOptimalSamples)
-    c.warning = "fewer than " + std::to_string(kUTestOptimalSamples) +
-                " samples: the U test is weak, results may be unreliable";
-  c.p_value = mann_whitney_u(a, b).p_value;
-  const bool significant = c.p_value < t.alpha;
-  if (!large) c.verdict = "SAME";
-  else if (!significant) c.verdict = "UNSURE";
-  else c.verdict = c.relative_change > 0 ? "SLOW" : "FAST";
+  TimeTest test;
+  const size_t ka = a.medians.size(), kb = b.medians.size();
+  if (paired && ka == kb && ka >= 2) {
+    test = paired_log_t(a.medians, b.medians);
+  } else if (ka >= 2 && kb >= 2) {
+    test = welch_log_t(a.medians, b.medians);
+  } else {
+    // A side of one repetition cannot show its process offset: its frames' standard error
+    // plus an assumed spread (or the other side's measured one, if larger).
+    double spread = t.process_spread;
+    for (const SideTimes* other : {&a, &b})
+      if (other->medians.size() >= 2) spread = std::max(spread, log_moments(other->medians).stddev);
+    double variance = 0;
+    for (const SideTimes* side : {&a, &b}) {
+      if (side->medians.size() >= 2) {
+        const double s = log_moments(side->medians).stddev;
+        variance += s * s / double(side->medians.size());
+      } else {
+        variance += side->frame_se * side->frame_se + spread * spread;
+      }
+    }
+    test = log_z_test(std::log(b.median / a.median), std::sqrt(variance));
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "%s has one repetition: its verdict assumes independent frames plus a "
+                  "process-to-process spread of %.3g%% (--process-spread); measure with "
+                  "--repetitions 3 or more",
+                  ka < 2 && kb < 2 ? "each run" : ka < 2 ? "BASE" : "NEW", 100 * spread);
+    c.warning = text;
+  }
+  c.method = time_test_method_name(test.method);
+  c.relative_change = std::expm1(test.log_ratio);
+  c.p_value = test.p_value;
+  c.se = test.se;
+  c.df = test.df;
   return c;
 }
 
+// The verdict of a tested change once its corrected p value and MDE are known.
+void judge_time(TimeChange& c, const CompareThresholds& t) {
+  if (c.p_value < 0) {
+    c.verdict = std::fabs(c.relative_change) >= t.min_time_change ? "UNSURE" : "SAME";
+    return;
+  }
+  const double change = std::fabs(std::log1p(c.relative_change));
+  const double mde = std::log1p(c.minimum_detectable);
+  const double needed = std::max(std::log1p(t.min_time_change), mde);
+  if (c.p_adjusted < t.alpha && change >= needed)
+    c.verdict = c.relative_change > 0 ? "SLOW" : "FAST";
+  else if (change < needed)
+    c.verdict = "SAME";
+  else
+    c.verdict = "UNSURE";
+}
+
 // The record's per-frame samples; empty when it names none (failed, or an older run).
-FrameSamples samples_of(const RunRecords& run, const json& record) {
+std::vector<TimingSeries> samples_of(const RunRecords& run, const json& record) {
   const std::string file = text(record, "frame_samples_csv");
   if (file.empty()) return {};
   return load_frame_samples((std::filesystem::path(run.dir) / file).string());
 }
 
 void compare_pair(ConfigChange& c, const RunRecords& base, const json& a, const RunRecords& next,
-                  const json& b, bool same_device, const CompareThresholds& t) {
+                  const json& b, bool same_device, bool paired, const CompareThresholds& t) {
   c.new_status = text(b, "status");
   c.status_worse = status_rank(c.new_status) > status_rank(c.base_status);
 
   const std::string timer_a = text(a, "timer"), timer_b = text(b, "timer");
-  if (!same_device)
+  if (!t.compare_time)
+    c.time_note = "not compared (--no-time)";
+  else if (!same_device)
     c.time_note = "devices differ (" + text(a, "device") + " vs " + text(b, "device") + ")";
   else if (timer_a != timer_b)
     c.time_note = "timers differ (" + timer_a + " vs " + timer_b + ")";
   else {
-    const FrameSamples sa = samples_of(base, a), sb = samples_of(next, b);
+    const std::vector<TimingSeries> sa = samples_of(base, a), sb = samples_of(next, b);
     for (const std::string& subpass : t.time_subpasses) {
-      auto ia = sa.find(subpass), ib = sb.find(subpass);
-      if (ia == sa.end() || ib == sb.end()) {
+      const auto ta = side_times(sa, subpass), tb = side_times(sb, subpass);
+      if (!ta || !tb) {
         c.time_note += (c.time_note.empty() ? "" : ", ") + subpass + " samples not in both";
         continue;
       }
-      c.times.push_back(compare_time(subpass, ia->second, ib->second, t));
+      c.times.push_back(test_time(subpass, *ta, *tb, paired, t));
     }
   }
 
@@ -191,6 +297,10 @@ RunComparison compare_runs(const RunRecords& base, const RunRecords& next, const
                       (t.ignored_params.empty() ? "" : " (after --ignore-param)"));
     by_config[id].push_back(&r);
   }
+  // Two runs of one interleaved session (`ldmbench interleave`): repetition j of each was
+  // measured beside the other's, so their ratio cancels what the pair shared.
+  const std::string session_a = text(base.run, "interleaved_session"), session_b = text(next.run, "interleaved_session");
+  out.paired = !session_a.empty() && session_a == session_b;
   for (const json& a : base.records) {
     ConfigChange c;
     c.config_id = text(a, "config_id");
@@ -212,12 +322,38 @@ RunComparison compare_runs(const RunRecords& base, const RunRecords& next, const
       c.time_note = "not in NEW";
     } else {
       used.insert(b);
-      compare_pair(c, base, a, next, *b, same_device, t);
+      compare_pair(c, base, a, next, *b, same_device, out.paired, t);
     }
     out.matched.push_back(std::move(c));
   }
   for (const json& r : next.records)
     if (!used.count(&r)) out.added.push_back(identity_of(r, t.ignored_params));
+  // Holm over every time test at once (configurations x sub-passes); each test's MDE at
+  // alpha / tests, the level of Holm's first and strictest step.
+  std::vector<TimeChange*> tested;
+  std::vector<double> p_values;
+  for (ConfigChange& c : out.matched)
+    for (TimeChange& change : c.times)
+      if (change.p_value >= 0) {
+        tested.push_back(&change);
+        p_values.push_back(change.p_value);
+      }
+  out.time_tests = tested.size();
+  const std::vector<double> adjusted = holm_adjusted(p_values);
+  const double level = tested.empty() ? t.alpha : t.alpha / double(tested.size());
+  for (size_t i = 0; i < tested.size(); ++i) {
+    TimeChange& change = *tested[i];
+    change.p_adjusted = adjusted[i];
+    change.minimum_detectable = std::expm1(minimum_detectable_log_change(change.se, change.df, level, t.power));
+    const double z = std::isfinite(change.df)
+                         ? boost_quantile_t(change.df, 1 - t.alpha / 2)
+                         : boost_quantile_normal(1 - t.alpha / 2);
+    change.change_low = std::expm1(std::log1p(change.relative_change) - z * change.se);
+    change.change_high = std::expm1(std::log1p(change.relative_change) + z * change.se);
+  }
+  for (ConfigChange& c : out.matched)
+    for (TimeChange& change : c.times) judge_time(change, t);
+  if (out.paired) out.warnings.push_back("both runs are of interleaved session " + session_a + ": paired time tests");
   const std::string commit_a = text(base.run, "git_commit"), commit_b = text(next.run, "git_commit");
   if (!commit_a.empty() && commit_a == commit_b)
     out.warnings.push_back("both runs are of commit " + commit_a);
@@ -242,6 +378,22 @@ size_t count_regressions(const RunComparison& comparison, const std::string& kin
   });
 }
 
+std::string describe_time_change(const TimeChange& t) {
+  std::string out = t.subpass + " " + fixed(100 * t.relative_change, "%+.1f%%") + " " + t.verdict;
+  const double change = std::fabs(std::log1p(t.relative_change));
+  if (t.p_value < 0) return out + " (not tested)";
+  if (t.verdict == "SAME" && !(change >= std::log1p(t.minimum_detectable)))
+    return out + " (could not detect < " + percent_text(t.minimum_detectable) + ")";
+  if (t.verdict == "SAME") return out + " (below the change of interest)";
+  return out + fixed(t.p_adjusted, " (p=%.2g Holm)");
+}
+
+std::string percent_text(double relative) {
+  if (!std::isfinite(relative)) return "any change";
+  if (relative >= 10) return fixed(1 + relative, "x%.2g");  // beyond 1000%: as a ratio
+  return fixed(100 * relative, relative < 0.1 ? "%.1f%%" : "%.0f%%");
+}
+
 std::string comparison_table(const RunComparison& comparison) {
   std::vector<std::vector<std::string>> rows = {
       {"configuration", "status", "time", "memory MiB", "mse / noise", "mssim"}};
@@ -249,11 +401,7 @@ std::string comparison_table(const RunComparison& comparison) {
     std::string status = c.base_status == c.new_status ? c.new_status : c.base_status + " -> " + c.new_status;
     if (c.status_worse) status += " WORSE";
     std::string time;
-    for (const TimeChange& t : c.times) {
-      time += (time.empty() ? "" : ", ") + t.subpass + " " + fixed(100 * t.relative_change, "%+.1f%%") +
-              " " + t.verdict;
-      if (t.p_value >= 0) time += fixed(t.p_value, " (p=%.2g)");
-    }
+    for (const TimeChange& t : c.times) time += (time.empty() ? "" : ", ") + describe_time_change(t);
     if (!c.time_note.empty()) time += (time.empty() ? "" : "; ") + c.time_note;
     std::string memory = "-";
     if (!c.memory_verdict.empty())
@@ -283,6 +431,18 @@ std::string comparison_table(const RunComparison& comparison) {
     for (const TimeChange& t : c.times)
       if (!t.warning.empty() && warned.insert(t.warning).second) out += "warning: " + t.warning + "\n";
   for (const std::string& w : comparison.warnings) out += "warning: " + w + "\n";
+  std::vector<double> detectable;
+  for (const ConfigChange& c : comparison.matched)
+    for (const TimeChange& t : c.times)
+      if (t.p_value >= 0) detectable.push_back(t.minimum_detectable);
+  if (!detectable.empty()) {
+    std::sort(detectable.begin(), detectable.end());
+    out += "time: " + std::to_string(comparison.time_tests) +
+           " tests, Holm-corrected (the chance of any false FAST/SLOW at most alpha); "
+           "minimum detectable change per test: median " +
+           percent_text(detectable[detectable.size() / 2]) + ", best " + percent_text(detectable.front()) +
+           ", worst " + percent_text(detectable.back()) + "\n";
+  }
   out += "regressions:";
   for (const std::string& kind : regression_kinds())
     out += " " + kind + " " + std::to_string(count_regressions(comparison, kind));
@@ -295,6 +455,10 @@ nlohmann::ordered_json comparison_json(const RunComparison& comparison, const Co
   oj root;
   root["thresholds"] = {{"time_subpasses", t.time_subpasses},
                         {"alpha", t.alpha},
+                        {"compare_time", t.compare_time},
+                        {"multiplicity", "holm"},
+                        {"power", t.power},
+                        {"process_spread", t.process_spread},
                         {"min_time_change", t.min_time_change},
                         {"memory_tolerance", t.memory_tolerance},
                         {"noise_factor", t.noise_factor},
@@ -304,13 +468,21 @@ nlohmann::ordered_json comparison_json(const RunComparison& comparison, const Co
     oj times = oj::array();
     for (const TimeChange& x : c.times)
       times.push_back({{"subpass", x.subpass},
+                       {"method", x.method},
+                       {"base_repetitions", x.base_repetitions},
+                       {"new_repetitions", x.new_repetitions},
                        {"base_samples", x.base_samples},
                        {"new_samples", x.new_samples},
                        {"base_median_ms", x.base_median},
                        {"new_median_ms", x.new_median},
                        {"relative_change", x.relative_change},
+                       {"change_interval", x.p_value < 0 ? oj(nullptr) : oj::array({x.change_low, x.change_high})},
                        {"p_value", x.p_value < 0 ? oj(nullptr) : oj(x.p_value)},
+                       {"p_adjusted", x.p_adjusted < 0 ? oj(nullptr) : oj(x.p_adjusted)},
+                       {"minimum_detectable_change",
+                        x.p_value < 0 || !std::isfinite(x.minimum_detectable) ? oj(nullptr) : oj(x.minimum_detectable)},
                        {"verdict", x.verdict},
+                       {"summary", describe_time_change(x)},
                        {"warning", x.warning}});
     root["configurations"].push_back(
         {{"identity", c.identity}, {"config_id", c.config_id}, {"device", c.device},
@@ -323,6 +495,8 @@ nlohmann::ordered_json comparison_json(const RunComparison& comparison, const Co
                        {"ref_noise_mse", num(c.noise_mse)}, {"base_mssim", num(c.base_mssim)},
                        {"new_mssim", num(c.new_mssim)}, {"verdict", c.accuracy_verdict}}}});
   }
+  root["time_tests"] = comparison.time_tests;
+  root["paired"] = comparison.paired;
   root["only_in_new"] = comparison.added;
   root["warnings"] = comparison.warnings;
   oj counts;

@@ -2,10 +2,17 @@
 // `ldmbench compare BASE NEW`: what changed between two runs, configuration by configuration.
 // Configurations are matched by identity (config_id and device; a configuration found only
 // on another device is still matched, but its times are not compared). Per configuration:
-//   time      each chosen sub-pass's per-frame samples (the record's frame_samples_csv) under the
-//             Mann-Whitney U test; FAST/SLOW need significance AND a minimum relative change
-//             of the median (nvbench's rule), SAME is a change below that minimum, UNSURE a
-//             large change the samples cannot confirm. Refused across devices or timers.
+//   time      each chosen sub-pass, judged on the level that carries the variance
+//             (harness/stats/time_tests.h): the repetitions' medians (Welch's t on their
+//             logs; paired t when both runs come from one interleaved session), or, for a
+//             run of one repetition, its frames' median plus an assumed process-to-process
+//             spread (the frames of one process are not independent of its offset). Every
+//             p value is Holm-corrected over all the time tests of the comparison, and each
+//             test reports its minimum detectable change (MDE) at alpha / tests and the
+//             chosen power. FAST/SLOW need a corrected p < alpha and a change of at least
+//             max(--min-time-change, MDE); a change below the MDE is SAME ("could not detect
+//             < x%"); a change above both that the test cannot confirm is UNSURE. Refused
+//             across devices or timers.
 //   memory    bytes_allocated and bytes_used, exact.
 //   accuracy  the MSE change against the reference's noise floor (ref_noise_mse): a change
 //             smaller than the noise the reference itself carries is no change.
@@ -32,22 +39,36 @@ RunRecords load_run_records(const std::string& folder_or_file);
 
 struct CompareThresholds {
   std::vector<std::string> time_subpasses = {"build", "frame"};
-  double alpha = 0.05;            // significance level of the U test
-  double min_time_change = 0.05;  // relative change of the median FAST/SLOW needs
+  bool compare_time = true;  // false: times are not compared at all (the CI guard)
+  // Family-wise: the chance of any false FAST/SLOW among all the time tests (Holm).
+  double alpha = 0.05;
+  double power = 0.8;             // of the minimum detectable change
+  double min_time_change = 0.05;  // relative change of interest: smaller ones are SAME
+  // Assumed relative standard deviation between two processes' medians of the same work,
+  // for a run of one repetition (which cannot show it). Measured on the development machine
+  // (README "Timing verdicts"); a run with repetitions uses its own instead.
+  double process_spread = kDefaultProcessSpread;
   double memory_tolerance = 0;    // relative growth of bytes allowed before MORE
   double noise_factor = 1;        // MSE change allowed, in multiples of ref_noise_mse
   std::set<std::string> ignored_params;  // structure parameters left out of the identity
+  static constexpr double kDefaultProcessSpread = 0.10;
 };
 
 struct TimeChange {
   std::string subpass;
-  size_t base_samples = 0, new_samples = 0;
-  double base_median = 0, new_median = 0, relative_change = 0;
-  double p_value = -1;  // -1: not tested
-  std::string verdict;  // FAST, SLOW, SAME, UNSURE
-  std::string warning;  // e.g. too few samples
+  size_t base_repetitions = 0, new_repetitions = 0;
+  size_t base_samples = 0, new_samples = 0;  // frames, over every repetition
+  double base_median = 0, new_median = 0;
+  double relative_change = 0;       // the test's estimate of new / base - 1
+  double change_low = 0, change_high = 0;  // its (1 - alpha) interval, uncorrected
+  std::string method;               // welch_log_t, paired_log_t, assumed_spread_z
+  double p_value = -1;              // -1: not tested
+  double p_adjusted = -1;           // Holm over every time test of the comparison
+  double minimum_detectable = -1;   // relative; inf when nothing was detectable
+  std::string verdict;              // FAST, SLOW, SAME, UNSURE
+  std::string warning;              // e.g. a single repetition
+  double se = 0, df = 0;            // of the test (log scale), for the MDE
 };
-
 struct ConfigChange {
   std::string identity, config_id, device;
   std::string base_status, new_status;  // new_status "missing": not in NEW
@@ -70,6 +91,8 @@ struct RunComparison {
   std::vector<ConfigChange> matched;   // BASE order; includes those missing from NEW
   std::vector<std::string> added;      // identities only in NEW
   std::vector<std::string> warnings;   // run-level (different commits, devices, ...)
+  size_t time_tests = 0;               // how many the Holm correction spans
+  bool paired = false;                 // both runs from one interleaved session
 };
 
 RunComparison compare_runs(const RunRecords& base, const RunRecords& next,
@@ -81,6 +104,10 @@ const std::vector<std::string>& regression_kinds();
 size_t count_regressions(const RunComparison& comparison, const std::string& kind);
 
 std::string comparison_table(const RunComparison& comparison);
+// One time change as the table shows it: "frame +3.1% SAME (could not detect < 12%)".
+std::string describe_time_change(const TimeChange& change);
+// A relative change as a percentage ("12%", "3.1%"; inf: "any change").
+std::string percent_text(double relative);
 nlohmann::ordered_json comparison_json(const RunComparison& comparison,
                                        const CompareThresholds& thresholds);
 

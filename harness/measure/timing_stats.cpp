@@ -5,6 +5,25 @@
 #include <numeric>
 
 namespace ldm {
+namespace {
+
+TimingSummary frame_summary(const std::string& subpass, const std::vector<double>& values) {
+  TimingSummary s;
+  s.subpass = subpass;
+  s.samples = values.size();
+  s.median = median_of(values);
+  s.min = *std::min_element(values.begin(), values.end());
+  s.max = *std::max_element(values.begin(), values.end());
+  s.mean = std::accumulate(values.begin(), values.end(), 0.0) / double(values.size());
+  double square = 0;
+  for (double v : values) square += (v - s.mean) * (v - s.mean);
+  s.stddev = values.size() > 1 ? std::sqrt(square / double(values.size() - 1)) : 0.0;
+  s.interval = median_interval(values, kTimeConfidence);
+  s.repetition_medians = {s.median};
+  return s;
+}
+
+}  // namespace
 
 double median_of(std::vector<double> values) {
   if (values.empty()) return 0.0;
@@ -36,21 +55,47 @@ void TimingSeries::add_frame(const FrameTimes& frame) {
     if (values.size() < frames_) values.push_back(0.0);
 }
 
+const std::vector<double>* TimingSeries::find(const std::string& subpass) const {
+  const auto it = std::find(order_.begin(), order_.end(), subpass);
+  return it == order_.end() ? nullptr : &samples_[size_t(it - order_.begin())];
+}
+
 std::vector<TimingSummary> TimingSeries::summarize() const {
   std::vector<TimingSummary> out;
-  for (size_t i = 0; i < order_.size(); ++i) {
-    const auto& values = samples_[i];
-    TimingSummary s;
-    s.subpass = order_[i];
-    s.samples = values.size();
-    s.median = median_of(values);
-    s.min = *std::min_element(values.begin(), values.end());
-    s.max = *std::max_element(values.begin(), values.end());
-    s.mean = std::accumulate(values.begin(), values.end(), 0.0) / double(values.size());
-    double square = 0;
-    for (double v : values) square += (v - s.mean) * (v - s.mean);
-    s.stddev = values.size() > 1 ? std::sqrt(square / double(values.size() - 1)) : 0.0;
-    out.push_back(s);
+  for (size_t i = 0; i < order_.size(); ++i) out.push_back(frame_summary(order_[i], samples_[i]));
+  return out;
+}
+
+std::vector<TimingSummary> summarize_repetitions(const std::vector<TimingSeries>& repetitions) {
+  if (repetitions.size() == 1) return repetitions.front().summarize();
+  std::vector<std::string> order;
+  for (const auto& r : repetitions)
+    for (const auto& name : r.subpasses())
+      if (std::find(order.begin(), order.end(), name) == order.end()) order.push_back(name);
+  std::vector<TimingSummary> out;
+  for (const auto& name : order) {
+    std::vector<double> pooled, medians;
+    for (const auto& r : repetitions) {
+      const std::vector<double>* values = r.find(name);
+      const std::vector<double> zeros(r.frames(), 0.0);  // never timed there: 0 ms a frame
+      const std::vector<double>& v = values ? *values : zeros;
+      pooled.insert(pooled.end(), v.begin(), v.end());
+      medians.push_back(median_of(v));
+    }
+    TimingSummary s = frame_summary(name, pooled);
+    s.repetitions = repetitions.size();
+    s.repetition_medians = medians;
+    s.median = median_of(medians);
+    const bool positive = std::all_of(medians.begin(), medians.end(), [](double m) { return m > 0; });
+    if (positive) {
+      s.interval = log_t_interval(medians, kTimeConfidence);
+      s.repetition_spread = log_moments(medians).stddev;
+    } else {
+      // A sub-pass most frames skip (a rebuild) has zero medians: no log scale; the
+      // distribution-free interval over the repetitions' medians instead.
+      s.interval = median_interval(medians, kTimeConfidence);
+    }
+    out.push_back(std::move(s));
   }
   return out;
 }

@@ -28,4 +28,14 @@ AoRange ao_range(const Image& ao, const Image& positions) {
   return range;
 }
 
+double covered_pixel_fraction(const Image& positions) {
+  require_nonempty(positions, "G-buffer positions");
+  if (positions.channels != 4)
+    throw UserError("covered_pixel_fraction: expected 4-channel positions, got " + shape_string(positions));
+  uint64_t covered = 0;
+  for (int y = 0; y < positions.height; ++y)
+    for (int x = 0; x < positions.width; ++x) covered += positions.at(x, y, 3) != 0.0f;
+  return double(covered) / (double(positions.width) * double(positions.height));
+}
+
 }  // namespace ldm

@@ -18,4 +18,8 @@ struct AoRange {
 // same size. Throws UserError on a shape mismatch.
 AoRange ao_range(const Image& ao, const Image& positions);
 
+// The share of the image's pixels where the camera sees a surface (G-buffer position alpha
+// != 0): 0 means the image measures nothing (the record's covered_pixel_fraction).
+double covered_pixel_fraction(const Image& positions);
+
 }  // namespace ldm

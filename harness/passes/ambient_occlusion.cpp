@@ -84,7 +84,17 @@ std::vector<std::string> AmbientOcclusion::warnings() const {
 std::vector<std::pair<std::string, RecordValue>> AmbientOcclusion::results() const {
   // Eq. 13 may exceed 1 (a quadrature of the cosine): say how far, over covered pixels.
   const AoRange range = ao_range(ao_->read_image(), gbuffer_->read_positions());
-  return {{"ao_max", range.max}, {"ao_fraction_above_1", range.fraction_above_1}};
+  std::vector<std::pair<std::string, RecordValue>> out = {
+      {"ao_max", range.max},
+      {"ao_fraction_above_1", range.fraction_above_1},
+      {"covered_pixel_fraction", covered_pixel_fraction(gbuffer_->read_positions())}};
+  for (auto& field : trace_step_fields(ao_->trace_steps())) out.push_back(std::move(field));
+  return out;
+}
+
+std::vector<std::string> AmbientOcclusion::problems() const {
+  const std::string cut = trace_step_problem(ao_->trace_steps());
+  return cut.empty() ? std::vector<std::string>{} : std::vector<std::string>{cut};
 }
 
 ReferenceResult AmbientOcclusion::reference(const Scene& scene, int width, int height,

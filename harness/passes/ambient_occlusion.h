@@ -30,6 +30,7 @@ class AmbientOcclusion : public Pass {
   std::vector<PassImage> images() const override;
   std::vector<std::pair<std::string, RecordValue>> results() const override;
   std::vector<std::string> warnings() const override;
+  std::vector<std::string> problems() const override;
   ReferenceResult reference(const Scene& scene, int width, int height,
                             const ReferenceSettings& settings) const override;
 

@@ -31,7 +31,8 @@ AoPass::AoPass(const LdmStructure& structure, const BuildInputs& in, int width, 
       width_(width),
       height_(height),
       settings_(settings),
-      output_(GL_R32F, width, height) {
+      output_(GL_R32F, width, height),
+      steps_(uint32_t(in.views.views().size()), trace_walk_sites(settings.trace == AoTrace::Plane), 0) {
   framebuffer_.attach_color(0, output_);
   framebuffer_.check_complete("AO output");
   compile();
@@ -47,6 +48,7 @@ void AoPass::compile() {
   const ShaderDefines query = structure.query_defines();
   defines.values.insert(defines.values.end(), query.values.begin(), query.values.end());
   defines.set("LDM_VIEW_COUNT", std::to_string(views_.views().size()) + "u");
+  add_trace_step_defines(defines);
   defines.set("AO_ATTENUATED", settings.attenuated ? 1 : 0);
   defines.set("AO_NORMALIZED", settings.estimator == AoEstimatorChoice::Normalized ? 1 : 0);
   defines.set("LDM_TRACE", "LDM_TRACE_" + upper(ao_trace_name(settings.trace)));
@@ -71,6 +73,7 @@ void AoPass::render(const GBufferPass& gbuffer, GpuTimer* timer) {
   glBindTextureUnit(1, gbuffer.normals().id());
   structure_.bind_for_query();
   views_.bind();
+  steps_.bind();
   program_.use();
   glBindVertexArray(empty_vao_.id());
   glDrawArrays(GL_TRIANGLES, 0, 3);

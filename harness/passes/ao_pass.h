@@ -4,6 +4,7 @@
 #include "harness/image/image.h"
 #include "harness/measure/gpu_timer.h"
 #include "harness/passes/gbuffer_pass.h"
+#include "harness/passes/trace_steps.h"
 #include "harness/scene/scene.h"
 #include "ldm_impls/ldm_structure.h"
 
@@ -15,6 +16,8 @@ class AoPass {
          const AoSettings& settings);
   void render(const GBufferPass& gbuffer, GpuTimer* timer);
   Image read_image() const;  // one channel, linear, top row first
+  // The trace's loop iterations over every frame rendered so far.
+  TraceStepCounts trace_steps() const { return steps_.read(); }
 
  private:
   void compile();
@@ -26,6 +29,7 @@ class AoPass {
   GlFramebuffer framebuffer_;
   GlVertexArray empty_vao_;
   GlProgram program_;
+  TraceStepCounter steps_;
   uint64_t generation_ = 0;  // the structure's storage_generation() program_ was built for
 };
 

@@ -103,7 +103,9 @@ std::vector<BufferMemory> Hbao::memory() const {
 
 std::vector<std::pair<std::string, RecordValue>> Hbao::results() const {
   const AoRange range = ao_range(images().front().image, gbuffer_->read_positions());
-  return {{"ao_max", range.max}, {"ao_fraction_above_1", range.fraction_above_1}};
+  return {{"ao_max", range.max},
+          {"ao_fraction_above_1", range.fraction_above_1},
+          {"covered_pixel_fraction", covered_pixel_fraction(gbuffer_->read_positions())}};
 }
 
 ReferenceResult Hbao::reference(const Scene& scene, int width, int height,

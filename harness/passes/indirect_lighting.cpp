@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "harness/metrics/ao_range.h"
 #include "harness/util/error.h"
 
 namespace ldm {
@@ -105,9 +106,11 @@ std::vector<std::pair<std::string, RecordValue>> IndirectLighting::results() con
       {"photons_stored", int64_t(c.stored)},
       {"photons_overflow", int64_t(c.overflow)},
       {"depth_threshold", double(lighting_->depth_threshold())},
+      {"covered_pixel_fraction", covered_pixel_fraction(gbuffer_->read_positions())},
       {"photon_rebuilds", int64_t(lighting_->rebuilds())},
       {"photon_reallocations", int64_t(lighting_->reallocations())}};
   for (const auto& [key, value] : lighting_->sizing()) out.emplace_back("sizing_" + key, value);
+  for (auto& field : trace_step_fields(lighting_->trace_steps())) out.push_back(std::move(field));
   // The thesis's M_lists (the structure's storage) and M_photons (the photon buffer).
   uint64_t lists_allocated = 0, lists_used = 0;
   for (const auto& b : structure_->memory()) {
@@ -134,6 +137,11 @@ std::vector<std::pair<std::string, RecordValue>> IndirectLighting::results() con
   out.emplace_back("flux_emitted", emitted);
   out.emplace_back("flux_stored", stored);
   return out;
+}
+
+std::vector<std::string> IndirectLighting::problems() const {
+  const std::string cut = trace_step_problem(lighting_->trace_steps());
+  return cut.empty() ? std::vector<std::string>{} : std::vector<std::string>{cut};
 }
 
 std::string IndirectLighting::loss() const {

@@ -36,6 +36,7 @@ class IndirectLighting : public Pass {
   std::vector<PassImage> images() const override;
   std::vector<std::pair<std::string, RecordValue>> results() const override;
   std::string loss() const override;
+  std::vector<std::string> problems() const override;
   std::vector<BufferMemory> memory() const override;
   ReferenceResult reference(const Scene& scene, int width, int height,
                             const ReferenceSettings& settings) const override;

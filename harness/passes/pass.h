@@ -95,6 +95,10 @@ class Pass {
   // Settings that run but are known to give a biased image, one sentence each, for the
   // record's status_detail; none by default.
   virtual std::vector<std::string> warnings() const { return {}; }
+  // Ways the last render() may be wrong that no check of the structure sees (a trace the
+  // device may have cut short: harness/passes/trace_steps.h), one sentence each. A
+  // non-empty answer makes the record invalid; none by default.
+  virtual std::vector<std::string> problems() const { return {}; }
   // Work the pass's own configured capacity dropped in the last render(), counted (e.g. the
   // indirect pass's photon-buffer overflow), one sentence; empty when nothing was dropped. A
   // non-empty answer makes the record lossy, as a structure's counted loss does.

@@ -97,7 +97,10 @@ PhotonLighting::PhotonLighting(const LdmStructure& structure, const BuildInputs&
       light_gbuffer_(int(settings.light_resolution), int(settings.light_resolution), true),
       indirect_(GL_RGBA32F, width, height),
       direct_(GL_RGBA32F, width, height),
-      sum_(GL_RGBA32F, width, height) {
+      sum_(GL_RGBA32F, width, height),
+      // The trace's other loops: the counters zeroed and flushed, PHOTON_COUNTERS each.
+      steps_(uint32_t(in.views.views().size()), trace_walk_sites(settings.trace == AoTrace::Plane),
+             2 * kCounterCount) {
   if (!in.scene.attributes().materials || !in.scene.attributes().normals)
     throw GpuError("indirect pass: the scene must be uploaded with normals and materials");
   const int r = int(settings.light_resolution);
@@ -152,6 +155,7 @@ void PhotonLighting::compile() {
   defines.set("LDM_PLANE_TOLERANCE_CONSTANT", glsl_float(kPlaneToleranceConstant));
   defines.set("LDM_PLANE_TOLERANCE_SLOPE", glsl_float(kPlaneToleranceSlope));
   defines.set("LDM_PLANE_MAX_SLOPE", glsl_float(kPlaneMaxSlope));
+  add_trace_step_defines(defines);
   trace_program_ = build_program(
       {{GL_COMPUTE_SHADER, "passes/indirect/photon_trace.comp", structure_.query_sources()}},
       defines);
@@ -206,6 +210,7 @@ void PhotonLighting::trace(const GBufferPass& camera, uint64_t capacity) {
   photons_.bind_storage(kPhotonsBinding);
   counters_.bind_storage(kCountersBinding);
   tally_.bind_storage(kTallyBinding);
+  steps_.bind();
   structure_.bind_for_query();
   views_.bind();
   const GLuint groups = (settings_.light_resolution + 7) / 8;

@@ -22,6 +22,7 @@
 #include "harness/image/image.h"
 #include "harness/measure/gpu_timer.h"
 #include "harness/passes/gbuffer_pass.h"
+#include "harness/passes/trace_steps.h"
 #include "harness/scene/scene.h"
 #include "ldm_impls/ldm_structure.h"
 
@@ -108,6 +109,8 @@ class PhotonLighting {
   uint64_t rebuilds() const { return rebuilds_; }
   uint64_t reallocations() const { return reallocations_; }
   float depth_threshold() const { return depth_threshold_; }  // the effective one
+  // The photon trace's loop iterations over every trace so far (harness/passes/trace_steps.h).
+  TraceStepCounts trace_steps() const { return steps_.read(); }
 
  private:
   void compile();
@@ -141,6 +144,7 @@ class PhotonLighting {
   bool sized_ = false;  // oracle: the untimed counting trace ran
   uint64_t rebuilds_ = 0, reallocations_ = 0;
   PhotonCounts counts_;
+  TraceStepCounter steps_;
   GlProgram trace_program_, draw_count_program_, splat_program_, direct_program_,
       composite_program_;
   uint64_t generation_ = 0;

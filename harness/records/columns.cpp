@@ -4,9 +4,48 @@
 #include <sstream>
 
 namespace ldm {
+namespace {
+
+// What a configuration was measured on and whether it measures anything (issue 22;
+// harness/app/scene_profile.h, the trace step counts of the LDM passes): kept apart so that
+// the main list stays as it was.
+std::vector<ColumnSpec> scene_profile_columns() {
+  return {
+      {"profile", "scene_radius", "scene units", "radius of the scene's bounding sphere (what derived settings scale with)"},
+      {"profile", "camera_source", "", "where the camera came from: generator <name>, scene file, or derived (framing the bounding sphere)"},
+      {"profile", "light_source", "", "where the spot light came from: generator <name>, scene file, or derived (above the bounding sphere, 1 W/m^2 at its centre)"},
+      {"profile", "d_max_source", "", "where d_max came from: generator <name>, scene file, run (--d-max), or derived (0.2 x the radius)"},
+      {"profile", "depth_p50", "fragments", "median list length over the LDM pixels holding a fragment (the census)"},
+      {"profile", "depth_p90", "fragments", "90th percentile of those list lengths"},
+      {"profile", "depth_p99", "fragments", "99th percentile of those list lengths"},
+      {"profile", "depth_histogram", "", "LDM pixels per power-of-two bin of list lengths, lo-hi:pixels;... (non-empty pixels)"},
+      {"profile", "depth_share_above_k", "", "fixed arrays: share of the non-empty LDM pixels holding more than k fragments"},
+      {"profile", "covered_pixel_fraction", "", "share of the image's pixels where the camera sees a surface"},
+      {"profile", "d_max_ldm_pixels", "LDM pixels", "the AO range d_max in LDM pixels (attenuated AO; fewer than 3 is degenerate)"},
+      {"profile", "trace_steps_max", "iterations", "LDM passes: the most loop iterations (views, list walks, the structure's own query loops) one shader invocation of the trace ran, over every frame"},
+      {"profile", "trace_steps_bound", "iterations", "an upper bound on what any SIMD group of those invocations ran (llvmpipe counts a group's iterations against its loop limit)"},
+      {"profile", "loop_iteration_limit", "iterations", "the device's limit on one invocation's loop iterations, after which it ends every loop silently (llvmpipe: 65535; 0: none known); a bound at or past it makes the record invalid"},
+      {"profile", "degenerate", "", "why the measurement measures nothing (a reference without noise, no surface in view, an AO range below 3 LDM pixels); such records are never ranked"},
+  };
+}
+
+std::vector<ColumnSpec> main_columns();
+
+}  // namespace
 
 const std::vector<ColumnSpec>& record_columns() {
-  static const std::vector<ColumnSpec> columns = {
+  static const std::vector<ColumnSpec> columns = [] {
+    std::vector<ColumnSpec> all = main_columns();
+    for (auto& column : scene_profile_columns()) all.push_back(std::move(column));
+    return all;
+  }();
+  return columns;
+}
+
+namespace {
+
+std::vector<ColumnSpec> main_columns() {
+  return {
       {"identity", "config_id", "", "unique name of the configuration, also the image file stem"},
       {"identity", "status", "", "ok, lossy (counted loss by configured capacity), invalid (never measured) or failed"},
       {"identity", "status_detail", "", "why the status is not ok, and warnings such as a missed reference noise target"},
@@ -19,7 +58,7 @@ const std::vector<ColumnSpec>& record_columns() {
       {"identity", "height", "pixels", "output image height"},
       {"identity", "structure_params", "", "the structure's --param values, key=value;..."},
       {"identity", "sizing_policy", "", "how the structure learned its sizes: oracle (untimed census before the run), census, previous_frame or budget (after --sizing); none for a pass that reads no LDM"},
-      {"identity", "frames", "frames", "measured frames"},
+      {"identity", "frames", "frames", "measured frames per repetition, at least (--frames; more until time_target is met)"},
       {"identity", "warmup", "frames", "warm-up frames (judged, not timed)"},
       {"identity", "ldmbench_version", "", "version of the build that measured"},
       {"identity", "git_commit", "", "commit of the build that measured"},
@@ -89,16 +128,29 @@ const std::vector<ColumnSpec>& record_columns() {
       {"build", "sizing_rebuilds", "builds", "builds redone after an overflow (previous_frame), warm-up included"},
       {"build", "sizing_rebuilds_measured", "builds", "of those, in measured frames"},
       {"build", "sizing_reallocations", "", "times the policy grew the structure's storage"},
-      {"time", "<subpass>_ms_median", "ms", "median over the measured frames of a sub-pass (the sizing policy's census, readback, reallocate, rebuild among them, 0 in frames without), of build (sizing included) or of frame"},
+      {"time", "repetitions", "repetitions", "independent repetitions measured (--repetitions), each in a fresh GL context or process (see isolation in the run object), round robin over the sweep"},
+      {"time", "repetition", "", "in the journal only: which repetition a {\"repetition\": ...} entry is, before the configuration's repetitions are combined"},
+      {"time", "frames_measured", "frames", "measured frames over every repetition"},
+      {"time", "frames_per_repetition", "", "measured frames of each repetition, n;n;..."},
+      {"time", "time_target", "", "the precision target: relative half-width of the 95% interval of the build and frame medians at which a repetition stops measuring frames (--time-target; 0: exactly frames)"},
+      {"time", "time_cap_s", "s", "measured frames' wall time after which a repetition stops, target met or not (--time-cap)"},
+      {"time", "time_target_met", "", "whether every repetition reached time_target before its cap (a miss is a warning in status_detail)"},
+      {"time", "time_interval", "", "how the _ms_ci_ columns were made: order_statistics_of_frames (one repetition: distribution-free interval of the median, assumes independent frames) or t_on_log_repetition_medians (a t interval over the repetitions' medians)"},
+      {"time", "time_interval_coverage", "", "the frame interval's coverage: 0.95, or less when too few frames (or repetitions) reach it"},
+      {"time", "time_half_width", "", "relative half-width of the frame median's interval: how precise the record's frame time is"},
+      {"time", "<subpass>_ms_median", "ms", "median over the measured frames of a sub-pass (with repetitions: the median of the repetitions' medians; the sizing policy's census, readback, reallocate, rebuild among them, 0 in frames without), of build (sizing included), pass (the pass's own) or frame"},
+      {"time", "<subpass>_ms_ci_low", "ms", "low end of the median's 95% interval (time_interval says how it was made)"},
+      {"time", "<subpass>_ms_ci_high", "ms", "high end of the median's 95% interval"},
+      {"time", "<subpass>_ms_rep_spread", "", "with repetitions: standard deviation of the logs of the repetitions' medians (about the relative spread between repetitions)"},
       {"time", "<subpass>_ms_min", "ms", "minimum over the measured frames"},
       {"time", "<subpass>_ms_max", "ms", "maximum over the measured frames"},
-      {"time", "<subpass>_ms_stddev", "ms", "sample standard deviation over the measured frames"},
+      {"time", "<subpass>_ms_stddev", "ms", "sample standard deviation over the measured frames (pooled over repetitions)"},
       {"time", "build_vs_raster", "", "build median over raster_baseline median (the empty raster pass)"},
       {"time", "build_vs_raster_touch", "", "build median over raster_touch median (every fragment shaded, one atomicAdd each)"},
       {"time", "raster_touch_fragments", "fragments", "fragments the raster_touch baseline shaded (checked against the census)"},
       {"time", "fragments_per_second", "1/s", "census fragments over the build median"},
-      {"time", "frame_samples_csv", "", "every measured frame's time of every sub-pass (frame, subpass, ms), path relative to the records"},
-      {"time", "wall_seconds", "s", "wall time of the whole configuration, reference included"},
+      {"time", "frame_samples_csv", "", "every measured frame's time of every sub-pass (repetition, frame, subpass, ms), path relative to the records"},
+      {"time", "wall_seconds", "s", "wall time of the whole configuration (its repetitions summed), reference included"},
       {"memory", "mem_<buffer>_allocated", "bytes", "bytes reserved for one of the structure's buffers (for a pass without structure, hbao: one of its render targets; an LDM pass's own, e.g. the indirect pass's photons: not in bytes_allocated)"},
       {"memory", "mem_<buffer>_used", "bytes", "bytes of that buffer holding data after the last build"},
       {"memory", "bytes_allocated", "bytes", "sum over the structure's buffers (and the census policy's counts), or over a structureless pass's targets"},
@@ -129,8 +181,9 @@ const std::vector<ColumnSpec>& record_columns() {
       {"images", "diff_png", "", "absolute difference to the reference as a heat map (EXR beside it)"},
       {"images", "diff_png_max", "", "the difference that maps to the top of the heat map"},
   };
-  return columns;
 }
+
+}  // namespace
 
 namespace {
 

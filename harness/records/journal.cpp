@@ -86,14 +86,18 @@ JournalContents read_journal(const std::string& path) {
     } catch (const nlohmann::json::exception& e) {
       throw UserError(where + ": not a journal line (" + e.what() + ")");
     }
-    const bool is_run = entry.is_object() && entry.size() == 1 && entry.contains("run");
-    const bool is_record = entry.is_object() && entry.size() == 1 && entry.contains("record");
-    if (!(is_run || is_record) || !entry.begin().value().is_object())
-      throw UserError(where + ": not a journal line (expected {\"run\": {...}} or {\"record\": {...}})");
+    const bool one = entry.is_object() && entry.size() == 1;
+    const std::string kind = one ? entry.begin().key() : "";
+    if (!(kind == "run" || kind == "record" || kind == "repetition") || !entry.begin().value().is_object())
+      throw UserError(where + ": not a journal line (expected {\"run\": {...}}, {\"record\": {...}} "
+                      "or {\"repetition\": {...}})");
     Record fields;
     for (const auto& [key, value] : entry.begin().value().items())
       fields.put(key, decode_value(value, where + ": " + key));
-    (is_run ? contents.runs : contents.records).push_back(std::move(fields));
+    if (kind == "record") contents.record_lines.push_back(line_number);
+    if (kind == "repetition") contents.repetition_lines.push_back(line_number);
+    (kind == "run" ? contents.runs : kind == "record" ? contents.records : contents.repetitions)
+        .push_back(std::move(fields));
   }
   return contents;
 }

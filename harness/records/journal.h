@@ -4,6 +4,8 @@
 // and fsync'd before the tables are touched:
 //   {"run": {...}}      the metadata of an invocation that writes to this folder
 //   {"record": {...}}   one finished configuration (its record, fields in order)
+//   {"repetition": {...}}  one finished repetition of a configuration measured K >= 2
+//                       times (harness/app/repetitions.h), before its record
 // A kill can at worst leave a torn last line; reading drops it (it was never complete) and
 // opening for append cuts it off, so every complete line survives any number of kills.
 #include <cstddef>
@@ -17,6 +19,10 @@ namespace ldm {
 struct JournalContents {
   std::vector<Record> runs;     // in order
   std::vector<Record> records;  // in order
+  std::vector<Record> repetitions;  // in order
+  // The journal line (1-based) of each record and repetition: what came after what (a
+  // failed configuration measured again journals its new repetitions after its record).
+  std::vector<size_t> record_lines, repetition_lines;
   size_t torn_bytes = 0;        // length of a torn (incomplete) last line, dropped
 };
 
@@ -34,6 +40,7 @@ class RecordJournal {
 
   void append_run(const Record& metadata) { append("run", metadata); }
   void append_record(const Record& record) { append("record", record); }
+  void append_repetition(const Record& repetition) { append("repetition", repetition); }
 
  private:
   void append(const char* kind, const Record& fields);

@@ -1,7 +1,7 @@
 #include "harness/records/record.h"
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 
@@ -19,6 +19,12 @@ void Record::put(const std::string& key, RecordValue value) {
     }
   }
   fields_.emplace_back(key, std::move(value));
+}
+
+void Record::erase(const std::string& key) {
+  fields_.erase(std::remove_if(fields_.begin(), fields_.end(),
+                               [&](const auto& field) { return field.first == key; }),
+                fields_.end());
 }
 
 const RecordValue* Record::get(const std::string& key) const {

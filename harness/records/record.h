@@ -28,6 +28,7 @@ class Record {
   void set(const std::string& key, const std::string& v) { put(key, v); }
   void set(const std::string& key, const char* v) { put(key, std::string(v)); }
   const RecordValue* get(const std::string& key) const;
+  void erase(const std::string& key);  // no-op when absent
   const std::vector<std::pair<std::string, RecordValue>>& fields() const { return fields_; }
 
  private:

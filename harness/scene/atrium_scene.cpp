@@ -2,7 +2,16 @@
 // surrounded by two storeys of columns and arches carrying gallery floors, outer walls with
 // no roof over the courtyard, thin curtains hanging in the upper arcade, and small occluders
 // (planters, a fountain, benches) on the floors. Units are metres; the building is 26 x 18.
+//
+// What else the thesis's Sponza shows (its Figures 17, 30 and Tables 3-5, 6-9), each off by
+// default so that `atrium` stays the scene earlier records measured, and on in
+// scenes/sponza_like.json: a third storey (the LDM top view sees two galleries through each
+// other), fabric drapes hanging from the first floor in front of the ground arcade (the thin
+// layers the normal offset of §6.1.4 is about, and the "carpets" light leaks under in §6.2),
+// potted plants of many small leaves (the foliage §6.1.2 says the LDMs are too coarse for),
+// and chains with lanterns hanging in the gallery (small occluders HBAO gets wrong, §6.1.2).
 #include <cmath>
+#include <cstdint>
 
 #include "harness/scene/generators.h"
 #include "harness/scene/mesh_builder.h"
@@ -58,6 +67,42 @@ float build_arcade(MeshBuilder& b, const Storey& s, float hx, float hz, float sp
   return y1;
 }
 
+// SplitMix64 (as the hairball's): a seed gives the same leaves everywhere.
+class LeafRandom {
+ public:
+  explicit LeafRandom(uint64_t seed) : state_(seed) {}
+  float uniform() {
+    uint64_t z = (state_ += 0x9e3779b97f4a7c15ull);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return float((z ^ (z >> 31)) >> 40) * (1.0f / 16777216.0f);
+  }
+  glm::vec3 unit_vector() {
+    const float z = 2.0f * uniform() - 1.0f, phi = 6.2831853f * uniform();
+    const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+    return {r * std::cos(phi), r * std::sin(phi), z};
+  }
+
+ private:
+  uint64_t state_;
+};
+
+// A pot and `leaves` thin leaves (two triangles each, randomly turned) around a crown at
+// height `crown` above the pot: foliage, many small layers in a small volume.
+void potted_plant(MeshBuilder& b, LeafRandom& random, glm::vec3 base, int leaves, uint32_t pot,
+                  uint32_t leaf) {
+  b.cylinder(base, 0.35f, 0.6f, 10, pot);
+  const glm::vec3 crown = base + glm::vec3(0, 1.2f, 0);
+  for (int i = 0; i < leaves; ++i) {
+    const glm::vec3 at = crown + random.unit_vector() * (0.55f * std::cbrt(random.uniform()));
+    const glm::vec3 along = random.unit_vector() * 0.22f;
+    glm::vec3 across = glm::cross(along, random.unit_vector());
+    if (glm::length(across) < 1e-3f) across = glm::vec3(0, 0, 1);
+    across = glm::normalize(across) * 0.05f;
+    b.quad(at - along - across, at - along + across, at + along + across, at + along - across, leaf);
+  }
+}
+
 }  // namespace
 
 Scene make_atrium_scene(GeneratorParams& params) {
@@ -65,6 +110,11 @@ Scene make_atrium_scene(GeneratorParams& params) {
   const int sides = params.integer("column_sides", 12, 3, 64);
   const int curtains = params.integer("curtains", 6, 0, 64);
   const int curtain_resolution = params.integer("curtain_resolution", 12, 1, 256);
+  const int storeys = params.integer("storeys", 2, 2, 3);
+  const int drapes = params.integer("drapes", 0, 0, 64);
+  const int plants = params.integer("plants", 0, 0, 64);
+  const int leaves = params.integer("leaves", 150, 1, 4096);
+  const int chains = params.integer("chains", 0, 0, 64);
   Scene scene;
   scene.name = "atrium";
   MeshBuilder b(scene);
@@ -77,7 +127,7 @@ Scene make_atrium_scene(GeneratorParams& params) {
 
   const float hx = 10.0f, hz = 6.0f;      // the colonnade rectangle
   const float ox = 13.0f, oz = 9.0f;      // the outer walls
-  const float wall_height = 11.0f;
+  const float wall_height = storeys == 3 ? 12.8f : 11.0f;
   const float wall_thickness = 0.4f;
 
   // Ground: the courtyard and the ground-floor gallery as one thick slab.
@@ -94,6 +144,54 @@ Scene make_atrium_scene(GeneratorParams& params) {
   const float first_floor = build_arcade(b, ground, hx, hz, spacing, ox, oz, sides, stone, floor);
   const Storey upper{first_floor, 2.4f, 0.24f, 0.3f};
   const float roof = build_arcade(b, upper, hx, hz, spacing, ox, oz, sides, stone, wall);
+  if (storeys == 3) {  // a lower top storey of slender columns, as Sponza's
+    const Storey top{roof, 1.8f, 0.18f, 0.25f};
+    build_arcade(b, top, hx, hz, spacing, ox, oz, sides, stone, wall);
+  }
+  // The features below add their materials only when present: the default atrium keeps its
+  // exact content (and so its scene hash and cached references).
+  const float bay_width = 2.0f * hx / std::round(2.0f * hx / spacing);
+  // Drapes hang from the first floor's courtyard edge in front of the ground arcade, one per
+  // bay on the long sides, nearly to the ground, in deep folds.
+  for (int i = 0; i < drapes; ++i) {
+    const bool north = i % 2 == 0;
+    const int slot = i / 2;
+    const float x0 = -hx + bay_width * float(slot) + 0.4f;
+    if (x0 + bay_width - 0.8f > hx) break;
+    // In front of the columns' courtyard face, clear of them by more than the folds.
+    const float offset = hz - ground.column_radius - 0.25f;
+    const float z = north ? -offset : offset;
+    const uint32_t cloth = i % 3 == 0   ? cloth_red
+                           : i % 3 == 1 ? b.material("cloth-green", {0.10f, 0.35f, 0.12f})
+                                        : cloth_blue;
+    const float top = first_floor - ground.slab_thickness;
+    b.curtain({x0, top, z}, {x0 + bay_width - 0.8f, top, z}, top - 0.4f, {0, 0, 1}, 0.18f, 4,
+              curtain_resolution * 2, curtain_resolution, cloth);
+  }
+  // Potted plants along the courtyard side of the colonnade, alternating sides.
+  LeafRandom random(0x5eed);
+  for (int i = 0; i < plants; ++i) {
+    const uint32_t pot = b.material("pot", {0.55f, 0.30f, 0.18f});
+    const int side = i % 4, slot = i / 4;
+    const float t = -0.8f + 1.6f * (float(slot) + 0.5f) / float((plants + 3) / 4);
+    const glm::vec3 base = side == 0   ? glm::vec3(t * hx, 0, -hz + 1.2f)
+                           : side == 1 ? glm::vec3(t * hx, 0, hz - 1.2f)
+                           : side == 2 ? glm::vec3(-hx + 1.2f, 0, t * hz)
+                                       : glm::vec3(hx - 1.2f, 0, t * hz);
+    potted_plant(b, random, base, leaves, pot, green);
+  }
+  // Chains with lanterns from the first floor's underside, in the middle of the ground
+  // gallery on the long sides: thin, small occluders.
+  for (int i = 0; i < chains; ++i) {
+    const bool north = i % 2 == 0;
+    const int slot = i / 2;
+    const float x = -hx + bay_width * (float(slot) + 0.5f);
+    if (x > hx) break;
+    const float z = north ? -0.5f * (hz + oz) : 0.5f * (hz + oz);
+    const float top = first_floor - ground.slab_thickness, bottom = top - 1.6f;
+    b.box({x - 0.02f, bottom, z - 0.02f}, {x + 0.02f, top, z + 0.02f}, stone);
+    b.box({x - 0.15f, bottom - 0.35f, z - 0.15f}, {x + 0.15f, bottom, z + 0.15f}, wall);
+  }
 
   // Curtains hang inside the upper arcade on the long sides, from just under the roof slab.
   for (int i = 0; i < curtains; ++i) {

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <cstdio>
 
+#include "harness/scene/scene_defaults.h"
 #include "harness/util/error.h"
 
 namespace ldm {
@@ -81,6 +82,7 @@ const std::vector<SceneGenerator>& scene_generators() {
       Scene scene = make(p);
       p.finish();
       scene.origin = std::string("built-in:") + name;
+      set_setting_sources(scene, std::string("generator ") + name);
       if (scene.name.empty()) scene.name = name;
       return scene;
     };
@@ -105,6 +107,10 @@ const std::vector<SceneGenerator>& scene_generators() {
        "The inside of a closed diffuse sphere around a spot light (analytic indirect light: "
        "an integrating sphere)",
        wrap(make_closed_sphere_scene, "closed-sphere")},
+      {"hairball",
+       "Thousands of thin curved tubes inside a sphere: even, high depth complexity (the "
+       "thesis's second workload)",
+       wrap(make_hairball_scene, "hairball")},
   };
   return generators;
 }

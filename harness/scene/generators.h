@@ -50,5 +50,6 @@ Scene make_parallel_planes_scene(GeneratorParams& params);
 Scene make_wall_scene(GeneratorParams& params);
 Scene make_spot_bounce_scene(GeneratorParams& params);
 Scene make_closed_sphere_scene(GeneratorParams& params);
+Scene make_hairball_scene(GeneratorParams& params);
 
 }  // namespace ldm

@@ -86,8 +86,9 @@ ObjSyntax check_obj_syntax(const std::string& text, const std::string& path) {
   std::vector<IndexReference> forward;  // checked once every list's length is known
   size_t line_number = 0, begin = 0;
   while (begin <= text.size()) {
-    // Lines end at \n, \r\n or a lone \r, as tinyobjloader splits them: a lone \r must
-    // end a line here too, or a line it reads as a vertex would pass unchecked.
+    // Lines end at \n, \r\n or a lone \r, as some readers split them (tinyobjloader did): a
+    // lone \r ends a line here too, so that no line a reader may take for a vertex passes
+    // unchecked.
     size_t end = text.find_first_of("\r\n", begin);
     if (end == std::string::npos) end = text.size();
     std::string_view line(text.data() + begin, end - begin);
@@ -101,17 +102,20 @@ ObjSyntax check_obj_syntax(const std::string& text, const std::string& path) {
     const std::string_view keyword = tokens[0];
     const size_t values = tokens.size() - 1;
     if (keyword == "v") {
-      // x y z, optionally w (weight) or r g b (vertex colour, tinyobjloader's extension).
+      // x y z, optionally w (weight) or r g b (the vertex-colour extension readers accept).
       if (values != 3 && values != 4 && values != 6 && values != 7)
         reader.fail("a vertex needs 3 coordinates (x y z, optionally w or r g b), got " +
                     std::to_string(values));
+      glm::vec3 position(0.0f);
       for (size_t i = 1; i <= values; ++i) {
         const float x = reader.number(tokens[i]);
         if (i <= 3 && std::abs(x) > kMaxSceneCoordinate)
           reader.fail("coordinate " + std::string(tokens[i]) +
                       " is beyond the representable scene extent (|x| <= 1e18)");
+        if (i <= 3) position[int(i - 1)] = x;
       }
       syntax.vertex_lines.push_back(line_number);
+      syntax.vertices.push_back(position);
     } else if (keyword == "vn") {
       if (values != 3) reader.fail("a normal needs 3 numbers, got " + std::to_string(values));
       for (size_t i = 1; i <= values; ++i) reader.number(tokens[i]);

@@ -1,16 +1,19 @@
 #pragma once
-// A strict reader of the OBJ statements ldmbench uses (v, vn, vt, f), run before
-// tinyobjloader: tinyobjloader reads "v a b c" as 0, pads short vertices, keeps nan and inf,
-// and drops faces with fewer than three corners, all without a word. Here each of those is
-// an error naming the file and the line.
+// A strict reader of the OBJ statements ldmbench uses (v, vn, vt, f), run before the importer
+// (mesh_import.h, Assimp): OBJ readers (Assimp's, tinyobjloader's) read "v a b c" as 0, pad
+// short vertices, keep nan and inf, and drop faces with fewer than three corners, all
+// without a word. Here each of those is an error naming the file and the line.
 #include <cstddef>
 #include <string>
 #include <vector>
+
+#include <glm/glm.hpp>
 
 namespace ldm {
 
 struct ObjSyntax {
   std::vector<size_t> vertex_lines;  // 1-based line of each `v` statement, in order
+  std::vector<glm::vec3> vertices;   // its x y z
   size_t normal_count = 0, texcoord_count = 0, face_count = 0;
 };
 

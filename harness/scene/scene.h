@@ -92,6 +92,12 @@ struct Bounds {
   glm::vec3 lo{0.0f}, hi{0.0f};
 };
 
+// Where a scene's camera, light and AO distance came from, for the record: "generator
+// <name>", "scene file", or "derived (...)" from its size (harness/scene/scene_defaults.h).
+struct SettingSources {
+  std::string camera, light, d_max;
+};
+
 struct Scene {
   std::string name;
   std::string origin;  // "built-in:<generator>" or the scene file's path
@@ -100,6 +106,7 @@ struct Scene {
   Camera camera;
   SpotLight light;
   AoSettings ao;
+  SettingSources sources;
   // World position of this scene's coordinate origin: zero for a scene as loaded, the
   // bounding-sphere centre for the centred copy that the GPU and the reference compute in
   // (centred_on_bounding_sphere). World point = scene point + frame_origin.

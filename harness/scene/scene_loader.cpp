@@ -10,7 +10,8 @@
 #include <nlohmann/json.hpp>
 
 #include "harness/scene/generators.h"
-#include "harness/scene/obj_loader.h"
+#include "harness/scene/mesh_import.h"
+#include "harness/scene/scene_defaults.h"
 #include "harness/util/error.h"
 
 namespace ldm {
@@ -132,14 +133,14 @@ void append_mesh(Scene& scene, const Fields& f, const std::filesystem::path& bas
   const std::string file = f.string("file");
   std::filesystem::path path = file;
   if (path.is_relative()) path = base_dir / path;
-  ObjLoadOptions options;
+  MeshImportOptions options;
   options.scale = f.vec3("scale", glm::vec3(1.0f));
   if (options.scale.x == 0.0f || options.scale.y == 0.0f || options.scale.z == 0.0f)
     f.fail("scale", "must be non-zero in every component (a zero scale flattens the mesh "
                     "into zero-area triangles)");
   options.translate = f.vec3("translate", glm::vec3(0.0f));
   if (f.has("material")) options.override_material = f.string("material");
-  load_obj_into(scene, path.string(), options, f.file() + ": " + f.path() + "/file");
+  import_mesh_into(scene, path.string(), options, f.file() + ": " + f.path() + "/file");
 }
 
 // The 1-based line and column of a byte offset into `text`.
@@ -209,7 +210,9 @@ Scene parse_scene_file(const std::string& text, const std::string& path) {
     scene = generate_scene(type, root.at("generator"), path + ": /generator");
   }
   scene.origin = path;
-  if (top.has("name")) scene.name = top.string("name");
+  // The file's own name, else its file name: never the generator's, which would give two
+  // files of one generator (and the built-in scene) the same configuration ids.
+  scene.name = top.has("name") ? top.string("name") : std::string();
   if (scene.name.empty()) scene.name = std::filesystem::path(path).stem().string();
 
   if (top.has("materials")) {
@@ -229,21 +232,62 @@ Scene parse_scene_file(const std::string& text, const std::string& path) {
     for (size_t i = 0; i < meshes.size(); ++i)
       append_mesh(scene, Fields(meshes[i], path, "/meshes/" + std::to_string(i)), base);
   }
-  if (top.has("camera")) read_camera(top.child("camera"), scene.camera);
-  if (top.has("light")) read_light(top.child("light"), scene.light);
-  if (top.has("ao")) read_ao(top.child("ao"), scene.ao);
+  // Without a generator, nothing but the geometry is known yet: what the file does not
+  // set follows the scene's size (harness/scene/scene_defaults.h). The file's own keys are
+  // applied over that.
+  if (!top.has("generator")) derive_size_defaults(scene, {});
+  if (top.has("camera")) {
+    read_camera(top.child("camera"), scene.camera);
+    scene.sources.camera = "scene file";
+  }
+  if (top.has("light")) {
+    read_light(top.child("light"), scene.light);
+    scene.sources.light = "scene file";
+  }
+  if (top.has("ao")) {
+    read_ao(top.child("ao"), scene.ao);
+    if (root.at("ao").is_object() && root.at("ao").contains("d_max")) scene.sources.d_max = "scene file";
+  }
+  scene.validate();
+  return scene;
+}
+
+std::string scene_id_name(const std::string& spec) {
+  const std::string stem = std::filesystem::path(spec).stem().string();
+  if (find_scene_generator(spec)) return spec;
+  if (std::filesystem::path(spec).extension() != ".json") return stem;
+  std::ifstream in(spec, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  // A file that does not parse keeps its stem here; loading it reports what is wrong.
+  const json root = json::parse(text.str(), nullptr, false);
+  if (root.is_object() && root.contains("name") && root.at("name").is_string() &&
+      !root.at("name").get<std::string>().empty())
+    return root.at("name").get<std::string>();
+  return stem;
+}
+
+Scene load_mesh_scene(const std::string& path) {
+  Scene scene;
+  scene.name = std::filesystem::path(path).stem().string();
+  scene.origin = path;
+  import_mesh_into(scene, path, {}, "--scene " + path);
+  derive_size_defaults(scene, {});
   scene.validate();
   return scene;
 }
 
 Scene load_scene(const std::string& spec) {
   if (find_scene_generator(spec)) return generate_scene(spec, nlohmann::json(), "--scene " + spec);
+  std::error_code error;
+  if (std::filesystem::is_regular_file(spec, error) && is_mesh_file(spec)) return load_mesh_scene(spec);
   std::ifstream in(spec, std::ios::binary);
   if (!in) {
     std::string known;
     for (const auto& g : scene_generators()) known += (known.empty() ? "" : ", ") + g.name;
     throw UserError("--scene: '" + spec + "' is neither a built-in scene (" + known +
-                    ") nor a readable scene file");
+                    ") nor a readable scene file (.json) or mesh file (glTF/GLB, PLY, FBX, "
+                    "Collada, 3DS, STL, OFF, OBJ, IFC, ...)");
   }
   std::stringstream text;
   text << in.rdbuf();

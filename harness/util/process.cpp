@@ -1,5 +1,6 @@
 #include "harness/util/process.h"
 
+#include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -7,6 +8,8 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+
+#include "harness/util/interrupt.h"
 
 extern char** environ;
 
@@ -22,7 +25,7 @@ int exit_status_of(int wait_status) {
 
 }  // namespace
 
-ProcessResult run_process(const std::vector<std::string>& argv, bool capture) {
+ProcessResult run_process(const std::vector<std::string>& argv, bool capture, bool forward_stop) {
   ProcessResult result;
   if (argv.empty()) return result;
   std::vector<char*> args;
@@ -63,7 +66,21 @@ ProcessResult run_process(const std::vector<std::string>& argv, bool capture) {
     close(pipe_fds[0]);
   }
   int wait_status = 0;
-  while (waitpid(pid, &wait_status, 0) < 0 && errno == EINTR) {
+  if (forward_stop) {
+    // The stop handlers restart system calls, so waitpid is polled to see a stop arrive.
+    bool forwarded = false;
+    for (;;) {
+      const pid_t done = waitpid(pid, &wait_status, WNOHANG);
+      if (done == pid || (done < 0 && errno != EINTR)) break;
+      if (!forwarded && stop_signal()) {
+        kill(pid, stop_signal());
+        forwarded = true;
+      }
+      usleep(20000);
+    }
+  } else {
+    while (waitpid(pid, &wait_status, 0) < 0 && errno == EINTR) {
+    }
   }
   result.status = exit_status_of(wait_status);
   return result;

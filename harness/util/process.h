@@ -13,8 +13,10 @@ struct ProcessResult {
 };
 
 // Runs argv and waits for it. With `capture` its stdout and stderr are collected into
-// `output`; without, it writes to this process's own streams.
-ProcessResult run_process(const std::vector<std::string>& argv, bool capture);
+// `output`; without, it writes to this process's own streams. With `forward_stop`, a
+// SIGINT or SIGTERM this process receives while waiting (harness/util/interrupt.h) is sent
+// on to the child, which then stops as it would on its own.
+ProcessResult run_process(const std::vector<std::string>& argv, bool capture, bool forward_stop = false);
 
 // The absolute path of the running executable (/proc/self/exe), or "" when unknown.
 std::string executable_path();

@@ -10,6 +10,7 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
+#include "harness/app/timing_columns.h"
 #include "harness/passes/pass.h"
 #include "harness/scene/generators.h"
 #include "ldm_impls/ldm_structure.h"
@@ -201,7 +202,7 @@ void Viewer::draw_panel() {
       if (ImGui::BeginTable("times", 3, ImGuiTableFlags_Borders)) {
         ImGui::TableSetupColumn("sub-pass");
         ImGui::TableSetupColumn("last ms");
-        ImGui::TableSetupColumn("median ms");
+        ImGui::TableSetupColumn("median ms, 95% interval");
         ImGui::TableHeadersRow();
         for (const auto& [name, ms] : last_times_) {
           ImGui::TableNextColumn();
@@ -209,8 +210,12 @@ void Viewer::draw_panel() {
           ImGui::TableNextColumn();
           ImGui::Text("%.3f", ms);
           ImGui::TableNextColumn();
+          // The median to the digits its interval supports, with the relative half-width;
+          // the interval widens the moment the camera moves (those frames differ).
           const TimingSummary* s = find_summary(summaries, name);
-          if (s) ImGui::Text("%.3f", s->median);
+          if (s)
+            ImGui::TextUnformatted(
+                format_time_with_interval(s->median, s->interval.low, s->interval.high).c_str());
         }
         ImGui::EndTable();
       }

@@ -1,6 +1,7 @@
 #include "ldm_impls/common/fragment_census.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "harness/gl/bindings.h"
 #include "harness/util/error.h"
@@ -14,6 +15,49 @@ uint64_t FragmentCensus::fragments_beyond(uint32_t k) const {
   for (uint32_t n : counts)
     if (n > k) lost += n - k;
   return lost;
+}
+
+double DepthProfile::share_above(uint32_t k) const {
+  if (nonempty_pixels == 0) return 0.0;
+  uint64_t above = 0;
+  for (size_t n = size_t(k) + 1; n < pixels_by_length.size(); ++n) above += pixels_by_length[n];
+  return double(above) / double(nonempty_pixels);
+}
+
+uint32_t DepthProfile::quantile(double q) const {
+  if (nonempty_pixels == 0) return 0;
+  // Nearest rank: the rank-th smallest length, rank = ceil(q * count), at least 1.
+  const auto rank = std::max<uint64_t>(1, uint64_t(std::ceil(q * double(nonempty_pixels))));
+  uint64_t seen = 0;
+  for (size_t n = 1; n < pixels_by_length.size(); ++n) {
+    seen += pixels_by_length[n];
+    if (seen >= rank) return uint32_t(n);
+  }
+  return max;
+}
+
+std::string DepthProfile::histogram_text() const {
+  std::string text;
+  for (uint64_t lo = 1; lo < pixels_by_length.size(); lo *= 2) {
+    const uint64_t hi = std::min<uint64_t>(2 * lo - 1, pixels_by_length.size() - 1);
+    uint64_t pixels = 0;
+    for (uint64_t n = lo; n <= hi; ++n) pixels += pixels_by_length[n];
+    text += (text.empty() ? "" : ";") + std::to_string(lo) +
+            (hi > lo ? "-" + std::to_string(hi) : std::string()) + ":" + std::to_string(pixels);
+  }
+  return text;
+}
+
+DepthProfile depth_profile(const FragmentCensus& census) {
+  DepthProfile p;
+  p.max = census.max_depth_complexity;
+  p.pixels_by_length.assign(size_t(p.max) + 1, 0);
+  for (uint32_t n : census.counts) ++p.pixels_by_length[n];
+  p.nonempty_pixels = census.total_pixels - p.pixels_by_length[0];
+  p.p50 = p.quantile(0.50);
+  p.p90 = p.quantile(0.90);
+  p.p99 = p.quantile(0.99);
+  return p;
 }
 
 FragmentCensus take_fragment_census(const GpuScene& scene, const GpuViewSet& views) {

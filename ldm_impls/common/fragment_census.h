@@ -8,6 +8,7 @@
 //    build: the same counting pass, reduced on the GPU, two words read back.
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "harness/gl/gl_objects.h"
@@ -33,6 +34,26 @@ struct FragmentCensus {
   // Fragments lost by an array of k entries per pixel: sum over pixels of max(0, n - k).
   uint64_t fragments_beyond(uint32_t k) const;
 };
+
+// The depth-complexity profile of a census: how list lengths are distributed over the LDM
+// pixels that hold any fragment. It is what explains a ranking: a fixed array sized for the
+// deepest pixel wastes what the p50 does not use, and a list's memory follows the total.
+struct DepthProfile {
+  // pixels_by_length[n]: LDM pixels (all views) holding exactly n fragments, n = 0 .. max.
+  std::vector<uint64_t> pixels_by_length;
+  uint64_t nonempty_pixels = 0;
+  uint32_t p50 = 0, p90 = 0, p99 = 0, max = 0;  // over the non-empty pixels (nearest rank)
+
+  // Share of the non-empty pixels holding more than k fragments (what an array of k
+  // entries drops some of).
+  double share_above(uint32_t k) const;
+  // The smallest length n such that a share of at least q of the non-empty pixels hold at
+  // most n fragments (0 when no pixel holds any).
+  uint32_t quantile(double q) const;
+  // "1:812;2-3:340;4-7:95;..." pixels per power-of-two bin of lengths, non-empty pixels only.
+  std::string histogram_text() const;
+};
+DepthProfile depth_profile(const FragmentCensus& census);
 
 // Counts the fragments of `source` (shaders/ldm/census.frag) over the pixels of `views`.
 FragmentCensus take_fragment_census(const FragmentSource& source, const ViewSet& views);

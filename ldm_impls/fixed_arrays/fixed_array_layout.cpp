@@ -24,7 +24,7 @@ void check_layout(const std::string& structure, const FixedArrayLayout& layout) 
   if (layout.entries() >= (uint64_t(1) << 32))
     throw UserError(structure + ": " + std::to_string(layout.entries()) + " " + what +
                     " exceed what 32-bit entry indices address");
-  checked_storage_block(structure, what, layout.entry_bytes());
+  checked_storage_block(structure, what, layout.entry_bytes(), layout.k);
 }
 }  // namespace
 

@@ -161,6 +161,7 @@ def main(argv):
         canvas.note(note)
     figures.draw_tradeoffs(table, canvas)
     figures.draw_memory(table, canvas)
+    figures.draw_depth_histograms(table, canvas)
     figures.draw_subpass_bars(table, canvas)
     figures.draw_scaling(table, canvas)
     grids.draw_image_grids(table, canvas)

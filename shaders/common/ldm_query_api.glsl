@@ -15,6 +15,13 @@
 #define LDM_QUERY_API_GLSL
 #include "common/ldm_views.glsl"
 
+// Iterations of a structure's own loops inside ldm_begin()/ldm_next() (the HA-buffer's probe
+// along its ages), counted for the passes that bound what one invocation loops
+// (passes/trace_steps.glsl: llvmpipe ends every loop of an invocation silently after 65,535
+// iterations in all). A structure marks each such iteration with LDM_COUNT_QUERY_STEP().
+uint ldm_query_loop_steps = 0u;
+#define LDM_COUNT_QUERY_STEP() (++ldm_query_loop_steps)
+
 // Index of LDM pixel `texel` of view `view` in all-view arrays.
 uint ldm_pixel_index(uint view, uvec2 texel) {
   return ldm_views[view].dims.z + texel.y * ldm_views[view].dims.x + texel.x;

@@ -7,6 +7,7 @@
 // previous one). The normal offset of §4.4.2 moves x by n * sin(angle(n, w)) * k LDM pixels.
 // The trace variant (LDM_TRACE) is chosen in passes/ldm_trace.glsl.
 #include "passes/ldm_trace.glsl"
+#include "passes/trace_steps.glsl"
 
 layout(binding = 0) uniform sampler2D gbuffer_position;
 layout(binding = 1) uniform sampler2D gbuffer_normal;
@@ -44,7 +45,12 @@ void main() {
   }
   const vec3 n = texelFetch(gbuffer_normal, pixel, 0).xyz;
   vec2 sum = vec2(0.0);
-  for (uint v = 0u; v < LDM_VIEW_COUNT; ++v) sum += ao_contribution(v, position.xyz, n);
+  for (uint v = 0u; v < LDM_VIEW_COUNT; ++v) {
+    const uint before = trace_steps_so_far();
+    sum += ao_contribution(v, position.xyz, n);
+    trace_steps_max(v, trace_steps_so_far() - before);
+  }
+  trace_steps_max(LDM_VIEW_COUNT, trace_steps_so_far() + LDM_VIEW_COUNT);
 #if AO_NORMALIZED
   out_ao = sum.y > 0.0 ? sum.x / sum.y : 1.0;
 #else

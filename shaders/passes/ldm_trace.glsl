@@ -35,6 +35,9 @@
 // constant expression for every GLSL compiler (glslang rejects it).
 #define LDM_NO_HIT uintBitsToFloat(0x7f800000u)
 
+// Iterations of the walks below this invocation has run (passes/trace_steps.glsl).
+uint ldm_walk_steps = 0u;
+
 struct LdmNeighbours {
   float behind;  // distance to the nearest occluder before x (smaller depth)
   float ahead;   // distance to the nearest occluder after x (larger depth)
@@ -57,6 +60,7 @@ LdmNeighbours ldm_walk_listing5(uint pixel, float depth_x, float coincident) {
   uint steps = 0u;
   for (LdmCursor c = ldm_begin(pixel); ldm_valid(c) && steps < LDM_MAX_LIST_LENGTH;
        c = ldm_next(c), ++steps) {
+    ++ldm_walk_steps;
     const float depth = ldm_depth(c);
     if (!have_own) {
       own = depth;
@@ -81,6 +85,7 @@ LdmNeighbours ldm_walk_interval(uint pixel, float depth_x, float coincident, flo
   uint steps = 0u;
   for (LdmCursor c = ldm_begin(pixel); ldm_valid(c) && steps < LDM_MAX_LIST_LENGTH;
        c = ldm_next(c), ++steps) {
+    ++ldm_walk_steps;
     const float depth = ldm_depth(c);
     if (depth >= skip_lo && depth <= skip_hi) continue;  // x's own surface (plane trace)
     if (depth < depth_x - coincident) {

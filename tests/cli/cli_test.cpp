@@ -261,29 +261,47 @@ TEST(Cli, ReferenceAndCompareImages) {
 }
 
 #ifdef LDM_GBENCH_PATH
-// The Google Benchmark binary runs every structure and writes JSON that compare.py reads.
-TEST(Gbench, TimesBuildAndEveryPassSubpassOfEveryStructure) {
+// The Google Benchmark binary runs every structure and writes JSON that compare.py reads:
+// one benchmark per configuration and pass (unique names), fixed iterations (the frames),
+// every sub-pass a counter, repetitions aggregated the Google Benchmark way.
+TEST(Gbench, OneBenchmarkPerConfigurationWithEverySubpassAsACounter) {
   const std::string json = (fs::path(test::make_temp_dir("ldm-gbench")) / "out.json").string();
   std::string output;
   const int status = test::run_command(
-      std::string(LDM_GBENCH_PATH) + " --ldm_scenes=cornell --ldm_passes=ao --ldm_views=4 --ldm_r=32 "
-      "--ldm_width=32 --ldm_height=32 --benchmark_min_time=0.01 --benchmark_out_format=json "
-      "--benchmark_out=" + json, &output);
+      std::string(LDM_GBENCH_PATH) + " --ldm_scenes=cornell --ldm_passes=all --ldm_views=4 --ldm_r=32 "
+      "--ldm_width=32 --ldm_height=32 --ldm_frames=3 --ldm_warmup=1 --benchmark_repetitions=2 "
+      "--benchmark_out_format=json --benchmark_out=" + json, &output);
   ASSERT_EQ(status, 0) << output;
   const auto j = nlohmann::json::parse(read_text(json));
   EXPECT_FALSE(j["context"]["gl_renderer"].get<std::string>().empty());
+  EXPECT_FALSE(j["context"]["git_commit"].get<std::string>().empty());
+  EXPECT_EQ(j["context"]["ldm_frames"], "3");
   std::set<std::string> names;
+  size_t iterations = 0, aggregates = 0;
   for (const auto& b : j["benchmarks"]) {
     EXPECT_FALSE(b.contains("error_occurred") && b["error_occurred"].get<bool>()) << b["name"];
+    if (b["run_type"] == "aggregate") {
+      ++aggregates;
+      continue;
+    }
+    ++iterations;
+    EXPECT_EQ(b["iterations"].get<int>(), 3) << b["name"];
     EXPECT_GT(b["real_time"].get<double>(), 0.0) << b["name"];
     EXPECT_GT(b["fragments"].get<double>(), 0.0) << b["name"];
-    names.insert(b["name"].get<std::string>());
+    for (const char* counter : {"build_ms", "pass_ms", "frame_ms", "gbuffer_ms"})
+      EXPECT_GT(b.value(counter, 0.0), 0.0) << b["name"] << " " << counter;
+    names.insert(b["run_name"].get<std::string>());
   }
-  EXPECT_EQ(names.size(), 3 * 6u);  // Build, ao:gbuffer and ao:ao for each structure
-  EXPECT_TRUE(names.count("Build/cornell/dfbuffer/N:4/R:32/manual_time"));
-  EXPECT_TRUE(names.count("ao:ao/cornell/psppsll/N:4/R:32/manual_time"));
+  // Every structure under each structure pass (ao, indirect), each name once per pass.
+  EXPECT_EQ(names.size(), 2 * 6u);
+  EXPECT_EQ(iterations, 2 * names.size());  // two repetitions each
+  EXPECT_GE(aggregates, 4 * names.size());  // mean, median, stddev, cv
+  EXPECT_TRUE(names.count("ao/cornell/dfbuffer/N:4/R:32/iterations:3/manual_time"));
+  EXPECT_TRUE(names.count("indirect/cornell/psppsll/N:4/R:32/iterations:3/manual_time"));
   const Outcome bad = {test::run_command(std::string(LDM_GBENCH_PATH) + " --ldm_views=0", &output), output};
   EXPECT_EQ(bad.status, 2);
+  const Outcome help = {test::run_command(std::string(LDM_GBENCH_PATH) + " --help", &output), output};
+  EXPECT_NE(help.output.find("--ldm_frames"), std::string::npos) << help.output;
 }
 
 // gbench judges builds as `ldmbench run` does (the same measure() and BuildHealth): a lossy
@@ -294,8 +312,8 @@ TEST(Gbench, LossyBuildsAreTimedLikeRunMeasuresThem) {
   std::string output;
   const int status = test::run_command(
       std::string(LDM_GBENCH_PATH) + " --ldm_scenes=cornell --ldm_structures=ppfla --ldm_passes=ao "
-      "--ldm_views=4 --ldm_r=32 --ldm_width=16 --ldm_height=16 --ldm_param=ppfla:k=1 "
-      "--benchmark_filter=Build --benchmark_min_time=0.01 --benchmark_out_format=json "
+      "--ldm_views=4 --ldm_r=32 --ldm_width=16 --ldm_height=16 --ldm_param=ppfla:k=1 --ldm_frames=2 "
+      "--benchmark_out_format=json "
       "--benchmark_out=" + json, &output);
   ASSERT_EQ(status, 0) << output;
   const auto j = nlohmann::json::parse(read_text(json));

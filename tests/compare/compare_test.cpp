@@ -1,12 +1,15 @@
-// `ldmbench compare`: the U test against SciPy, the per-frame samples files, each verdict
-// on synthetic records, and the command's exit codes.
+// `ldmbench compare`: the per-frame samples files, each verdict on synthetic records (the
+// level the test works on, Holm's correction, the minimum detectable change, the
+// thresholds at their boundaries), and the command's exit codes. The statistics themselves
+// are checked against SciPy in tests/stats.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <nlohmann/json.hpp>
 
-#include "harness/compare/mann_whitney.h"
 #include "harness/compare/run_comparison.h"
 #include "harness/compare/samples.h"
 #include "harness/util/error.h"
@@ -18,26 +21,25 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-// Oracle: scipy.stats.mannwhitneyu(a, b, alternative="two-sided", method="asymptotic")
-// (SciPy 1.10.1), printed once and copied here.
-TEST(MannWhitney, MatchesScipyAsymptotic) {
-  const auto separated = mann_whitney_u({1, 2, 3, 4, 5}, {6, 7, 8, 9, 10});
-  EXPECT_DOUBLE_EQ(separated.u, 0);
-  EXPECT_NEAR(separated.p_value, 0.012185780355344813, 1e-12);
-  const auto tied = mann_whitney_u({1.0, 2, 2, 3, 5, 7, 7, 8, 9, 9.5}, {2, 4, 4, 6, 8, 10, 11, 12, 12, 13, 14});
-  EXPECT_DOUBLE_EQ(tied.u, 27.5);
-  EXPECT_NEAR(tied.p_value, 0.05661901581720463, 1e-12);
-  EXPECT_DOUBLE_EQ(mann_whitney_u({3, 3, 3}, {3, 3, 3}).p_value, 1.0);
-  EXPECT_THROW(mann_whitney_u({}, {1}), std::invalid_argument);
-}
-
-TEST(Samples, ParseTheRunsFramesCsvAndRejectGarbage) {
-  const FrameSamples s = parse_frame_samples("frame,subpass,ms\n0,clear,0.5\n0,build,1.25\n1,build,2\n", "f.csv");
-  EXPECT_EQ(s.at("build"), (std::vector<double>{1.25, 2.0}));
-  EXPECT_EQ(s.at("clear"), (std::vector<double>{0.5}));
-  EXPECT_TRUE(parse_frame_samples("frame,subpass,ms\n", "f.csv").empty());
-  for (const char* bad : {"frame,ms\n", "frame,subpass,ms\n0,build\n", "frame,subpass,ms\n0,build,x\n",
-                          "frame,subpass,ms\n0,build,nan\n", "frame,subpass,ms\n0,build,1,2\n"}) {
+TEST(Samples, ParseRepetitionsAndOlderRunsFramesAndRejectGarbage) {
+  const auto reps = parse_frame_samples(
+      "repetition,frame,subpass,ms\n0,0,clear,0.5\n0,0,build,1.25\n0,1,build,2\n1,0,build,3\n", "f.csv");
+  ASSERT_EQ(reps.size(), 2u);
+  EXPECT_EQ(*reps[0].find("build"), (std::vector<double>{1.25, 2.0}));
+  EXPECT_EQ(*reps[0].find("clear"), (std::vector<double>{0.5, 0.0}));  // absent in frame 1: 0 ms
+  EXPECT_EQ(*reps[1].find("build"), (std::vector<double>{3.0}));
+  // A file of one repetition alone (repetition 2 of a configuration, before combining).
+  EXPECT_EQ(parse_frame_samples("repetition,frame,subpass,ms\n2,0,build,4\n", "f.csv").size(), 1u);
+  // Older runs: one repetition.
+  const auto old = parse_frame_samples("frame,subpass,ms\n0,build,1.25\n1,build,2\n", "f.csv");
+  ASSERT_EQ(old.size(), 1u);
+  EXPECT_EQ(old[0].frames(), 2u);
+  EXPECT_TRUE(parse_frame_samples("repetition,frame,subpass,ms\n", "f.csv").empty());
+  for (const char* bad : {"frame,ms\n", "repetition,frame,subpass,ms\n0,0,build\n",
+                          "repetition,frame,subpass,ms\n0,0,build,x\n", "repetition,frame,subpass,ms\n0,0,build,nan\n",
+                          "repetition,frame,subpass,ms\n0,0,build,1,2\n", "repetition,frame,subpass,ms\n0,1,build,1\n",
+                          "repetition,frame,subpass,ms\n0,0,build,1\n2,0,build,1\n",
+                          "repetition,frame,subpass,ms\n1,0,build,1\n0,0,build,1\n"}) {
     try {
       parse_frame_samples(bad, "cfg-frames.csv");
       ADD_FAILURE() << bad << " was accepted";
@@ -48,34 +50,43 @@ TEST(Samples, ParseTheRunsFramesCsvAndRejectGarbage) {
   EXPECT_THROW(load_frame_samples("/nonexistent/x-frames.csv"), UserError);
 }
 
-// A samples file as `ldmbench run` writes it, holding `frame` times, in a fresh folder.
-std::string frames_file(const std::vector<double>& times) {
+// A samples file as `ldmbench run` writes it: `frame` times per repetition, in a fresh folder.
+std::string frames_file(const std::vector<std::vector<double>>& repetitions) {
   static const fs::path dir = test::make_temp_dir("ldm-compare-samples");
   static int count = 0;
   const fs::path file = dir / ("c" + std::to_string(count++) + "-frames.csv");
   std::ofstream out(file);
-  out << "frame,subpass,ms\n";
-  for (size_t i = 0; i < times.size(); ++i) out << i << ",frame," << times[i] << "\n";
+  out.precision(17);
+  out << "repetition,frame,subpass,ms\n";
+  for (size_t r = 0; r < repetitions.size(); ++r)
+    for (size_t i = 0; i < repetitions[r].size(); ++i) out << r << "," << i << ",frame," << repetitions[r][i] << "\n";
   return file.string();  // absolute: joined to the run folder, stays itself
 }
 
-std::vector<double> samples(double base, double step, int n) {
-  std::vector<double> v;
-  for (int i = 0; i < n; ++i) v.push_back(base + step * ((i * 7) % n));  // spread, unsorted
-  return v;
+// K repetitions of F frames: each repetition's own offset (the process's) times frame noise.
+std::vector<std::vector<double>> timed(std::mt19937& rng, double median, size_t repetitions,
+                                       double process_spread, size_t frames = 12, double frame_spread = 0.01) {
+  std::normal_distribution<double> z(0, 1);
+  std::vector<std::vector<double>> out(repetitions);
+  for (auto& rep : out) {
+    const double offset = median * std::exp(process_spread * z(rng));
+    for (size_t f = 0; f < frames; ++f) rep.push_back(offset * std::exp(frame_spread * z(rng)));
+  }
+  return out;
 }
 
-json record(const std::string& id, const std::vector<double>& frame_times) {
+json record(const std::string& id, const std::vector<std::vector<double>>& repetitions) {
   return {{"config_id", id}, {"status", "ok"}, {"device", "gpu A"}, {"timer", "gl_timestamp"},
-          {"structure_params", ""}, {"frame_samples_csv", frame_times.empty() ? "" : frames_file(frame_times)},
+          {"structure_params", ""}, {"frame_samples_csv", repetitions.empty() ? "" : frames_file(repetitions)},
           {"bytes_allocated", 1000}, {"bytes_used", 800},
           {"mse", 0.010}, {"mssim", 0.9}, {"ref_noise_mse", 0.001}};
 }
 
-RunRecords run_of(std::vector<json> records, const std::string& commit = "aaa") {
+RunRecords run_of(std::vector<json> records, const std::string& commit = "aaa", const std::string& session = "") {
   RunRecords r;
   r.path = "test";
   r.run = {{"device", "gpu A"}, {"git_commit", commit}};
+  if (!session.empty()) r.run["interleaved_session"] = session;
   r.records = std::move(records);
   return r;
 }
@@ -87,44 +98,141 @@ ConfigChange compare_one(const json& a, const json& b, CompareThresholds t = {})
   return c.matched.front();
 }
 
-TEST(CompareRuns, TimeVerdictsNeedSignificanceAndSize) {
-  const json base = record("c", samples(10, 0.1, 12));
-  // 20% slower, well separated: significant and large.
-  auto slow = compare_one(base, record("c", samples(12, 0.1, 12)));
+TEST(CompareRuns, RepetitionsDecideTimeVerdictsWithTheirMinimumDetectableChange) {
+  std::mt19937 rng(1);
+  // 20 % slower, 2 % between repetitions, 6 a side: found, and well above the MDE.
+  auto slow = compare_one(record("c", timed(rng, 10, 6, 0.02)), record("c", timed(rng, 12, 6, 0.02)));
   ASSERT_EQ(slow.times.size(), 1u);
   EXPECT_EQ(slow.times[0].verdict, "SLOW");
-  EXPECT_LT(slow.times[0].p_value, 0.05);
+  EXPECT_EQ(slow.times[0].method, "welch_log_t");
+  EXPECT_EQ(slow.times[0].base_repetitions, 6u);
+  EXPECT_LT(slow.times[0].minimum_detectable, 0.1);
+  EXPECT_LT(slow.times[0].change_low, 0.2);
+  EXPECT_GT(slow.times[0].change_high, 0.2);
   EXPECT_TRUE(slow.time_regression());
-  EXPECT_TRUE(slow.times[0].warning.empty());
-  EXPECT_EQ(compare_one(base, record("c", samples(8, 0.1, 12))).times[0].verdict, "FAST");
-  // 2% slower and well separated: significant but below --min-time-change (5%).
-  auto small = compare_one(record("c", samples(10, 0.001, 12)), record("c", samples(10.2, 0.001, 12)));
-  EXPECT_LT(small.times[0].p_value, 0.05);
-  EXPECT_EQ(small.times[0].verdict, "SAME");
-  EXPECT_FALSE(small.time_regression());
-  CompareThresholds sensitive;
-  sensitive.min_time_change = 0.01;
-  EXPECT_EQ(compare_one(record("c", samples(10, 0.001, 12)), record("c", samples(10.2, 0.001, 12)),
-                        sensitive).times[0].verdict, "SLOW");
-  // A large median change the samples cannot confirm: three frames with a wide spread.
-  auto unsure = compare_one(record("c", {10, 20, 30}), record("c", {15, 25, 12}));
-  EXPECT_EQ(unsure.times[0].verdict, "UNSURE");
-  EXPECT_NE(unsure.times[0].warning.find("fewer than 9"), std::string::npos);
-  // One frame each: not tested.
-  auto one = compare_one(record("c", {10}), record("c", {20}));
-  EXPECT_EQ(one.times[0].verdict, "UNSURE");
-  EXPECT_LT(one.times[0].p_value, 0);
+  EXPECT_EQ(compare_one(record("c", timed(rng, 10, 6, 0.02)), record("c", timed(rng, 8, 6, 0.02))).times[0].verdict,
+            "FAST");
+  // The frames of one repetition say nothing of the process spread: 20 % between
+  // repetitions hides a 20 % change from 3 repetitions a side, whatever the frames say.
+  auto hidden = compare_one(record("c", timed(rng, 10, 3, 0.2, 200)), record("c", timed(rng, 12, 3, 0.2, 200)));
+  EXPECT_EQ(hidden.times[0].verdict, "SAME");
+  EXPECT_GT(hidden.times[0].minimum_detectable, 0.2);
+  EXPECT_NE(describe_time_change(hidden.times[0]).find("could not detect <"), std::string::npos)
+      << describe_time_change(hidden.times[0]);
+}
+
+TEST(CompareRuns, ThresholdsHoldAtTheirBoundaries) {
+  // Nearly noiseless repetitions: the MDE is tiny, so --min-time-change decides.
+  std::mt19937 rng(2);
+  const json base = record("c", timed(rng, 10, 6, 0.001, 6, 0.0001));
+  const json plus6 = record("c", timed(rng, 10.6, 6, 0.001, 6, 0.0001));
+  const json plus4 = record("c", timed(rng, 10.4, 6, 0.001, 6, 0.0001));
+  CompareThresholds t;  // 5 %
+  EXPECT_EQ(compare_one(base, plus6, t).times[0].verdict, "SLOW");
+  EXPECT_EQ(compare_one(base, plus4, t).times[0].verdict, "SAME");
+  EXPECT_NE(describe_time_change(compare_one(base, plus4, t).times[0]).find("below the change of interest"),
+            std::string::npos);
+  t.min_time_change = 0.07;  // just above the 6 % change
+  EXPECT_EQ(compare_one(base, plus6, t).times[0].verdict, "SAME");
+  t.min_time_change = 0.055;  // just below it
+  EXPECT_EQ(compare_one(base, plus6, t).times[0].verdict, "SLOW");
+  t.min_time_change = 0.10;  // twice the default
+  EXPECT_EQ(compare_one(base, plus6, t).times[0].verdict, "SAME");
+  // alpha at its boundary: a change that is significant at 0.05 but not at 1e-9.
+  std::mt19937 rng2(3);
+  const json noisy_base = record("c", timed(rng2, 10, 4, 0.03)), noisy_slow = record("c", timed(rng2, 13, 4, 0.03));
+  CompareThresholds loose, strict;
+  strict.alpha = 1e-9;
+  const TimeChange at_loose = compare_one(noisy_base, noisy_slow, loose).times[0];
+  EXPECT_EQ(at_loose.verdict, "SLOW");
+  const TimeChange at_strict = compare_one(noisy_base, noisy_slow, strict).times[0];
+  EXPECT_NE(at_strict.verdict, "SLOW");
+  EXPECT_GT(at_strict.minimum_detectable, at_loose.minimum_detectable);  // a stricter test sees less
+}
+
+TEST(CompareRuns, OneRepetitionAssumesIndependentFramesAndTheProcessSpread) {
+  std::mt19937 rng(4);
+  // 200 frames with 1 % noise: the frames alone would call +15 % certain.
+  const json base = record("c", timed(rng, 10, 1, 0.0, 200)), slower = record("c", timed(rng, 11.5, 1, 0.0, 200));
+  const TimeChange assumed = compare_one(base, slower).times[0];  // default spread 10 %
+  EXPECT_EQ(assumed.method, "assumed_spread_z");
+  EXPECT_EQ(assumed.verdict, "SAME");
+  EXPECT_NE(assumed.warning.find("assumes independent frames"), std::string::npos) << assumed.warning;
+  EXPECT_GT(assumed.minimum_detectable, 0.15);
+  CompareThresholds trusting;
+  trusting.process_spread = 0.0;  // what the old frame-level test believed
+  EXPECT_EQ(compare_one(base, slower, trusting).times[0].verdict, "SLOW");
+  // A side with repetitions lends its measured spread when it is larger than the assumed one.
+  const json spread = record("c", timed(rng, 10, 5, 0.3));
+  const TimeChange lent = compare_one(base, spread, trusting).times[0];
+  EXPECT_EQ(lent.method, "assumed_spread_z");
+  EXPECT_GT(lent.se, 0.2);
+  // One frame: nothing is detectable.
+  const TimeChange single = compare_one(record("c", {{10}}), record("c", {{20}})).times[0];
+  EXPECT_EQ(single.verdict, "SAME");
+  EXPECT_TRUE(std::isinf(single.minimum_detectable));
+}
+
+TEST(CompareRuns, HolmCorrectsOverEveryConfigurationAndSubpass) {
+  // Eight configurations, each a marginal +8 % slowdown: significant alone at 0.05, not
+  // all after Holm over the eight.
+  std::mt19937 rng(5);
+  std::vector<json> base, next;
+  for (int i = 0; i < 8; ++i) {
+    base.push_back(record("c" + std::to_string(i), timed(rng, 10, 4, 0.04)));
+    next.push_back(record("c" + std::to_string(i), timed(rng, 10.8, 4, 0.04)));
+  }
+  CompareThresholds t;
+  t.time_subpasses = {"frame"};
+  t.min_time_change = 0;
+  const RunComparison c = compare_runs(run_of(base), run_of(next, "bbb"), t);
+  EXPECT_EQ(c.time_tests, 8u);
+  size_t raw = 0, corrected = 0;
+  for (const ConfigChange& change : c.matched) {
+    const TimeChange& x = change.times[0];
+    EXPECT_GE(x.p_adjusted, x.p_value);
+    raw += x.p_value < t.alpha;
+    corrected += x.p_adjusted < t.alpha;
+  }
+  EXPECT_LT(corrected, raw);
+  EXPECT_NE(comparison_table(c).find("8 tests, Holm-corrected"), std::string::npos) << comparison_table(c);
+}
+
+TEST(CompareRuns, AnInterleavedSessionIsTestedInPairs) {
+  // Load that each pair shares (repetition j of A and of B side by side) swamps a 10 %
+  // change for Welch's test; the paired test removes it.
+  std::mt19937 rng(6);
+  std::normal_distribution<double> z(0, 1);
+  std::vector<std::vector<double>> a, b;
+  for (int j = 0; j < 6; ++j) {
+    const double load = 10 * std::exp(0.3 * z(rng));
+    a.push_back({load * std::exp(0.005 * z(rng))});
+    b.push_back({1.1 * load * std::exp(0.005 * z(rng))});
+  }
+  CompareThresholds t;
+  t.time_subpasses = {"frame"};
+  const RunComparison unpaired = compare_runs(run_of({record("c", a)}), run_of({record("c", b)}, "bbb"), t);
+  EXPECT_EQ(unpaired.matched[0].times[0].method, "welch_log_t");
+  EXPECT_NE(unpaired.matched[0].times[0].verdict, "SLOW");
+  const RunComparison paired =
+      compare_runs(run_of({record("c", a)}, "aaa", "s1"), run_of({record("c", b)}, "bbb", "s1"), t);
+  EXPECT_TRUE(paired.paired);
+  EXPECT_EQ(paired.matched[0].times[0].method, "paired_log_t");
+  EXPECT_EQ(paired.matched[0].times[0].verdict, "SLOW");
+  // Two different sessions are not paired.
+  EXPECT_FALSE(compare_runs(run_of({record("c", a)}, "aaa", "s1"), run_of({record("c", b)}, "bbb", "s2"), t).paired);
 }
 
 TEST(CompareRuns, RefusesTimeAcrossDevicesAndTimers) {
-  const json base = record("c", samples(10, 0.1, 12));
-  json other_device = record("c", samples(20, 0.1, 12));
+  std::mt19937 rng(7);
+  const json base = record("c", timed(rng, 10, 3, 0.01));
+  json other_device = record("c", timed(rng, 20, 3, 0.01));
   other_device["device"] = "gpu B";
   auto c = compare_one(base, other_device);
   EXPECT_TRUE(c.times.empty());
   EXPECT_NE(c.time_note.find("devices differ"), std::string::npos);
   EXPECT_EQ(c.memory_verdict, "SAME");  // the rest is still compared
-  json other_timer = record("c", samples(20, 0.1, 12));
+  json other_timer = record("c", timed(rng, 20, 3, 0.01));
   other_timer["timer"] = "fenced_wall_clock";
   c = compare_one(base, other_timer);
   EXPECT_TRUE(c.times.empty());
@@ -194,6 +302,23 @@ TEST(CompareRuns, IgnoredParameterLeavesTheIdentity) {
   EXPECT_TRUE(c.added.empty());
 }
 
+TEST(CompareRuns, IgnoredViewCountPairsTwoValuesOfN) {
+  json a = record("cornell-psppsll-ao-n16-r64-plane-prevframe", {}), b = a, c = a;
+  a["n_views"] = 16;
+  b["config_id"] = "cornell-psppsll-ao-n20-r64-plane-prevframe";
+  b["n_views"] = 20;
+  CompareThresholds t;
+  t.ignored_params = {"n_views"};
+  const RunComparison pairs = compare_runs(run_of({a}), run_of({b}), t);
+  EXPECT_EQ(pairs.matched[0].identity, "cornell-psppsll-ao-r64-plane-prevframe");
+  EXPECT_EQ(pairs.matched[0].new_status, "ok");
+  // Only the whole fragment: -n16 is not cut out of -n160.
+  c["config_id"] = "cornell-psppsll-ao-n160-r64-plane-prevframe";
+  c["n_views"] = 16;  // a record whose id says otherwise keeps its id
+  EXPECT_EQ(compare_runs(run_of({c}), run_of({c}), t).matched[0].identity,
+            "cornell-psppsll-ao-n160-r64-plane-prevframe");
+}
+
 // The command: exit 0 without selected regressions, 1 with, 2 for bad input.
 using test::Outcome;
 using test::ldmbench;
@@ -206,9 +331,10 @@ fs::path write_run(const fs::path& dir, const std::vector<json>& records) {
 
 TEST(CompareCommand, ExitCodeFollowsFailOn) {
   const fs::path tmp = test::make_temp_dir("ldm-compare");
-  json worse = record("c", samples(10, 0.1, 12));
+  std::mt19937 rng(8);
+  json worse = record("c", timed(rng, 10, 3, 0.01));
   worse["bytes_used"] = 900;
-  const fs::path a = write_run(tmp / "a", {record("c", samples(10, 0.1, 12))});
+  const fs::path a = write_run(tmp / "a", {record("c", timed(rng, 10, 3, 0.01))});
   const fs::path b = write_run(tmp / "b", {worse});
   const std::string ab = a.string() + " " + b.string();
   Outcome o = ldmbench("compare " + ab);

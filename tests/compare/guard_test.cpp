@@ -33,6 +33,10 @@ TEST(RegressionGuard, PassesOnTheCommittedBaseline) {
   EXPECT_EQ(o.status, 0) << o.output;
   EXPECT_NE(o.output.find("regressions: time"), std::string::npos) << o.output;
   EXPECT_EQ(o.output.find("missing"), std::string::npos) << o.output;
+  // Nothing time-based in the guard, not even a verdict it does not fail on.
+  EXPECT_NE(o.output.find("not compared (--no-time)"), std::string::npos) << o.output;
+  EXPECT_EQ(o.output.find("SLOW"), std::string::npos) << o.output;
+  EXPECT_EQ(o.output.find("FAST"), std::string::npos) << o.output;
 }
 
 TEST(RegressionGuard, FailsOnAStatusRegression) {
@@ -55,19 +59,96 @@ TEST(RunRecords, NameEveryFramesSamples) {
   std::string output;
   const int status = test::run_command(
       std::string(LDM_BINARY_PATH) + " run --scene cornell --structure psppsll -N 2 -R 32 "
-      "--width 32 --height 32 --frames 4 --warmup 1 --no-images --out " + out.string(), &output);
+      "--width 32 --height 32 --frames 4 --time-target 0 --warmup 1 --no-images --out " + out.string(), &output);
   ASSERT_EQ(status, 0) << output;
   const RunRecords run = load_run_records(out.string());
   ASSERT_EQ(run.records.size(), 1u);
   const auto& r = run.records[0];
-  const FrameSamples samples = load_frame_samples((out / r["frame_samples_csv"].get<std::string>()).string());
-  for (const char* subpass : {"build", "frame"}) {
-    ASSERT_TRUE(samples.count(subpass)) << subpass;
-    std::vector<double> times = samples.at(subpass);
+  const auto samples = load_frame_samples((out / r["frame_samples_csv"].get<std::string>()).string());
+  ASSERT_EQ(samples.size(), 1u);
+  EXPECT_EQ(r["repetitions"], 1);
+  EXPECT_EQ(r["frames_measured"], 4);
+  EXPECT_EQ(r["time_interval"], "order_statistics_of_frames");
+  for (const char* subpass : {"build", "pass", "frame"}) {
+    ASSERT_TRUE(samples[0].find(subpass)) << subpass;
+    std::vector<double> times = *samples[0].find(subpass);
     ASSERT_EQ(times.size(), 4u) << subpass;
     std::sort(times.begin(), times.end());
-    EXPECT_DOUBLE_EQ((times[1] + times[2]) / 2, r[std::string(subpass) + "_ms_median"].get<double>()) << subpass;
+    const std::string name = subpass;
+    EXPECT_DOUBLE_EQ((times[1] + times[2]) / 2, r[name + "_ms_median"].get<double>()) << subpass;
+    // Four frames cannot reach 95 %: the interval is [min, max] (coverage 87.5 %).
+    EXPECT_DOUBLE_EQ(times.front(), r[name + "_ms_ci_low"].get<double>()) << subpass;
+    EXPECT_DOUBLE_EQ(times.back(), r[name + "_ms_ci_high"].get<double>()) << subpass;
   }
+  EXPECT_DOUBLE_EQ(r["time_interval_coverage"].get<double>(), 0.875);
+}
+
+// --repetitions: each repetition in its own context (or process), round robin, combined into
+// one record whose median is the median of the repetitions' medians and whose interval is
+// over them; the repetitions' own samples files are gone, their frames in one file.
+TEST(RunRecords, RepetitionsAreCombinedIntoOneRecord) {
+  for (const char* isolation : {"context", "process"}) {
+    const fs::path out = fs::path(test::make_temp_dir("ldm-repetitions")) / "run";
+    std::string output;
+    const int status = test::run_command(
+        std::string(LDM_BINARY_PATH) + " run --scene cornell --structure psppsll,dfbuffer -N 2 -R 32 "
+        "--width 32 --height 32 --frames 3 --time-target 0 --warmup 1 --no-images --repetitions 3 "
+        "--isolation " + isolation + " --out " + out.string(), &output);
+    ASSERT_EQ(status, 0) << output;
+    // Round robin: repetition 1 of both configurations before repetition 2 of either.
+    const size_t second_psppsll = output.find("psppsll-ao-n2-r32-plane-prevframe (repetition 2/3)");
+    const size_t first_dfbuffer = output.find("dfbuffer-ao-n2-r32-plane-prevframe (repetition 1/3)");
+    ASSERT_NE(second_psppsll, std::string::npos) << output;
+    EXPECT_LT(first_dfbuffer, second_psppsll) << output;
+    const RunRecords run = load_run_records(out.string());
+    ASSERT_EQ(run.records.size(), 2u);
+    EXPECT_EQ(run.run["isolation"], isolation);
+    for (const auto& r : run.records) {
+      EXPECT_EQ(r["status"], "ok") << r.dump();
+      EXPECT_EQ(r["repetitions"], 3);
+      EXPECT_EQ(r["frames_per_repetition"], "3;3;3");
+      EXPECT_EQ(r["time_interval"], "t_on_log_repetition_medians");
+      EXPECT_FALSE(r.contains("repetition"));
+      const auto samples = load_frame_samples((out / r["frame_samples_csv"].get<std::string>()).string());
+      ASSERT_EQ(samples.size(), 3u);
+      std::vector<double> medians;
+      for (const auto& rep : samples) {
+        std::vector<double> t = *rep.find("frame");
+        std::sort(t.begin(), t.end());
+        medians.push_back(t[1]);
+      }
+      std::sort(medians.begin(), medians.end());
+      EXPECT_DOUBLE_EQ(r["frame_ms_median"].get<double>(), medians[1]);
+      EXPECT_LE(r["frame_ms_ci_low"].get<double>(), medians[1]);
+      EXPECT_GE(r["frame_ms_ci_high"].get<double>(), medians[1]);
+      EXPECT_GT(r["frame_ms_rep_spread"].get<double>(), 0.0);
+    }
+    for (const auto& file : fs::directory_iterator(out / "samples"))
+      EXPECT_EQ(file.path().filename().string().find("-rep"), std::string::npos) << file.path();
+  }
+}
+
+// A repetition measured alone (--step, as a child measures it) is journaled; the full
+// command then resumes with it and measures only the rest.
+TEST(RunRecords, RepetitionsResumeFromTheJournal) {
+  const fs::path out = fs::path(test::make_temp_dir("ldm-repetitions")) / "run";
+  const std::string command = std::string(LDM_BINARY_PATH) +
+                              " run --scene cornell --structure psppsll -N 2 -R 32 --width 32 --height 32 "
+                              "--frames 3 --time-target 0 --warmup 1 --no-images --repetitions 2 --out " +
+                              out.string();
+  std::string output;
+  ASSERT_EQ(test::run_command(command + " --step cornell-psppsll-ao-n2-r32-plane-prevframe", &output), 0) << output;
+  EXPECT_NE(output.find("(repetition 1/2)"), std::string::npos) << output;
+  EXPECT_EQ(output.find("configuration "), std::string::npos) << "a step prints no summary table:\n" << output;
+  ASSERT_EQ(test::run_command(command, &output), 0) << output;
+  EXPECT_NE(output.find("1 repetition(s) of unfinished ones"), std::string::npos) << output;
+  EXPECT_EQ(output.find("(repetition 1/2)"), std::string::npos) << output;
+  EXPECT_NE(output.find("(repetition 2/2)"), std::string::npos) << output;
+  const RunRecords run = load_run_records(out.string());
+  ASSERT_EQ(run.records.size(), 1u);
+  EXPECT_EQ(run.records[0]["repetitions"], 2);
+  ASSERT_NE(test::run_command(command + " --step nonexistent", &output), 0);
+  EXPECT_NE(output.find("--step nonexistent: no such configuration"), std::string::npos) << output;
 }
 
 }  // namespace

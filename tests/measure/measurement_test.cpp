@@ -143,6 +143,7 @@ TEST(Measurement, KeepsEveryFrameAndSplitsBuildFromThePass) {
     EXPECT_DOUBLE_EQ(t["build"], t["clear"] + t["count"] + t["prefix_sum"] + t["construct"] +
                                      t["sort"] + t["readback"]);
     EXPECT_DOUBLE_EQ(t["frame"], t["build"] + t["gbuffer"] + t["ao"]);
+    EXPECT_DOUBLE_EQ(t["pass"], t["frame"] - t["build"]);  // the pass's own, summed per frame
   }
   EXPECT_EQ(m.raster_touch_fragments, m.census.fragments);
   EXPECT_EQ(m.summaries().front().samples, 3u);
@@ -152,8 +153,9 @@ TEST(Measurement, KeepsEveryFrameAndSplitsBuildFromThePass) {
   for (char c : csv) rows += c == '\n';
   for (const FrameTimes& frame : m.frames) expected_rows += frame.size();
   EXPECT_EQ(rows, expected_rows);
-  EXPECT_EQ(csv.rfind("frame,subpass,ms\n0,", 0), 0u) << csv.substr(0, 40);
-  EXPECT_NE(csv.find("\n2,frame,"), std::string::npos);
+  EXPECT_EQ(csv.rfind("repetition,frame,subpass,ms\n0,0,", 0), 0u) << csv.substr(0, 40);
+  EXPECT_NE(csv.find("\n0,2,frame,"), std::string::npos);
+  EXPECT_NE(frame_samples_csv(m, 4).find("\n4,2,frame,"), std::string::npos);  // a repetition's own
   ASSERT_EQ(m.images.size(), 1u);
   EXPECT_EQ(m.images[0].name, "ao");
   EXPECT_EQ(m.images[0].image.width, 32);

@@ -71,7 +71,7 @@ Report small_report(const std::string& options = "") {
 
 const std::set<std::string> kExpectedFigures = {
     "tradeoff-time-vs-mse", "tradeoff-time-vs-mssim", "memory-vs-n_views", "subpasses-cornell",
-    "cost-vs-n_views",      "cost-vs-fragments",      "grid-cornell-n_views"};
+    "cost-vs-n_views",      "cost-vs-fragments",      "grid-cornell-n_views", "depth-histograms"};
 
 void expect_non_empty_figures(const fs::path& dir, const nlohmann::json& manifest) {
   for (const auto& figure : manifest["figures"])
@@ -311,6 +311,14 @@ TEST(Report, RejectsBadArgumentsBeforeWritingAnything) {
     EXPECT_EQ(o.status, 2) << args << "\n" << o.output;
     EXPECT_FALSE(fs::exists(out)) << args;
   }
+}
+
+// The ties of rankings and fronts, and the time digits, on hand-made tables
+// (tests/report/test_ties.py, Python's unittest).
+TEST(ReportTies, TiesAreShownAsTies) {
+  const Outcome o = shell(std::string(LDM_PYTHON) + " " + LDM_TEST_SOURCE_DIR + "/report/test_ties.py");
+  EXPECT_EQ(o.status, 0) << o.output;
+  EXPECT_NE(o.output.find("OK"), std::string::npos) << o.output;
 }
 
 }  // namespace

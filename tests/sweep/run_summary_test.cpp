@@ -17,7 +17,10 @@ Record measured(const std::string& id, double build_ms) {
   r.set("build_ms_median", build_ms);
   r.set("gbuffer_ms_median", 1.25);
   r.set("ao_ms_median", 47.258949);
-  r.set("frame_ms_median", 73.5);
+  r.set("pass_ms_median", 48.51);
+  r.set("frame_ms_median", 73.4);
+  r.set("frame_ms_ci_low", 72.0);
+  r.set("frame_ms_ci_high", 75.0);
   r.set("bytes_allocated", int64_t(3) << 20);
   r.set("bytes_used", int64_t(1) << 19);
   r.set("mse", 0.0012345678);
@@ -48,8 +51,9 @@ TEST(RunSummary, AlignedRowsWithTheColumnsAReaderWants) {
   for (const char* column : {"status", "build ms", "pass ms", "frame ms", "MiB alloc", "MiB used", "MSE",
                              "MSSIM", "x noise"})
     EXPECT_NE(header.find(column), std::string::npos) << column;
-  // pass ms = gbuffer + ao medians; MiB from bytes; 4 digits everywhere.
-  for (const char* cell : {" 25 ", " 48.51 ", " 73.5 ", " 3 ", " 0.5 ", " 0.001235 ", " 0.9877 ", " 123.5"})
+  // A time with its interval to the digits it supports and its relative half-width (frame:
+  // 73.4 in [72, 75] is "73 ±2.2%"), one without to 4 digits; MiB from bytes; 4 digits else.
+  for (const char* cell : {" 25 ", " 48.51 ", " 73 ±2.2% ", " 3 ", " 0.5 ", " 0.001235 ", " 0.9877 ", " 123.5"})
     EXPECT_NE((first + " ").find(cell), std::string::npos) << cell << "\n" << table;
   EXPECT_NE(second.find("failed"), std::string::npos);
   EXPECT_NE(second.find(" - "), std::string::npos) << table;  // no value, no number

@@ -327,7 +327,8 @@ TEST(Viewer, SavedRunCommandLineIsExplicitAndQuoted) {
                            " --pass ao -N 32 -R 128 --width 256 --height 256",
                            " --d-max 0.100000001 ", " --visibility scene ", " --trace plane ",
                            " --sizing budget --sizing-budget-mib 12.5 ", " --normal-offset 0.699999988 ",
-                           " --param ppfla:k=4 ", " --frames 5 --warmup 2 --timer auto --no-reference",
+                           " --param ppfla:k=4 ", " --frames 5 --warmup 2 --repetitions 1 --isolation context --time-target 0.03 --time-cap 2 "
+                           "--max-frames 1000 --timer auto --no-reference",
                            " --out 'out dir'"})
     EXPECT_NE(line.find(part), std::string::npos) << part << " not in: " << line;
   EXPECT_EQ(line.find("psppsll:capacity"), std::string::npos) << line;

@@ -15,11 +15,12 @@ import matplotlib.pyplot as plt  # noqa: E402
 import matplotlib.ticker  # noqa: E402
 import numpy as np  # noqa: E402
 
+from . import ties  # noqa: E402
 from .table import axis_label, describe, sort_key  # noqa: E402
 
 MIB = float(1 << 20)
 MARKERS = "osD^vP*Xph<>"
-HOLLOW_NOTE = "hollow markers: lossy / invalid / failed (not ranked, off the front and fits)"
+HOLLOW_NOTE = "hollow markers: lossy / invalid / failed / degenerate (not ranked, off the front and fits)"
 
 
 class Canvas:
@@ -110,15 +111,27 @@ def scatter(ax, x, y, colour, marker, measured, label):
                    label=None if measured.any() else f"{label} (not ok)")
 
 
-def pareto_front(x, y, higher_is_better):
-    """Indices of the points no other point beats in both time (lower) and the metric."""
-    order = sorted(range(len(x)), key=lambda i: (x[i], -y[i] if higher_is_better else y[i]))
-    front, best = [], None
-    for i in order:
-        if best is None or (y[i] > best if higher_is_better else y[i] < best):
-            front.append(i)
-            best = y[i]
-    return front
+def time_errors(table, subpass, rows, values):
+    """Asymmetric error bars (2 x n) of a sub-pass's 95 % interval over `rows`; zeros where
+    a record has none."""
+    low, high = table.time_interval(subpass)
+    below = (values - low[rows].to_numpy()).clip(min=0)
+    above = (high[rows].to_numpy() - values).clip(min=0)
+    return np.nan_to_num(np.vstack([below, above]))
+
+
+def point_label(table, i):
+    """What tells a point from its neighbours: N and R_LDM (or the pass alone), the run
+    when several are drawn."""
+    parts = []
+    if table.has_structure()[i]:
+        parts += [f"N{table.text('n_views')[i]}", f"R{table.text('r_ldm')[i]}"]
+        params = table.text("structure_params")[i]
+        if params:
+            parts.append(params)
+    if table.text("run").nunique() > 1:
+        parts.append(table.text("run")[i])
+    return " ".join(parts)
 
 
 def comparable_groups(table, prefix, column):
@@ -161,18 +174,30 @@ def draw_tradeoffs(table, canvas):
         for ax, (title, mask) in zip(axes, groups):
             x, y = time[mask].to_numpy(), table.num(column)[mask].to_numpy()
             ok, m = measured[mask.to_numpy()], methods[mask].to_numpy()
+            rows = list(mask[mask].index)
+            errors = time_errors(table, "frame", mask, x)
             for method in sorted(set(m)):
                 colour, marker = styles[method]
                 sel = m == method
+                ax.errorbar(x[sel], y[sel], xerr=errors[:, sel], fmt="none", ecolor=colour,
+                            elinewidth=0.8, alpha=0.7, zorder=2)
                 scatter(ax, x[sel], y[sel], colour, marker, ok[sel], method)
-            fx, fy = x[ok], y[ok]
-            if len(fx):
-                front = pareto_front(list(fx), list(fy), higher)
-                px, py = fx[front], fy[front]
+            ok_rows = [r for r, good in zip(rows, ok) if good]
+            if ok_rows:
+                xs = [ties.time_measure(table, r, "frame") for r in ok_rows]
+                ys = [ties.error_measure(table, r, column, prefix, metric) for r in ok_rows]
+                front = ties.pareto_front(xs, ys, higher)
+                px = np.array([xs[k].value for k in front])
+                py = np.array([ys[k].value for k in front])
                 ax.step(px, py, where="post", color="black", linestyle="--", linewidth=1,
-                        label="Pareto front (ok)", zorder=2)
+                        label="Pareto front (ok; ties kept)", zorder=2)
                 ax.scatter(px, py, s=110, facecolors="none", edgecolors="black",
                            linewidths=1, zorder=4)
+                # Every point is labelled in small panels; in crowded ones the front's.
+                labelled = ok_rows if len(rows) <= 30 else [ok_rows[k] for k in front]
+                for r in labelled:
+                    ax.annotate(point_label(table, r), (time[r], table.num(column)[r]), fontsize=5.5,
+                                xytext=(3, 3), textcoords="offset points", alpha=0.8)
             if wide_span(x):
                 ax.set_xscale("log")
             if metric == "mse" and wide_span(y):
@@ -185,8 +210,11 @@ def draw_tradeoffs(table, canvas):
             place_legend(ax)
         name = f"tradeoff-time-vs-{column}"
         canvas.save(fig, name, f"Frame time vs {column}",
-                    f"Per method; the dashed line is the Pareto front of the ok records "
-                    f"(nothing is both faster and better); {HOLLOW_NOTE}.", "Trade-offs")
+                    f"Per method, frame time with its 95 % interval as error bars; the dashed "
+                    f"line is the Pareto front of the ok records: nothing is faster or better "
+                    f"beyond the uncertainty (overlapping time intervals, errors within the "
+                    f"reference noise are ties, and tied records all stay on it); points are "
+                    f"labelled N, R_LDM (and run); {HOLLOW_NOTE}.", "Trade-offs")
 
 
 def series_masks(table, rows, series_axes):
@@ -261,6 +289,64 @@ def draw_memory(table, canvas):
                     f"{HOLLOW_NOTE}.", "Memory")
 
 
+def parse_histogram(text):
+    """`depth_histogram` ("1:812;2-3:340;...") as [(label, pixels)]."""
+    bins = []
+    for item in str(text).split(";"):
+        if ":" not in item:
+            continue
+        label, pixels = item.rsplit(":", 1)
+        try:
+            bins.append((label, int(pixels)))
+        except ValueError:
+            return []
+    return bins
+
+
+def draw_depth_histograms(table, canvas):
+    """One histogram of list lengths per scene (the census's `depth_histogram`): the share
+    of the occupied LDM pixels per power-of-two bin of lengths, at the scene's most measured
+    N and R_LDM (the profile depends on both), with p50/p90/p99 and the deepest pixel."""
+    if not table.has("depth_histogram"):
+        canvas.note("depth histograms: no record carries depth_histogram (runs before issue 22)")
+        return
+    rows = table.has_structure() & (table.text("depth_histogram").replace("nan", "") != "")
+    scenes = list(dict.fromkeys(table.text("scene_name" if table.has("scene_name") else "scene")[rows]))
+    if not scenes:
+        canvas.note("depth histograms: no record of an LDM structure carries a histogram")
+        return
+    scene_of = table.text("scene_name" if table.has("scene_name") else "scene")
+    fig, axes = subplot_grid(len(scenes), width=4.6, height=3.2)
+    panels = []
+    for ax, scene in zip(axes, scenes):
+        in_scene = rows & (scene_of == scene)
+        views_res = table.text("n_views")[in_scene] + "/" + table.text("r_ldm")[in_scene]
+        common = views_res.value_counts().index[0]
+        i = views_res[views_res == common].index[0]
+        bins = parse_histogram(table.text("depth_histogram")[i])
+        total = sum(p for _, p in bins) or 1
+        labels = [label for label, _ in bins]
+        ax.bar(range(len(bins)), [p / total for _, p in bins], color="tab:blue")
+        ax.set_xticks(range(len(bins)))
+        ax.set_xticklabels(labels, rotation=45 if len(labels) > 6 else 0, fontsize=7)
+        ax.set_xlabel("fragments in the pixel's list")
+        ax.set_ylabel("share of occupied LDM pixels")
+        n, r = common.split("/")
+        ax.set_title(f"{scene} (N={n}, R_LDM={r})", fontsize=9)
+        panels.append(f"{scene} (N={n}, R_LDM={r})")
+        quantiles = ", ".join(f"{q} {table.text(c)[i]}" for q, c in
+                              (("p50", "depth_p50"), ("p90", "depth_p90"), ("p99", "depth_p99"),
+                               ("max", "max_depth_complexity")) if table.has(c))
+        ax.text(0.98, 0.95, quantiles, transform=ax.transAxes, ha="right", va="top", fontsize=7,
+                bbox={"facecolor": "white", "alpha": 0.85, "edgecolor": "none"})
+        ax.grid(alpha=0.3, axis="y")
+    canvas.save(fig, "depth-histograms", "Depth complexity per scene",
+                "Share of the occupied LDM pixels per bin of list lengths (powers of two), one "
+                "panel per scene at its most measured N and R_LDM, from the fragment census: what "
+                "explains a ranking (a fixed array is sized for the deepest pixel; lists follow "
+                "the total). Panels: " + "; ".join(panels) + ".", "Depth complexity")
+
+
 def fitted_slope(x, y):
     """Least-squares slope of log y over log x, or None with fewer than two distinct x."""
     keep = np.isfinite(x) & np.isfinite(y) & (x > 0) & (y > 0)
@@ -287,8 +373,8 @@ SCALING_SERIES = {
 def draw_scaling(table, canvas):
     """Build and query cost against N, R_LDM and the census's fragments on log-log axes,
     each series with its fitted slope (cost ~ work^slope) in the legend."""
-    costs = [("build", table.num("build_ms_median"), "build median (ms)"),
-             ("query", table.query_ms(), "query: frame - build, median (ms)")]
+    costs = [("build", table.num("build_ms_median"), "build median (ms)", "build"),
+             ("query", table.query_ms(), "query: the pass's own sub-passes, median (ms)", "pass")]
     measured = table.measured()
     for x_column, series_axes in SCALING_SERIES.items():
         if x_column == "r_light" and not table.has(x_column):
@@ -299,7 +385,7 @@ def draw_scaling(table, canvas):
         if not x_is_a_range(table, canvas, rows, x_column, what):
             continue
         fig, axes = subplot_grid(len(costs), width=6.0, height=4.4, max_columns=1)
-        for ax, (cost_name, cost, ylabel) in zip(axes, costs):
+        for ax, (cost_name, cost, ylabel, subpass) in zip(axes, costs):
             in_plot = rows & (cost > 0)
             series = series_masks(table, in_plot, series_axes + table.extra_axes)
             for colour, (label, mask) in zip(series_colours(len(series)), series):
@@ -310,6 +396,8 @@ def draw_scaling(table, canvas):
                     f"{label}: no slope (<2 ok points)"
                 order = np.argsort(x)
                 ax.plot(x[order], y[order], color=colour, linewidth=0.8, alpha=0.6)
+                ax.errorbar(x, y, yerr=time_errors(table, subpass, mask, y), fmt="none",
+                            ecolor=colour, elinewidth=0.7, alpha=0.6)
                 ax.scatter(x[ok], y[ok], color=colour, s=22, zorder=3,
                            label=text if ok.any() else None)
                 ax.scatter(x[~ok], y[~ok], facecolors="none", edgecolors=[colour], s=22,
@@ -327,7 +415,7 @@ def draw_scaling(table, canvas):
             ax.grid(alpha=0.3, which="both")
             place_legend(ax)
         canvas.save(fig, f"cost-vs-{x_column}", f"Cost vs {axis_label(x_column)} (log-log)",
-                    "Medians per configuration; dotted: least-squares fit in log space over "
+                    "Medians per configuration with their 95 % intervals; dotted: least-squares fit in log space over "
                     f"the ok records, its slope in the legend; {HOLLOW_NOTE}.", "Scaling")
 
 
@@ -378,7 +466,7 @@ def draw_subpass_bars(table, canvas, per_figure=60):
                         "Median of every timed sub-pass per configuration, the structure's "
                         "build first (the black tick marks the build median), then the "
                         "pass's; the raster baselines are timed beside the frame and not "
-                        "stacked; hatched: lossy / invalid / failed.", "Sub-passes")
+                        "stacked; hatched: lossy / invalid / failed / degenerate.", "Sub-passes")
 
 
 def safe_name(text):

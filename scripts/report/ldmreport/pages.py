@@ -1,15 +1,33 @@
 """The report's tables and its two pages, summary.md and index.html (relative links only).
 
-Only `ok` records are ranked; lossy, invalid and failed ones are listed as flagged, never as
+Only `ok` records are ranked; lossy, invalid, failed and degenerate ones are listed as flagged, never as
 measurements."""
 import html
 import math
 
 import numpy as np
 
+from . import ties
 
 
 MIB = float(1 << 20)
+
+
+def fmt_time(median, low, high):
+    """A time to the digits its interval supports, with the interval's relative
+    half-width ("12.3 ±3.2%"), as ldmbench's own tables print it; 4 digits without one."""
+    if median is None or not np.isfinite(median):
+        return "–"
+    if low is None or high is None or not (np.isfinite(low) and np.isfinite(high)) or median <= 0:
+        return fmt(median)
+    half = max(median - low, high - median)
+    if half <= 0:
+        return fmt(median) + " ±0%"
+    decimals = -math.floor(math.log10(half) + 1e-9)
+    decimals = min(max(decimals, 1 - math.floor(math.log10(median) + 1e-9)), 9)
+    text = f"{median:.{decimals}f}" if decimals >= 0 else f"{round(median, decimals):.0f}"
+    relative = 100 * half / median
+    return f"{text} ±{relative:.1f}%" if relative < 10 else f"{text} ±{relative:.0f}%"
 
 
 def fmt(value, digits=4):
@@ -51,39 +69,65 @@ def ranking_groups(table):
     return groups
 
 
-def best_rows(table):
-    """The best-per-criterion table: [criterion, group, configuration, run, value]."""
-    measured = table.measured()
+def criteria(table):
+    """[(name, values, restrict, higher_is_better, unit, measure(row))] of the best table:
+    each criterion with the tie band of its values (ties.py)."""
     structure = table.has_structure()
-    criteria = [
-        ("fastest build", table.num("build_ms_median"), structure, min, "ms"),
-        ("fastest query", table.query_ms(), None, min, "ms"),
-        ("fastest frame", table.num("frame_ms_median"), None, min, "ms"),
-        ("least memory allocated", table.num("bytes_allocated") / MIB, structure, min, "MiB"),
-        ("least memory used", table.num("bytes_used") / MIB, structure, min, "MiB"),
+    out = [
+        ("fastest build", table.num("build_ms_median"), structure, False, "ms",
+         lambda i: ties.time_measure(table, i, "build")),
+        ("fastest query", table.query_ms(), None, False, "ms",
+         lambda i: ties.time_measure(table, i, "pass")),
+        ("fastest frame", table.num("frame_ms_median"), None, False, "ms",
+         lambda i: ties.time_measure(table, i, "frame")),
+        ("least memory allocated", table.num("bytes_allocated") / MIB, structure, False, "MiB",
+         lambda i: ties.exact_measure(table.num("bytes_allocated")[i])),
+        ("least memory used", table.num("bytes_used") / MIB, structure, False, "MiB",
+         lambda i: ties.exact_measure(table.num("bytes_used")[i])),
     ]
     for prefix, metric, column in table.metric_columns():
-        better = max if metric == "mssim" else min
-        criteria.append((("best " if metric == "mssim" else "lowest ") + column,
-                         table.num(column), None, better, ""))
+        out.append((("best " if metric == "mssim" else "lowest ") + column, table.num(column), None,
+                    metric == "mssim", "",
+                    lambda i, c=column, p=prefix, m=metric: ties.error_measure(table, i, c, p, m)))
+    return out
+
+
+def shown_value(table, name, values, i, unit):
+    if unit == "ms":
+        subpass = {"fastest build": "build", "fastest query": "pass", "fastest frame": "frame"}[name]
+        low, high = table.time_interval(subpass)
+        return f"{fmt_time(values[i], low[i], high[i])} ms"
+    return f"{fmt(values[i])} {unit}".strip()
+
+
+def best_rows(table):
+    """The best-per-criterion table: [criterion, group, configuration(s), run, value]. A
+    record within the best's tie band (ties.py: overlapping time intervals, errors within
+    the reference noise, equal bytes) is named beside it: a tie is shown as a tie."""
+    measured = table.measured()
     rows = []
     for group, in_group in ranking_groups(table):
-        for name, values, restrict, better, unit in criteria:
+        for name, values, restrict, higher, unit, measure in criteria(table):
             mask = in_group & measured & values.notna()
             if restrict is not None:
                 mask &= restrict
             if not mask.any():
                 continue
-            candidates = values[mask]
-            i = candidates.idxmin() if better is min else candidates.idxmax()
-            ties = int((candidates == candidates[i]).sum()) - 1
-            rows.append([name, group, table.text("config_id")[i] +
-                         (f" (and {ties} more equal)" if ties else ""),
-                         table.text("run")[i], f"{fmt(values[i])} {unit}".strip()])
+            index = list(values[mask].index)
+            winners = [index[k] for k in ties.best_and_tied([measure(i) for i in index], higher)]
+            best = winners[0]
+            names = table.text("config_id")[best]
+            if len(winners) > 1:
+                others = [table.text("config_id")[i] for i in winners[1:]]
+                shown = others[:4] + ([f"{len(others) - 4} more"] if len(others) > 4 else [])
+                names += " — tied with " + ", ".join(shown)
+            rows.append([name, group, names, table.text("run")[best], shown_value(table, name, values, best, unit)])
     return rows
 
 
 def flagged_rows(table):
+    """Every record not ranked: lossy, invalid, failed, and degenerate (measured, but of
+    nothing: its `degenerate` column says why)."""
     status = table.status()
     return [[table.text("run")[i], table.text("config_id")[i], status[i],
              table.text("status_detail")[i]] for i in table.df.index if status[i] != "ok"]
@@ -95,13 +139,15 @@ def configuration_rows(table):
     header = ["run", "configuration", "status", "build ms", "query ms", "frame ms",
               "MiB allocated", "MiB used"] + metric_columns
     rows = []
-    build, query, frame = table.num("build_ms_median"), table.query_ms(), table.num("frame_ms_median")
+    times = {s: (table.num(f"{s}_ms_median") if s != "pass" else table.query_ms(), *table.time_interval(s))
+             for s in ("build", "pass", "frame")}
     allocated, used = table.num("bytes_allocated") / MIB, table.num("bytes_used") / MIB
     for i in table.df.index:
         status = table.status()[i]
+        shown = [fmt_time(median[i], low[i], high[i]) for median, low, high in times.values()]
         rows.append([table.text("run")[i], table.text("config_id")[i],
                      status if status == "ok" else f"⚠ {status}",
-                     fmt(build[i]), fmt(query[i]), fmt(frame[i]), fmt(allocated[i]),
+                     *shown, fmt(allocated[i]),
                      fmt(used[i])] + [fmt(table.num(c)[i]) for c in metric_columns])
     return header, rows
 
@@ -112,7 +158,7 @@ def runs_rows(runs_info):
 
 
 RUNS_HEADER = ["run", "records", "configurations", "device", "commit", "command"]
-BEST_HEADER = ["criterion", "compared within", "configuration", "run", "value"]
+BEST_HEADER = ["criterion", "compared within", "configuration (and those tied with it)", "run", "value"]
 FLAGGED_HEADER = ["run", "configuration", "status", "why"]
 
 
@@ -149,7 +195,7 @@ def write_markdown(path, title, runs_info, table, figures, notes):
     parts = [f"# {title}", "",
              "Generated by `ldmbench report`; every figure regenerates from `tidy.csv` "
              "(`scripts/report/ldmbench_report.py --from-csv tidy.csv --out DIR`). "
-             "Only `ok` records are ranked; lossy, invalid and failed ones are flagged.", "",
+             "Only `ok` records are ranked; lossy, invalid, failed and degenerate ones are flagged.", "",
              "## Runs", "", markdown_table(RUNS_HEADER, runs_rows(runs_info)), "",
              "## Best per criterion (ok records only)", "",
              markdown_table(BEST_HEADER, best_rows(table)) if best_rows(table) else
@@ -185,7 +231,7 @@ def write_html(path, title, runs_info, table, figures, notes):
              f"<h1>{e(title)}</h1>",
              "<p>Generated by <code>ldmbench report</code>. Data: <a href=\"tidy.csv\">tidy.csv</a> "
              "(every figure regenerates from it); summary: <a href=\"summary.md\">summary.md</a>. "
-             "Only <code>ok</code> records are ranked; lossy, invalid and failed ones are "
+             "Only <code>ok</code> records are ranked; lossy, invalid, failed and degenerate ones are "
              "flagged (hollow markers, hatched bars, red rows).</p>",
              "<h2>Runs</h2>", html_table(RUNS_HEADER, runs_rows(runs_info)),
              "<h2>Best per criterion (ok records only)</h2>",

@@ -10,6 +10,9 @@ import numpy as np
 import pandas as pd
 
 MEASURED_STATUS = "ok"  # lossy, invalid and failed are flagged, never ranked
+# An `ok` record whose `degenerate` column names a reason measures nothing (a reference
+# without noise, no surface in view, an AO range below a few LDM pixels): flagged as this.
+DEGENERATE_STATUS = "degenerate"
 
 # The record schema's identity and pass-setting columns (harness/records/columns.cpp) that
 # tell configurations apart; `sweep` is a sweep's name where a run records one. Other
@@ -26,7 +29,7 @@ STRUCTURE_AXES = {"n_views", "r_ldm", "structure_params", "sizing_policy"}
 AXIS_LABELS = {"n_views": "N", "r_ldm": "R_LDM", "r_light": "R_light", "fragments": "fragments"}
 # <subpass>_ms_median columns that are not sub-passes of a frame: the sums, and the raster
 # baselines (timed beside the frame, not part of it).
-NOT_STACKED = {"build", "frame", "raster_baseline", "raster_touch"}
+NOT_STACKED = {"build", "pass", "frame", "raster_baseline", "raster_touch"}
 # The structures' and sizing policies' sub-passes (README, Records), stacked first in this
 # order so that a bar reads build, then pass; any other sub-pass (a pass's) follows in
 # column order.
@@ -67,7 +70,12 @@ class Table:
         return pd.to_numeric(self.df[column], errors="coerce")
 
     def status(self):
-        return self.text("status")
+        """The record's status, with `ok` records that measure nothing (a non-empty
+        `degenerate` column, harness/app/scene_profile.h) as "degenerate": flagged like
+        lossy, invalid and failed ones, never ranked, off the fronts and fits."""
+        status = self.text("status")
+        degenerate = self.text("degenerate").replace("nan", "")
+        return status.where(~((status == MEASURED_STATUS) & (degenerate != "")), DEGENERATE_STATUS)
 
     def measured(self):
         """Rows that may be ranked and put on a Pareto front: status ok."""
@@ -77,9 +85,16 @@ class Table:
         return ~self.text("structure").isin(NO_STRUCTURE)
 
     def query_ms(self):
-        """The pass's share of a frame: frame minus build (a pass without a structure has no
-        build, so its whole frame)."""
+        """The pass's share of a frame: the record's "pass" sum (summed per frame, so it has
+        its own interval), else frame minus build (older runs; a pass without a structure
+        has no build, so its whole frame)."""
+        if self.has("pass_ms_median"):
+            return self.num("pass_ms_median")
         return self.num("frame_ms_median") - self.num("build_ms_median").fillna(0)
+
+    def time_interval(self, subpass):
+        """(low, high) of a sub-pass's 95 % interval per row (NaN where the run has none)."""
+        return self.num(f"{subpass}_ms_ci_low"), self.num(f"{subpass}_ms_ci_high")
 
     def methods(self):
         """structure/pass per row ("psppsll/ao"), the pass alone for a pass without a

@@ -24,6 +24,7 @@ struct LdmCursor {
 // The first age from c.age on whose slot holds this pixel's entry.
 LdmCursor ha_seek(LdmCursor c) {
   for (; c.age < c.end; ++c.age) {
+    LDM_COUNT_QUERY_STEP();
     c.key = ha_table[ha_slot(c.pixel, c.age)];
     if (ha_key_age(c.key) == c.age) break;
   }

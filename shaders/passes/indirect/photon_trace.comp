@@ -10,6 +10,7 @@
 //     depth-tested against the camera's G-buffer, footprint-culled and appended.
 // With PHOTON_CAPACITY 0 (a uniform) nothing is written: the counters alone (sizing census).
 #include "passes/ldm_trace.glsl"
+#include "passes/trace_steps.glsl"
 #include "common/spot_light.glsl"
 #include "passes/indirect/photon.glsl"
 #include "passes/indirect/photon_differential.glsl"
@@ -148,8 +149,11 @@ void main() {
       const vec3 flux = reflected * (2.0 * abs(cos_o) / float(LDM_VIEW_COUNT));
       ++counts[PHOTON_COUNT_EMITTED];
       emitted += flux;
+      const uint before = trace_steps_so_far();
       emit_secondary(texel_index, view, cos_o > 0.0, x1, n1, d1, primary, flux);
+      trace_steps_max(view, trace_steps_so_far() - before);
     }
+    trace_steps_max(LDM_VIEW_COUNT, trace_steps_so_far() + LDM_VIEW_COUNT);
     photon_tally[2u * texel_index + 1u] = vec4(emitted, 0.0);
   }
   // The append counter is counted as it goes; the rest once per invocation.

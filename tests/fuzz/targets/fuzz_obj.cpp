@@ -1,6 +1,6 @@
-// libFuzzer target: any bytes as an OBJ mesh, through the same path as a scene file's mesh
-// (strict line check, tinyobjloader, conversion). It must load a valid scene or throw
-// UserError naming the file; anything else is a finding.
+// libFuzzer target: any bytes as an OBJ file, through the same path as a scene file's mesh
+// (mesh_import.h: the strict line check, Assimp in a child process, the checked conversion).
+// It must load a valid scene or throw UserError naming the file; anything else is a finding.
 #include <unistd.h>
 
 #include <cstddef>
@@ -8,7 +8,7 @@
 #include <cstdio>
 #include <string>
 
-#include "harness/scene/obj_loader.h"
+#include "harness/scene/mesh_import.h"
 #include "harness/util/error.h"
 
 namespace {
@@ -30,7 +30,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   scene.name = "fuzz";
   scene.origin = obj_path();
   try {
-    ldm::load_obj_into(scene, obj_path(), {}, "fuzz");
+    ldm::import_mesh_into(scene, obj_path(), {}, "fuzz");
     scene.validate();
   } catch (const ldm::UserError&) {
   }

@@ -1,0 +1,115 @@
+#include "harness/app/timing_columns.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "harness/passes/raster_baseline.h"
+
+namespace ldm {
+namespace {
+
+double number_of(const Record& r, const std::string& key) {
+  const RecordValue* v = r.get(key);
+  if (!v) return -1;
+  if (const int64_t* i = std::get_if<int64_t>(v)) return double(*i);
+  if (const double* d = std::get_if<double>(v)) return *d;
+  return -1;
+}
+
+std::string joined_counts(const std::vector<size_t>& counts) {
+  std::string out;
+  for (size_t c : counts) {
+    if (!out.empty()) out += ';';
+    out += std::to_string(c);
+  }
+  return out;
+}
+
+}  // namespace
+
+void add_timing_columns(Record& r, const TimingOutcome& t) {
+  size_t total = 0;
+  for (size_t f : t.frames_per_repetition) total += f;
+  const size_t repetitions = t.frames_per_repetition.size();
+  r.set("repetitions", repetitions);
+  r.set("frames_measured", total);
+  r.set("frames_per_repetition", joined_counts(t.frames_per_repetition));
+  r.set("time_target", t.precision.target);
+  r.set("time_cap_s", t.precision.cap_seconds);
+  r.set("time_target_met", t.target_met);
+  r.set("time_interval", repetitions > 1 ? kRepetitionInterval : kFrameInterval);
+  for (const auto& s : t.summaries) {
+    r.set(s.subpass + "_ms_median", s.median);
+    r.set(s.subpass + "_ms_min", s.min);
+    r.set(s.subpass + "_ms_max", s.max);
+    r.set(s.subpass + "_ms_stddev", s.stddev);
+    r.set(s.subpass + "_ms_ci_low", s.interval.low);
+    r.set(s.subpass + "_ms_ci_high", s.interval.high);
+    if (repetitions > 1) r.set(s.subpass + "_ms_rep_spread", s.repetition_spread);
+  }
+  if (const TimingSummary* frame = find_summary(t.summaries, "frame")) {
+    r.set("time_interval_coverage", frame->interval.coverage);
+    r.set("time_half_width", relative_half_width(frame->interval, frame->median));
+  }
+  const TimingSummary* build = find_summary(t.summaries, "build");
+  const TimingSummary* raster = find_summary(t.summaries, kRasterBaselineSubpass);
+  if (build && raster && raster->median > 0) r.set("build_vs_raster", build->median / raster->median);
+  const TimingSummary* touch = find_summary(t.summaries, kRasterTouchSubpass);
+  if (build && touch && touch->median > 0) r.set("build_vs_raster_touch", build->median / touch->median);
+  const double fragments = number_of(r, "fragments");
+  if (build && build->median > 0 && fragments >= 0)
+    r.set("fragments_per_second", fragments / (build->median * 1e-3));
+}
+
+std::string time_target_warning(const TimingOutcome& t) {
+  if (t.target_met || t.precision.target <= 0) return "";
+  char text[200];
+  std::snprintf(text, sizeof text,
+                "time target missed: a repetition stopped at its cap (%g s or %d frames) "
+                "before the median's %g%% interval was within +-%g%%",
+                t.precision.cap_seconds, t.precision.max_frames, 100 * kTimeConfidence,
+                100 * t.precision.target);
+  return text;
+}
+
+std::string format_supported_digits(double median, double low, double high) {
+  char buffer[48];
+  const double half = std::max(median - low, high - median);
+  if (!std::isfinite(median) || !std::isfinite(half) || half <= 0 || median <= 0) {
+    std::snprintf(buffer, sizeof buffer, "%.4g", median);
+    return buffer;
+  }
+  // Decimals down to the half-width's first significant digit, and at least 2 significant
+  // digits of the median (12.3 ±0.4 -> "12.3"; 123 ±40 -> "120"; 0.0123 ±0.01 -> "0.012").
+  // (A hair above each power of ten, so that 0.00999999 from 12.35 - 12.34 counts as 0.01.)
+  int decimals = -int(std::floor(std::log10(half) + 1e-9));
+  decimals = std::max(decimals, 1 - int(std::floor(std::log10(median) + 1e-9)));
+  decimals = std::min(decimals, 9);
+  if (decimals >= 0) {
+    std::snprintf(buffer, sizeof buffer, "%.*f", decimals, median);
+  } else {
+    const double unit = std::pow(10.0, -decimals);
+    std::snprintf(buffer, sizeof buffer, "%.0f", std::round(median / unit) * unit);
+  }
+  return buffer;
+}
+
+std::string format_time_with_interval(double median, double low, double high) {
+  const double half = std::max(median - low, high - median);
+  if (!std::isfinite(median) || !std::isfinite(half) || median <= 0) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.4g", median);
+    return buffer;
+  }
+  char percent[24];
+  const double relative = 100 * half / median;
+  std::snprintf(percent, sizeof percent, relative < 10 ? "%.1f" : "%.0f", relative);
+  std::string out = format_supported_digits(median, low, high);
+  out += " ±";
+  out += percent;
+  out += '%';
+  return out;
+}
+
+}  // namespace ldm
