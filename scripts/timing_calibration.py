@@ -21,7 +21,8 @@ reference) and counts what `ldmbench compare` (or `ldmbench interleave`) conclud
                   Process offsets that a fresh context does not reproduce would show as a
                   larger spread under process isolation.
 
-Every trial's comparison JSON is kept under DIR/<kind>/<trial>/; DIR/summary.json and
+Every trial's comparison JSON is kept under DIR/<kind>/<trial>/ (its result.json once the trial
+has ended: --resume keeps those and measures the rest); DIR/summary.json and
 DIR/summary.md hold the counts, the detection rate per configuration, the estimated true
 slowdown (median over trials) and the minimum detectable changes. Takes long on 2 cores
 (about 2 hours for 10 trials of everything); --trials 2 shows the shape in minutes.
@@ -76,8 +77,21 @@ def verdicts(comparison):
     return out
 
 
-def trial(kind, index, ldmbench, root):
+def trial(kind, index, ldmbench, root, resume=False):
     folder = os.path.join(root, kind, f"{index:02d}")
+    result_path = os.path.join(folder, "result.json")
+    if resume and os.path.isfile(result_path):  # a finished trial of an earlier invocation
+        with open(result_path) as f:
+            return json.load(f)
+    result = measure_trial(kind, folder, ldmbench)
+    result["calibration_load_average"] = os.getloadavg()[0]  # how busy the machine was
+    with open(result_path + ".tmp", "w") as f:  # written whole, then renamed: a killed
+        json.dump(result, f)                     # calibration resumes from its last trial
+    os.replace(result_path + ".tmp", result_path)
+    return result
+
+
+def measure_trial(kind, folder, ldmbench):
     shutil.rmtree(folder, ignore_errors=True)
     os.makedirs(folder)
     log = os.path.join(folder, "log.txt")
@@ -180,6 +194,9 @@ def main():
                         help="another number of trials for one kind (repeatable)")
     parser.add_argument("--repetitions", type=int, default=5,
                         help="repetitions of the *-repetitions kinds (default 5)")
+    parser.add_argument("--resume", action="store_true",
+                        help="keep the trials an earlier invocation finished in --out (each "
+                        "trial's result.json) and measure only the rest")
     parser.add_argument("--pairs", type=int, default=8,
                         help="repetitions (pairs) of the *-interleaved kinds (default 8)")
     args = parser.parse_args()
@@ -205,8 +222,8 @@ def main():
         for kind in kinds:
             if index >= trials[kind]:
                 continue
-            comparisons[kind].append(trial(kind, index, ldmbench, args.out))
-            loads[kind].append(os.getloadavg()[0])  # how busy the machine was
+            comparisons[kind].append(trial(kind, index, ldmbench, args.out, args.resume))
+            loads[kind].append(comparisons[kind][-1]["calibration_load_average"])
             print(f"{kind} trial {index + 1}/{trials[kind]}: {summarise(kind, comparisons[kind][-1:])}",
                   flush=True)
     summaries = [summarise(k, comparisons[k]) for k in kinds]
