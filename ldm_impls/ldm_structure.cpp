@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <stdexcept>
 
 #include "harness/gl/gl_api.h"
 #include "harness/util/error.h"
@@ -21,58 +22,48 @@ std::string param_context(const std::string& context, const std::string& key) {
 }
 }  // namespace
 
-uint64_t StructureParams::get_uint(const std::string& key, uint64_t fallback, uint64_t lo,
-                                   uint64_t hi) {
-  read_.push_back(key);
-  auto it = values_.find(key);
-  if (it == values_.end()) return fallback;
-  char* end = nullptr;
-  const unsigned long long v = std::strtoull(it->second.c_str(), &end, 10);
-  if (it->second.empty() || *end != '\0' || it->second[0] == '-')
-    throw UserError(param_context(context_, key) + ": '" + it->second +
-                    "' is not a non-negative integer");
-  if (v < lo || v > hi)
-    throw UserError(param_context(context_, key) + ": " + it->second + " is outside [" +
-                    std::to_string(lo) + ", " + std::to_string(hi) + "]");
-  return v;
+const AxisSpec& StructureParams::spec(const std::string& key) const {
+  if (const AxisSpec* s = find_axis(specs_, key)) return *s;
+  throw std::logic_error("parameter '" + key + "' is read but not declared");
 }
 
-double StructureParams::get_double(const std::string& key, double fallback, double lo, double hi) {
-  read_.push_back(key);
-  auto it = values_.find(key);
-  if (it == values_.end()) return fallback;
-  char* end = nullptr;
-  const double v = std::strtod(it->second.c_str(), &end);
-  if (it->second.empty() || *end != '\0')
-    throw UserError(param_context(context_, key) + ": '" + it->second + "' is not a number");
-  if (!(v >= lo && v <= hi))
-    throw UserError(param_context(context_, key) + ": " + it->second + " is outside [" +
-                    std::to_string(lo) + ", " + std::to_string(hi) + "]");
-  return v;
+std::string StructureParams::text(const std::string& key, AxisKind kind) const {
+  const AxisSpec& declared = spec(key);
+  if (declared.kind != kind)
+    throw std::logic_error("parameter '" + key + "' is read as another kind than declared");
+  const auto it = values_.find(key);
+  if (it != values_.end()) return canonical_axis_value(declared, it->second, param_context(context_, key));
+  if (declared.default_value.empty())
+    throw std::logic_error("parameter '" + key + "' has no default: read it only when has()");
+  return declared.default_value;
 }
 
-std::string StructureParams::get_choice(const std::string& key, const std::string& fallback,
-                                        const std::vector<std::string>& allowed) {
-  read_.push_back(key);
-  auto it = values_.find(key);
-  if (it == values_.end()) return fallback;
-  if (std::find(allowed.begin(), allowed.end(), it->second) == allowed.end()) {
-    std::string list;
-    for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-    throw UserError(param_context(context_, key) + ": '" + it->second + "' is not one of " + list);
+uint64_t StructureParams::get_uint(const std::string& key) const {
+  return std::strtoull(text(key, AxisKind::UInt).c_str(), nullptr, 10);
+}
+
+double StructureParams::get_double(const std::string& key) const {
+  return std::strtod(text(key, AxisKind::Real).c_str(), nullptr);
+}
+
+std::string StructureParams::get_choice(const std::string& key) const {
+  return text(key, AxisKind::Choice);
+}
+
+bool StructureParams::get_bool(const std::string& key) const { return text(key, AxisKind::Bool) == "true"; }
+
+void StructureParams::check(const std::string& owner) const {
+  for (const auto& [key, value] : values_) {
+    const AxisSpec* declared = find_axis(specs_, key);
+    if (!declared) {
+      std::string known;
+      for (const auto& s : specs_)
+        if (s.pass_parameter.empty()) known += (known.empty() ? "" : ", ") + s.key;
+      throw UserError(owner + " has no parameter '" + key + "' (its parameters: " +
+                      (known.empty() ? "none" : known) + ")");
+    }
+    canonical_axis_value(*declared, value, param_context(context_, key));
   }
-  return it->second;
-}
-
-bool StructureParams::get_bool(const std::string& key, bool fallback) {
-  const std::string v = get_choice(key, fallback ? "1" : "0", {"0", "1", "true", "false"});
-  return v == "1" || v == "true";
-}
-
-void StructureParams::finish(const std::string& owner) const {
-  for (const auto& [key, value] : values_)
-    if (std::find(read_.begin(), read_.end(), key) == read_.end())
-      throw UserError(owner + " has no parameter '" + key + "'");
 }
 
 uint64_t checked_storage_block(const std::string& structure, const std::string& buffer,

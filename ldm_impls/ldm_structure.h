@@ -19,6 +19,7 @@
 #include <utility>
 #include <vector>
 
+#include "harness/axes/axis.h"
 #include "harness/gl/shader_program.h"
 #include "harness/measure/gpu_timer.h"
 #include "harness/scene/gpu_scene.h"
@@ -72,28 +73,36 @@ struct BuildStats {
 };
 
 // key=value parameters of a structure (--param ppfla:k=4) or of a pass
-// (harness/passes/pass.h). Getters check ranges and remember which keys were read; finish()
-// rejects the rest, so a typo is an error.
+// (harness/passes/pass.h), read against the owner's declarations (harness/axes/axis.h: the
+// parameter's kind, range or choices, default, unit and description, written once beside
+// the code that reads it). declare() gives the declarations; check() refuses a key the owner
+// does not declare (a typo) and a value outside its declaration, before any GPU work; the
+// getters return the value given, else the declared default.
 class StructureParams {
  public:
   StructureParams() = default;
   explicit StructureParams(std::map<std::string, std::string> values, std::string context = {})
       : values_(std::move(values)), context_(std::move(context)) {}
-  uint64_t get_uint(const std::string& key, uint64_t fallback, uint64_t lo, uint64_t hi);
-  double get_double(const std::string& key, double fallback, double lo, double hi);
-  std::string get_choice(const std::string& key, const std::string& fallback,
-                         const std::vector<std::string>& allowed);
-  bool get_bool(const std::string& key, bool fallback);
-  // Whether `key` was given (a key with no default value, e.g. an override of the scene's).
-  bool has(const std::string& key) const { return values_.count(key) > 0; }
+  void declare(std::vector<AxisSpec> specs) { specs_ = std::move(specs); }
   // `owner` names whose parameters these are in the message, e.g. "structure psppsll".
-  void finish(const std::string& owner) const;
+  void check(const std::string& owner) const;
+  uint64_t get_uint(const std::string& key) const;
+  double get_double(const std::string& key) const;
+  std::string get_choice(const std::string& key) const;
+  bool get_bool(const std::string& key) const;
+  // Whether `key` was given (a parameter whose declaration has no default: the scene's value
+  // or an automatic size applies otherwise).
+  bool has(const std::string& key) const { return values_.count(key) > 0; }
   const std::map<std::string, std::string>& values() const { return values_; }
 
  private:
+  // The canonical text of `key`: given or the declared default (throws when neither).
+  std::string text(const std::string& key, AxisKind kind) const;
+  const AxisSpec& spec(const std::string& key) const;
+
   std::map<std::string, std::string> values_;
   std::string context_;
-  mutable std::vector<std::string> read_;
+  std::vector<AxisSpec> specs_;
 };
 
 class LdmStructure {
@@ -149,6 +158,9 @@ class LdmStructure {
 };
 
 std::vector<std::string> structure_names();
+// The parameters a structure declares (its --param STRUCTURE:KEY=VALUE), owner set; throws
+// UserError for an unknown name.
+std::vector<AxisSpec> structure_parameters(const std::string& name);
 // Throws UserError for an unknown name (listing the known ones) or bad parameters.
 std::unique_ptr<LdmStructure> make_structure(const std::string& name, StructureParams params);
 

@@ -15,19 +15,28 @@ namespace {
 
 struct Entry {
   const char* name;
+  std::function<std::vector<AxisSpec>()> parameters;
   std::function<std::unique_ptr<LdmStructure>(StructureParams&)> make;
 };
 
 const std::vector<Entry>& registry() {
   static const std::vector<Entry> entries = {
-      {"psppsll", [](StructureParams& p) { return std::make_unique<Psppsll>(p); }},
-      {"ppsll", [](StructureParams& p) { return std::make_unique<Ppsll>(p); }},
-      {"dfbuffer", [](StructureParams& p) { return std::make_unique<DfBuffer>(p); }},
-      {"habuffer", [](StructureParams& p) { return std::make_unique<HaBuffer>(p); }},
-      {"ppfla", [](StructureParams& p) { return std::make_unique<Ppfla>(p); }},
-      {"psppfla", [](StructureParams& p) { return std::make_unique<Psppfla>(p); }},
+      {"psppsll", Psppsll::parameters, [](StructureParams& p) { return std::make_unique<Psppsll>(p); }},
+      {"ppsll", Ppsll::parameters, [](StructureParams& p) { return std::make_unique<Ppsll>(p); }},
+      {"dfbuffer", DfBuffer::parameters, [](StructureParams& p) { return std::make_unique<DfBuffer>(p); }},
+      {"habuffer", HaBuffer::parameters, [](StructureParams& p) { return std::make_unique<HaBuffer>(p); }},
+      {"ppfla", Ppfla::parameters, [](StructureParams& p) { return std::make_unique<Ppfla>(p); }},
+      {"psppfla", Psppfla::parameters, [](StructureParams& p) { return std::make_unique<Psppfla>(p); }},
   };
   return entries;
+}
+
+const Entry& entry(const std::string& name) {
+  for (const auto& e : registry())
+    if (name == e.name) return e;
+  std::string known;
+  for (const auto& n : structure_names()) known += (known.empty() ? "" : ", ") + n;
+  throw UserError("--structure: unknown structure '" + name + "' (known: " + known + ")");
 }
 
 }  // namespace
@@ -38,17 +47,18 @@ std::vector<std::string> structure_names() {
   return names;
 }
 
+std::vector<AxisSpec> structure_parameters(const std::string& name) {
+  std::vector<AxisSpec> specs = entry(name).parameters();
+  for (AxisSpec& s : specs) s.owner = name;
+  return specs;
+}
+
 std::unique_ptr<LdmStructure> make_structure(const std::string& name, StructureParams params) {
-  for (const auto& e : registry()) {
-    if (name == e.name) {
-      auto structure = e.make(params);
-      params.finish("structure " + name);
-      return structure;
-    }
-  }
-  std::string known;
-  for (const auto& n : structure_names()) known += (known.empty() ? "" : ", ") + n;
-  throw UserError("--structure: unknown structure '" + name + "' (known: " + known + ")");
+  const Entry& e = entry(name);
+  params.declare(structure_parameters(name));
+  auto structure = e.make(params);
+  params.check("structure " + name);
+  return structure;
 }
 
 }  // namespace ldm

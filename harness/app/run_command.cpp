@@ -124,7 +124,7 @@ std::string sweep_key(const std::vector<std::string>& parts, const std::map<std:
   for (const auto& part : parts) h.add_string(part);
   for (const auto& [spec, scene] : scenes) {
     h.add_string(spec);
-    h.add(scene.content_hash());
+    h.add(scene.identity_hash());  // every field of the loaded scene and its source's bytes
   }
   h.add_string(git_commit());
   h.add_string(ldmbench_version());

@@ -8,6 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "harness/app/harness_axes.h"
+
 namespace ldm {
 namespace {
 
@@ -47,39 +49,44 @@ std::string shell_quoted(const std::string& word) {
   return out + "'";
 }
 
+namespace {
+
+// Parameters of a structure or pass not measured are left out (run refuses them).
+bool measured(const RunSettings& s, const std::string& owner) {
+  return std::find(s.structures.begin(), s.structures.end(), owner) != s.structures.end() ||
+         std::find(s.passes.begin(), s.passes.end(), owner) != s.passes.end();
+}
+
+std::vector<std::string> split_commas(const std::string& list) {
+  std::vector<std::string> out;
+  for (size_t start = 0;;) {
+    const size_t comma = list.find(',', start);
+    out.push_back(list.substr(start, comma == std::string::npos ? comma : comma - start));
+    if (comma == std::string::npos) return out;
+    start = comma + 1;
+  }
+}
+
+}  // namespace
+
 std::string run_command_line(const RunSettings& s, const std::string& program,
                              const std::string& out_dir) {
   std::string line = shell_quoted(program) + " run";
   auto add = [&line](const std::string& option, const std::string& value) {
     line += " " + option + " " + shell_quoted(value);
   };
-  auto same = [](const std::string& v) { return v; };
-  add("--scene", joined(s.scenes, same));
-  add("--structure", joined(s.structures, same));
-  add("--pass", joined(s.passes, same));
-  add("-N", joined(s.views, [](uint32_t v) { return std::to_string(v); }));
-  add("-R", joined(s.resolutions, [](uint32_t v) { return std::to_string(v); }));
-  add("--width", std::to_string(s.width));
-  add("--height", std::to_string(s.height));
-  if (!s.d_max.empty()) add("--d-max", joined(s.d_max, [](float d) { return exact(d, 9); }));
-  add("--visibility", joined(s.visibility, visibility_name));
-  add("--trace", joined(s.traces, ao_trace_name));
-  add("--ao-estimator", joined(s.estimators, ao_estimator_name));
-  add("--sizing", joined(s.sizing, [](SizingPolicy p) { return std::string(sizing_policy_name(p)); }));
-  for (SizingPolicy p : s.sizing)
-    if (p == SizingPolicy::Budget) add("--sizing-budget-mib", exact(s.sizing_budget_mib, 17));
-  add("--sizing-initial-per-pixel", std::to_string(s.sizing_initial_per_pixel));
-  if (s.normal_offset_pixels) add("--normal-offset", exact(*s.normal_offset_pixels, 9));
-  // Parameters of a structure or pass not measured are left out (run refuses them).
-  auto measured = [&s](const std::string& owner) {
-    return std::find(s.structures.begin(), s.structures.end(), owner) != s.structures.end() ||
-           std::find(s.passes.begin(), s.passes.end(), owner) != s.passes.end();
-  };
+  // Every harness axis that has values, from its declaration and binding.
+  for (const HarnessAxis& axis : harness_axes()) {
+    if (axis.spec.flags.empty()) continue;
+    const std::vector<std::string> values = axis_list(s, axis);
+    if (values.empty()) continue;
+    std::string list;
+    for (const auto& v : values) list += (list.empty() ? "" : ",") + v;
+    add(long_flag(axis.spec.flags), list);
+  }
   for (const auto& [owner, params] : s.structure_params)
-    if (measured(owner))
+    if (measured(s, owner))
       for (const auto& [key, value] : params) add("--param", owner + ":" + key + "=" + value);
-  add("--frames", std::to_string(s.frames));
-  add("--warmup", std::to_string(s.warmup));
   add("--repetitions", std::to_string(s.repetitions));
   add("--isolation", repetition_isolation_name(s.isolation));
   add("--time-target", shortest(s.precision.target));
@@ -103,40 +110,21 @@ std::string run_command_line(const RunSettings& s, const std::string& program,
 std::string sweep_file_json(const RunSettings& s, const std::string& description) {
   using nlohmann::json;
   json axes = json::object();
-  axes["scenes"] = s.scenes;
-  axes["structures"] = s.structures;
-  axes["passes"] = s.passes;
-  axes["views"] = s.views;
-  axes["r_ldm"] = s.resolutions;
-  if (!s.d_max.empty()) {
-    json d_max = json::array();
-    for (float d : s.d_max) d_max.push_back(double(d));  // exact: every float is a double
-    axes["d_max"] = d_max;
+  for (const HarnessAxis& axis : harness_axes()) {
+    const std::vector<std::string> values = axis_list(s, axis);
+    if (values.empty()) continue;
+    json list = json::array();
+    for (const auto& v : values) list.push_back(axis_json_of_text(axis.spec, v));
+    axes[axis.spec.key] = list.size() == 1 ? list[0] : list;
   }
-  auto names = [](const auto& values, auto name) {
-    json out = json::array();
-    for (const auto& v : values) out.push_back(std::string(name(v)));
-    return out;
-  };
-  axes["visibility"] = names(s.visibility, visibility_name);
-  axes["trace"] = names(s.traces, ao_trace_name);
-  axes["ao_estimator"] = names(s.estimators, ao_estimator_name);
-  axes["sizing"] = names(s.sizing, [](SizingPolicy p) { return sizing_policy_name(p); });
-  for (SizingPolicy p : s.sizing)
-    if (p == SizingPolicy::Budget) axes["sizing_budget_mib"] = s.sizing_budget_mib;
-  axes["sizing_initial_per_pixel"] = s.sizing_initial_per_pixel;
-  if (s.normal_offset_pixels) axes["normal_offset"] = double(*s.normal_offset_pixels);
-  axes["image_size"] = std::to_string(s.width) + "x" + std::to_string(s.height);
-  axes["frames"] = s.frames;
-  axes["warmup"] = s.warmup;
-  // Parameters of a structure or pass not measured are left out, as on the command line.
-  auto measured = [&s](const std::string& owner) {
-    return std::find(s.structures.begin(), s.structures.end(), owner) != s.structures.end() ||
-           std::find(s.passes.begin(), s.passes.end(), owner) != s.passes.end();
-  };
+  // Parameters of a structure or pass not measured are left out, as on the command line; a
+  // comma list is an array.
   for (const auto& [owner, params] : s.structure_params)
-    if (measured(owner))
-      for (const auto& [key, value] : params) axes[owner + ":" + key] = value;
+    if (measured(s, owner))
+      for (const auto& [key, value] : params) {
+        const std::vector<std::string> values = split_commas(value);
+        axes[owner + ":" + key] = values.size() == 1 ? json(values[0]) : json(values);
+      }
 
   json reference = {{"enabled", s.reference.enabled}};
   if (s.reference.enabled) {

@@ -63,12 +63,19 @@ struct RunSettings {
   std::string interleaved_session;
   bool dry_run = false;
   ContextOptions context = default_context_options();
+  // The values of axes declared without a binding to a field here (harness/app/harness_axes.h),
+  // canonical, by key.
+  std::map<std::string, std::vector<std::string>> axis_lists;
   std::string timer = "auto";  // auto | gl_timestamp | fenced_wall_clock
   ReferenceSettings reference;
 };
 
 // The structure of a configuration whose pass reads no LDM (Pass requirements).
 inline constexpr const char* kNoStructure = "none";
+
+// One configuration's value of every axis that applies to it, canonical: harness axes by key
+// ("views"), parameters qualified by their owner ("ppfla:k").
+using AxisValues = std::map<std::string, std::string>;
 
 struct Configuration {
   std::string scene;  // spec as given (name or path)
@@ -86,14 +93,17 @@ struct Configuration {
   // by the pass itself.
   std::map<std::string, std::string> pass_params;
   SizingSettings sizing;
-  // Set by a sweep file that varies what `ldmbench run` holds fixed (image size, frames):
-  // "-img<W>x<H>", "-f<F>w<W>", appended to id() so that the ids stay unique.
-  std::string id_suffix;
-  // A short unique name for file names:
-  // cornell-psppsll-ao-n32-r128[-d1.5][-att]-<trace>[-normalized][-k=v...]-<sizing>, sizing
-  // one of oracle, census, prevframe[-guessG] (G != 1), budget<MiB>; for a pass that reads
-  // no LDM only what applies: cornell-none-hbao[-d1.5][-att][-k=v...]
-  std::string id() const;
+  // Every axis's value (the fields above are typed views of it): what identifies the
+  // configuration.
+  AxisValues values;
+  // A short unique name for file names, made of the axes' id fragments
+  // (harness/app/harness_axes.cpp):
+  // cornell-psppsll-ao-n32-r128[-d1.5][-att][-off<px>]-<trace>[-normalized][-k=v...]-<sizing>,
+  // sizing one of oracle, census, prevframe[-guessG] (G != 1), budget<MiB>, then -img<W>x<H>
+  // and -f<F>w<W> when a sweep varies them; for a pass that reads no LDM only what applies:
+  // cornell-none-hbao[-d1.5][-att][-k=v...]
+  const std::string& id() const { return id_; }
+  std::string id_;
 };
 
 std::vector<Configuration> expand_configurations(const RunSettings& settings);

@@ -7,6 +7,7 @@
 #include <set>
 #include <sstream>
 
+#include "harness/app/harness_axes.h"
 #include "harness/passes/pass.h"
 #include "harness/scene/generators.h"
 #include "harness/scene/scene_loader.h"
@@ -83,41 +84,21 @@ void apply_settings(const json& settings, RunSettings& s) {
   }
 }
 
-// The RunSettings of one combination: one value per axis; the axes it does not name keep
-// `ldmbench run`'s defaults.
+// The RunSettings of one combination: one value per axis, through each axis's binding; the
+// axes it does not name keep `ldmbench run`'s defaults.
 RunSettings combination_settings(const SweepAssignment& a, const RunSettings& base,
                                  const std::map<std::string, std::string>& scene_paths) {
   RunSettings s = base;
   s.structure_params.clear();
-  auto text = [&](const char* key) { return a.at(key).get<std::string>(); };
-  auto has = [&](const char* key) { return a.count(key) != 0; };
-  if (has("scenes")) s.scenes = {scene_paths.at(text("scenes"))};
-  if (has("passes")) s.passes = {text("passes")};
-  if (has("structures")) s.structures = {text("structures")};
-  if (has("views")) s.views = {a.at("views").get<uint32_t>()};
-  if (has("r_ldm")) s.resolutions = {a.at("r_ldm").get<uint32_t>()};
-  if (has("d_max")) s.d_max = {float(a.at("d_max").get<double>())};
-  if (has("visibility")) {
-    const std::string v = text("visibility");
-    s.visibility = {v == "attenuated" ? Visibility::Attenuated
-                    : v == "unattenuated" ? Visibility::Unattenuated : Visibility::Scene};
+  for (const HarnessAxis& axis : harness_axes()) {
+    const auto it = a.find(axis.spec.key);
+    if (it == a.end()) continue;
+    std::string text = axis_text_of_json(it->second, axis.spec.key);
+    if (axis.spec.key == "scenes") text = scene_paths.at(text);
+    set_axis_list(s, axis, {text});
   }
-  if (has("normal_offset")) s.normal_offset_pixels = float(a.at("normal_offset").get<double>());
-  if (has("trace")) s.traces = {parse_ao_trace(text("trace"))};
-  if (has("ao_estimator")) s.estimators = {parse_ao_estimator(text("ao_estimator"))};
-  if (has("sizing")) s.sizing = {parse_sizing_policy(text("sizing"))};
   // The budget belongs to the budget policy only (run refuses it with another policy).
-  if (has("sizing_budget_mib") && s.sizing.front() == SizingPolicy::Budget)
-    s.sizing_budget_mib = a.at("sizing_budget_mib").get<double>();
-  if (has("sizing_initial_per_pixel"))
-    s.sizing_initial_per_pixel = a.at("sizing_initial_per_pixel").get<uint32_t>();
-  if (has("image_size")) {
-    const std::string size = text("image_size");
-    s.width = std::atoi(size.c_str());
-    s.height = std::atoi(size.c_str() + size.find('x') + 1);
-  }
-  if (has("frames")) s.frames = int(a.at("frames").get<uint32_t>());
-  if (has("warmup")) s.warmup = int(a.at("warmup").get<uint32_t>());
+  if (a.count("sizing_budget_mib") && s.sizing.front() != SizingPolicy::Budget) s.sizing_budget_mib = 0;
   // OWNER:KEY applies when its structure or pass is the combination's (else it is an axis
   // this configuration does not use).
   for (const auto& [key, value] : a) {
@@ -148,7 +129,11 @@ Shard parse_shard(const std::string& text) {
 }
 
 SweepVocabulary current_sweep_vocabulary() {
-  return {structure_names(), pass_names(), ao_trace_names(), ao_estimator_names()};
+  SweepVocabulary v;
+  for (const HarnessAxis& axis : harness_axes()) v.axes.push_back(axis.spec);
+  for (const auto& name : structure_names()) v.parameters[name] = structure_parameters(name);
+  for (const auto& name : pass_names()) v.parameters[name] = pass_parameters(name);
+  return v;
 }
 
 SweepPlan plan_sweep(const std::string& path, const RunSettings& base) {
@@ -188,25 +173,6 @@ SweepPlan plan_sweep(const std::string& path, const RunSettings& base) {
       plan.scenes.emplace(scene, load_scene(scene));
     }
   }
-  // Each parameter value on its own, by its owner's checks, at its JSON path.
-  for (const std::string& axis : axes_of(spec)) {
-    const auto colon = axis.find(':');
-    if (colon == std::string::npos) continue;
-    const std::string owner = axis.substr(0, colon), key = axis.substr(colon + 1);
-    const auto structures = structure_names();
-    const bool is_structure = std::find(structures.begin(), structures.end(), owner) != structures.end();
-    for_each_value(spec, axis, [&](const std::string& where, const json& v) {
-      const StructureParams params({{key, v.get<std::string>()}}, "--param " + owner);
-      try {
-        if (is_structure)
-          make_structure(owner, params);
-        else
-          make_pass(owner, params);
-      } catch (const UserError& e) {
-        fail(file, where, e.what());
-      }
-    });
-  }
   const std::set<std::string> axes = axes_of(spec);
   if (axes.count("sizing_budget_mib") && !axes.count("sizing"))
     fail(file, "axes.sizing_budget_mib", "is used only by the budget sizing policy; add \"sizing\": \"budget\"");
@@ -216,12 +182,17 @@ SweepPlan plan_sweep(const std::string& path, const RunSettings& base) {
   const std::vector<SweepAssignment> combinations = sweep_combinations(plan.spec);
   plan.combinations = combinations.size();
 
-  // What `ldmbench run` holds fixed becomes part of the id when the sweep varies it.
-  std::set<std::string> image_sizes, frame_counts;
-  for (const auto& a : combinations) {
-    const RunSettings s = combination_settings(a, shared, scene_paths);
-    image_sizes.insert(std::to_string(s.width) + "x" + std::to_string(s.height));
-    frame_counts.insert(std::to_string(s.frames) + "w" + std::to_string(s.warmup));
+  // The axes the sweep gives more than one value: what `ldmbench run` holds fixed (image
+  // size, frames) is named in the ids only then.
+  std::set<std::string> varied;
+  {
+    std::map<std::string, std::set<std::vector<std::string>>> seen;
+    for (const auto& a : combinations) {
+      const RunSettings s = combination_settings(a, shared, scene_paths);
+      for (const HarnessAxis& axis : harness_axes()) seen[axis.spec.key].insert(axis_list(s, axis));
+    }
+    for (const auto& [key, values] : seen)
+      if (values.size() > 1) varied.insert(key);
   }
 
   std::set<std::string> ids;
@@ -235,9 +206,7 @@ SweepPlan plan_sweep(const std::string& path, const RunSettings& base) {
       fail(file, "combination " + json(a).dump(), e.what());
     }
     for (Configuration config : expand_configurations(s)) {
-      if (image_sizes.size() > 1) config.id_suffix += "-img" + std::to_string(s.width) + "x" + std::to_string(s.height);
-      if (frame_counts.size() > 1)
-        config.id_suffix += "-f" + std::to_string(s.frames) + "w" + std::to_string(s.warmup);
+      config.id_ = configuration_id(config.values, varied);
       if (!ids.insert(config.id()).second) continue;  // an axis this configuration does not use
       plan.configurations.push_back({config, s});
     }

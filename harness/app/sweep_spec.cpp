@@ -6,22 +6,13 @@
 #include <functional>
 #include <set>
 
+#include "harness/axes/axis.h"
 #include "harness/util/error.h"
 
 namespace ldm {
 namespace {
 
 using json = nlohmann::json;
-
-enum class Kind { Text, Name, Structure, UInt, Real, ImageSize, Param };
-
-struct AxisRule {
-  std::string key;
-  Kind kind;
-  double min = 0, max = 0;            // UInt, Real (inclusive, after float rounding)
-  std::vector<std::string> names;     // Name
-  std::string what;                   // "structure", "trace variant", ... for messages
-};
 
 std::string joined(const std::vector<std::string>& names) {
   std::string out;
@@ -35,27 +26,6 @@ std::string number_text(double x) {
   return buffer;
 }
 
-std::vector<AxisRule> axis_rules(const SweepVocabulary& v) {
-  return {
-      {"scenes", Kind::Text, 0, 0, {}, "scene"},
-      {"passes", Kind::Name, 0, 0, v.passes, "pass"},
-      {"structures", Kind::Structure, 0, 0, v.structures, "structure"},
-      {"views", Kind::UInt, 1, 4096, {}, "N"},
-      {"r_ldm", Kind::UInt, 1, 8192, {}, "R_LDM"},
-      {"d_max", Kind::Real, 1.4e-45, 3.4e38, {}, "d_max"},
-      {"visibility", Kind::Name, 0, 0, {"scene", "attenuated", "unattenuated"}, "visibility"},
-      {"normal_offset", Kind::Real, 0, 1000, {}, "normal offset"},
-      {"trace", Kind::Name, 0, 0, v.traces, "trace variant"},
-      {"ao_estimator", Kind::Name, 0, 0, v.estimators, "AO estimator"},
-      {"sizing", Kind::Name, 0, 0, {"oracle", "census", "previous_frame", "budget"}, "sizing policy"},
-      {"sizing_budget_mib", Kind::Real, 0.001, 1048576, {}, "budget"},
-      {"sizing_initial_per_pixel", Kind::UInt, 1, 4096, {}, "initial guess"},
-      {"image_size", Kind::ImageSize, 16, 16384, {}, "image size"},
-      {"frames", Kind::UInt, 1, 100000, {}, "frames"},
-      {"warmup", Kind::UInt, 0, 100000, {}, "warm-up frames"},
-  };
-}
-
 [[noreturn]] void fail(const std::string& name, const std::string& path, const std::string& what) {
   throw UserError(name + ": " + path + ": " + what);
 }
@@ -66,128 +36,133 @@ std::string type_name(const json& v) {
   return std::string("a ") + v.type_name();
 }
 
-// Checks one axis value and returns it in canonical form.
-json canonical_value(const AxisRule& rule, const json& v, const std::string& name,
+// canonical_axis_value's "<where>: " prefix is the JSON path here, so the message is the part
+// after it.
+std::string checked(const AxisSpec& spec, const std::string& text, const std::string& name,
+                    const std::string& path) {
+  try {
+    return canonical_axis_value(spec, text, path);
+  } catch (const UserError& e) {
+    fail(name, path, std::string(e.what()).substr(path.size() + 2));
+  }
+}
+
+// Checks one axis value (its JSON type by the axis's kind, then its declaration) and returns
+// it in canonical form: numbers as JSON numbers, names and sizes as strings; a parameter's
+// value as the text --param would carry.
+json canonical_value(const AxisSpec& spec, bool parameter, const json& v, const std::string& name,
                      const std::string& path) {
-  switch (rule.kind) {
-    case Kind::Text:
+  if (parameter) {
+    // A comma would make it a list on the command line: in a file, lists are arrays.
+    if (v.is_string() && v.get<std::string>().find(',') != std::string::npos)
+      fail(name, path, "a comma in a parameter value; give several values as an array");
+    std::string text;
+    try {
+      text = axis_text_of_json(v, path);
+    } catch (const UserError& e) {
+      fail(name, path, std::string(e.what()).substr(path.size() + 2));
+    }
+    return json(checked(spec, text, name, path));
+  }
+  const std::string what = spec.display_name();
+  switch (spec.kind) {
+    case AxisKind::UInt:
+      if (!v.is_number_integer()) fail(name, path, "expected an integer (" + what + "), got " + type_name(v));
+      if (!v.is_number_unsigned() && v.get<int64_t>() < 0)
+        fail(name, path, what + " " + v.dump() + " is out of range [" + number_text(spec.min) + ", " +
+                             number_text(spec.max) + "]");
+      return axis_json_of_text(spec, checked(spec, std::to_string(v.get<uint64_t>()), name, path));
+    case AxisKind::Real:
+      if (!v.is_number()) fail(name, path, "expected a number (" + what + "), got " + type_name(v));
+      return axis_json_of_text(spec, checked(spec, axis_text_of_json(v, path), name, path));
+    case AxisKind::ImageSize:
+      if (v.is_number_unsigned())
+        return json(checked(spec, std::to_string(std::min<uint64_t>(v.get<uint64_t>(), 1u << 30)), name, path));
+      if (!v.is_string())
+        fail(name, path, "expected an image size \"WIDTHxHEIGHT\" or one integer, got " + type_name(v));
+      return json(checked(spec, v.get<std::string>(), name, path));
+    case AxisKind::Bool:
+      if (!v.is_boolean()) fail(name, path, "expected true or false, got " + type_name(v));
+      return json(v.get<bool>());
+    case AxisKind::Choice:
+      if (!v.is_string()) fail(name, path, "expected a " + what + " name, got " + type_name(v));
+      if (spec.key == "structures") {
+        const auto names = axis_choices(spec);
+        if (std::find(names.begin(), names.end(), v.get<std::string>()) == names.end())
+          fail(name, path, "unknown structure \"" + v.get<std::string>() + "\" (known: " + joined(names) + ", or all)");
+      } else {
+        const auto names = axis_choices(spec);
+        if (std::find(names.begin(), names.end(), v.get<std::string>()) == names.end())
+          fail(name, path, "unknown " + what + " \"" + v.get<std::string>() + "\" (known: " + joined(names) + ")");
+      }
+      return v;
+    case AxisKind::Text:
       if (!v.is_string() || v.get<std::string>().empty())
         fail(name, path, "expected a non-empty string, got " + type_name(v));
       return v;
-    case Kind::Name:
-    case Kind::Structure: {
-      if (!v.is_string()) fail(name, path, "expected a " + rule.what + " name, got " + type_name(v));
-      const std::string text = v.get<std::string>();
-      if (std::find(rule.names.begin(), rule.names.end(), text) == rule.names.end())
-        fail(name, path, "unknown " + rule.what + " \"" + text + "\" (known: " + joined(rule.names) +
-                             (rule.kind == Kind::Structure ? ", or all" : "") + ")");
-      return v;
-    }
-    case Kind::UInt: {
-      if (!v.is_number_integer())
-        fail(name, path, "expected an integer (" + rule.what + "), got " + type_name(v));
-      const bool negative = v.is_number_integer() && !v.is_number_unsigned() && v.get<int64_t>() < 0;
-      const double x = negative ? -1.0 : double(v.get<uint64_t>());
-      if (x < rule.min || x > rule.max)
-        fail(name, path, rule.what + " " + v.dump() + " is out of range [" + number_text(rule.min) +
-                             ", " + number_text(rule.max) + "]");
-      return json(v.get<uint64_t>());
-    }
-    case Kind::Real: {
-      if (!v.is_number()) fail(name, path, "expected a number (" + rule.what + "), got " + type_name(v));
-      const float f = float(v.get<double>());  // checked as the float the run uses
-      if (!(std::isfinite(f) && double(f) >= rule.min && double(f) <= rule.max))
-        fail(name, path, rule.what + " " + v.dump() + " reads as " + number_text(f) +
-                             " in a 32-bit float; it must lie in [" + number_text(rule.min) + ", " +
-                             number_text(rule.max) + "]");
-      return json(v.get<double>());
-    }
-    case Kind::ImageSize: {
-      // "WxH", or one integer for a square image.
-      unsigned w = 0, h = 0;
-      if (v.is_number_unsigned()) {
-        w = h = unsigned(std::min<uint64_t>(v.get<uint64_t>(), 1u << 30));
-      } else if (v.is_string()) {
-        const std::string text = v.get<std::string>();
-        char tail = 0;
-        // Digits only and short, so that sscanf never meets a number beyond unsigned.
-        if (text.size() > 11 || text.find_first_not_of("0123456789x") != std::string::npos ||
-            std::sscanf(text.c_str(), "%ux%u%c", &w, &h, &tail) != 2)
-          fail(name, path, "expected an image size \"WIDTHxHEIGHT\" (e.g. \"64x48\"), got \"" +
-                               text + "\"");
-      } else {
-        fail(name, path, "expected an image size \"WIDTHxHEIGHT\" or one integer, got " + type_name(v));
-      }
-      for (unsigned side : {w, h})
-        if (side < rule.min || side > rule.max)
-          fail(name, path, "image side " + std::to_string(side) + " is out of range [16, 16384]");
-      return json(std::to_string(w) + "x" + std::to_string(h));
-    }
-    case Kind::Param: {
-      // The text --param OWNER:KEY=VALUE would carry; the owner checks the value. A comma
-      // would make it a list on the command line: in a file, lists are arrays.
-      if (v.is_string()) {
-        if (v.get<std::string>().find(',') != std::string::npos)
-          fail(name, path, "a comma in a parameter value; give several values as an array");
-        return v;
-      }
-      if (v.is_boolean()) return json(v.get<bool>() ? "true" : "false");
-      if (v.is_number_unsigned()) return json(std::to_string(v.get<uint64_t>()));
-      if (v.is_number_integer()) return json(std::to_string(v.get<int64_t>()));
-      if (v.is_number_float()) {
-        if (!std::isfinite(v.get<double>())) fail(name, path, "not a finite number");
-        char buffer[32];
-        std::snprintf(buffer, sizeof buffer, "%.9g", v.get<double>());
-        return json(std::string(buffer));
-      }
-      fail(name, path, "expected a parameter value (string, number or boolean), got " + type_name(v));
-    }
   }
   fail(name, path, "unhandled axis kind");
 }
 
-// The rule of an axis key: a named axis, or OWNER:KEY (a --param of a structure or pass).
-const AxisRule* find_rule(const std::vector<AxisRule>& rules, const std::string& key) {
-  for (const auto& r : rules)
-    if (r.key == key) return &r;
-  return nullptr;
+std::vector<std::string> axis_keys(const SweepVocabulary& v) {
+  std::vector<std::string> keys;
+  for (const auto& a : v.axes) keys.push_back(a.key);
+  return keys;
 }
 
-AxisRule param_rule(const std::string& key, const SweepVocabulary& v, const std::string& name,
-                    const std::string& path) {
+// The declaration of an axis key: a harness axis, or OWNER:KEY (a parameter of a structure
+// or pass); `parameter` tells which.
+const AxisSpec& axis_rule(const std::string& key, const SweepVocabulary& v, const std::string& name,
+                          const std::string& path, bool& parameter) {
+  parameter = false;
+  if (const AxisSpec* known = find_axis(v.axes, key)) return *known;
   const auto colon = key.find(':');
+  if (colon == std::string::npos)
+    fail(name, path, "unknown axis \"" + key + "\" (axes: " + joined(axis_keys(v)) +
+                         ", or OWNER:KEY for a --param)");
   if (colon == 0 || colon + 1 >= key.size() || key.find(':', colon + 1) != std::string::npos)
     fail(name, path, "expected OWNER:KEY (a --param of a structure or pass, e.g. \"ppfla:k\")");
-  const std::string owner = key.substr(0, colon);
-  const bool known = std::find(v.structures.begin(), v.structures.end(), owner) != v.structures.end() ||
-                     std::find(v.passes.begin(), v.passes.end(), owner) != v.passes.end();
-  if (!known)
-    fail(name, path, "unknown structure or pass \"" + owner + "\" (known: " + joined(v.structures) +
-                         ", " + joined(v.passes) + ")");
-  return {key, Kind::Param, 0, 0, {}, "parameter"};
+  const std::string owner = key.substr(0, colon), param = key.substr(colon + 1);
+  const auto declared = v.parameters.find(owner);
+  if (declared == v.parameters.end()) {
+    std::vector<std::string> owners;
+    for (const auto& [o, specs] : v.parameters) owners.push_back(o);
+    fail(name, path, "unknown structure or pass \"" + owner + "\" (known: " + joined(owners) + ")");
+  }
+  const AxisSpec* spec = find_axis(declared->second, param);
+  std::vector<std::string> keys;
+  for (const auto& s : declared->second)
+    if (s.pass_parameter.empty()) keys.push_back(s.key);
+  if (!spec)
+    fail(name, path, owner + " has no parameter \"" + param + "\" (its parameters: " +
+                         (keys.empty() ? std::string("none") : joined(keys)) + ")");
+  if (!spec->pass_parameter.empty())
+    fail(name, path, "set it with the axis of the same setting (\"" + [&] {
+      for (const auto& a : v.axes)
+        if (a.pass_parameter == param) return a.key;
+      return param;
+    }() + "\"), not as a parameter of " + owner);
+  parameter = true;
+  return *spec;
 }
 
 // The values of one axis (an array, or a single value), canonical, duplicates refused;
 // "all" structures expanded.
-std::vector<json> axis_values(const std::vector<AxisRule>& rules, const std::string& key,
-                              const json& value, const SweepVocabulary& vocabulary,
+std::vector<json> axis_values(const std::string& key, const json& value, const SweepVocabulary& vocabulary,
                               const std::string& name, const std::string& path) {
-  const AxisRule* known = find_rule(rules, key);
-  if (!known && key.find(':') == std::string::npos)
-    fail(name, path, "unknown axis \"" + key + "\" (axes: " + joined(sweep_axis_names()) +
-                         ", or OWNER:KEY for a --param)");
-  const AxisRule rule = known ? *known : param_rule(key, vocabulary, name, path);
+  bool parameter = false;
+  const AxisSpec& rule = axis_rule(key, vocabulary, name, path, parameter);
   const json items = value.is_array() ? value : json::array({value});
   if (items.empty()) fail(name, path, "an axis needs at least one value");
   std::vector<json> out;
   for (size_t i = 0; i < items.size(); ++i) {
     const std::string item_path = value.is_array() ? path + "[" + std::to_string(i) + "]" : path;
-    if (rule.kind == Kind::Structure && items[i] == "all") {
-      for (const auto& s : vocabulary.structures)
+    if (!parameter && rule.key == "structures" && items[i] == "all") {
+      for (const auto& s : axis_choices(rule))
         if (std::find(out.begin(), out.end(), json(s)) == out.end()) out.push_back(json(s));
       continue;
     }
-    json v = canonical_value(rule, items[i], name, item_path);
+    json v = canonical_value(rule, parameter, items[i], name, item_path);
     if (std::find(out.begin(), out.end(), v) != out.end())
       fail(name, item_path, v.dump() + " appears twice");
     out.push_back(std::move(v));
@@ -200,8 +175,7 @@ void require_object(const json& v, const std::string& name, const std::string& p
 }
 
 // axis -> values, the form of the axes, of include blocks and of exclude filters.
-std::map<std::string, std::vector<json>> axis_block(const std::vector<AxisRule>& rules,
-                                                    const json& object,
+std::map<std::string, std::vector<json>> axis_block(const json& object,
                                                     const SweepVocabulary& vocabulary,
                                                     const std::string& name,
                                                     const std::string& path) {
@@ -209,7 +183,7 @@ std::map<std::string, std::vector<json>> axis_block(const std::vector<AxisRule>&
   std::map<std::string, std::vector<json>> out;
   for (const auto& [key, value] : object.items()) {
     if (key == "comment") continue;  // a note for readers
-    out[key] = axis_values(rules, key, value, vocabulary, name, path + "." + key);
+    out[key] = axis_values(key, value, vocabulary, name, path + "." + key);
   }
   return out;
 }
@@ -275,8 +249,7 @@ void check_settings(const json& settings, const std::string& name) {
   }
 }
 
-size_t axis_order(const std::string& key) {
-  const auto& names = sweep_axis_names();
+size_t axis_order(const std::vector<std::string>& names, const std::string& key) {
   const auto it = std::find(names.begin(), names.end(), key);
   return it == names.end() ? names.size() : size_t(it - names.begin());
 }
@@ -297,15 +270,6 @@ std::string identity_text(json root) {
 
 }  // namespace
 
-const std::vector<std::string>& sweep_axis_names() {
-  static const std::vector<std::string> names = [] {
-    std::vector<std::string> out;
-    for (const auto& rule : axis_rules({})) out.push_back(rule.key);
-    return out;
-  }();
-  return names;
-}
-
 SweepSpec parse_sweep_spec(const std::string& text, const std::string& name,
                            const SweepVocabulary& vocabulary) {
   SweepSpec spec;
@@ -317,7 +281,7 @@ SweepSpec parse_sweep_spec(const std::string& text, const std::string& name,
     throw UserError(name + ": not valid JSON (" + e.what() + ")");
   }
   require_object(root, name, "(top level)");
-  const auto rules = axis_rules(vocabulary);
+  const std::vector<std::string> order = axis_keys(vocabulary);
   for (const auto& [key, value] : root.items()) {
     if (key == "axes" || key == "include" || key == "exclude" || key == "settings") continue;
     if (key == "description" || key == "comment") {
@@ -330,10 +294,11 @@ SweepSpec parse_sweep_spec(const std::string& text, const std::string& name,
     fail(name, key, "unknown key (known: description, comment, axes, include, exclude, settings)");
   }
   if (!root.contains("axes")) fail(name, "axes", "missing (the object of axes to sweep)");
-  const auto axes = axis_block(rules, root["axes"], vocabulary, name, "axes");
+  const auto axes = axis_block(root["axes"], vocabulary, name, "axes");
   for (const auto& [key, values] : axes) spec.axes.emplace_back(key, values);
-  std::stable_sort(spec.axes.begin(), spec.axes.end(), [](const auto& a, const auto& b) {
-    const size_t oa = axis_order(a.first), ob = axis_order(b.first);
+  spec.axis_order = order;
+  std::stable_sort(spec.axes.begin(), spec.axes.end(), [&order](const auto& a, const auto& b) {
+    const size_t oa = axis_order(order, a.first), ob = axis_order(order, b.first);
     return oa != ob ? oa < ob : a.first < b.first;
   });
   for (const char* list : {"include", "exclude"}) {
@@ -342,7 +307,7 @@ SweepSpec parse_sweep_spec(const std::string& text, const std::string& name,
     if (!entries.is_array()) fail(name, list, "expected an array of objects, got " + type_name(entries));
     for (size_t i = 0; i < entries.size(); ++i) {
       const std::string path = std::string(list) + "[" + std::to_string(i) + "]";
-      auto block = axis_block(rules, entries[i], vocabulary, name, path);
+      auto block = axis_block(entries[i], vocabulary, name, path);
       if (block.empty()) fail(name, path, "names no axis");
       for (const auto& [key, values] : block) {
         (void)values;
@@ -382,8 +347,8 @@ std::vector<SweepAssignment> sweep_combinations(SweepSpec& spec) {
       (void)values;
       if (std::find(order.begin(), order.end(), key) == order.end()) order.push_back(key);
     }
-  std::stable_sort(order.begin(), order.end(), [](const std::string& a, const std::string& b) {
-    const size_t oa = axis_order(a), ob = axis_order(b);
+  std::stable_sort(order.begin(), order.end(), [&spec](const std::string& a, const std::string& b) {
+    const size_t oa = axis_order(spec.axis_order, a), ob = axis_order(spec.axis_order, b);
     return oa != ob ? oa < ob : a < b;
   });
 

@@ -16,15 +16,20 @@
 
 #include <nlohmann/json.hpp>
 
+#include "harness/axes/axis.h"
+
 namespace ldm {
 
-// The names an axis may take; filled from the registries by the caller.
+// The axes a sweep file may name, as declared (harness/axes/axis.h); filled from the axis
+// registry by the caller (harness/app/sweep_plan.h: current_sweep_vocabulary()).
 struct SweepVocabulary {
-  std::vector<std::string> structures, passes, traces, estimators;
+  std::vector<AxisSpec> axes;                                // the harness's, canonical order
+  std::map<std::string, std::vector<AxisSpec>> parameters;  // owner -> its parameters
 };
 
 // One combination: axis name -> its value, canonical (names and WxH as strings, integers as
-// unsigned JSON numbers, reals as doubles, parameter values as the text --param would get).
+// unsigned JSON numbers, reals as doubles, booleans as booleans, parameter values as the
+// canonical text --param would carry).
 using SweepAssignment = std::map<std::string, nlohmann::json>;
 
 struct SweepSpec {
@@ -40,11 +45,9 @@ struct SweepSpec {
   std::vector<std::map<std::string, std::vector<nlohmann::json>>> exclude;
   nlohmann::json settings = nlohmann::json::object();  // checked; see sweep_plan.h
   std::string canonical;  // the parsed file dumped (sorted keys): identity of the sweep
+  std::vector<std::string> axis_order;  // the vocabulary's axis keys, canonical order
   std::vector<std::string> warnings;  // e.g. an exclude filter that removes nothing
 };
-
-// The axis names, in canonical order (without the OWNER:KEY parameter axes).
-const std::vector<std::string>& sweep_axis_names();
 
 // Parses and checks `text`; throws UserError "<name>: <json path>: <what is wrong>".
 SweepSpec parse_sweep_spec(const std::string& text, const std::string& name,

@@ -2,7 +2,8 @@
 // "<pass>/<scene>/<structure>/N:<n>/R:<r>" (unique per pass, so compare.py never pools two
 // passes), each running the frames of `ldmbench run` through the same measure()
 // (harness/app/measurement.h): --ldm_warmup frames judged and discarded, then exactly
-// --ldm_frames measured frames, one per iteration (fixed iterations).
+// --ldm_frames measured frames, one per iteration (fixed iterations). Sizing, trace, d_max and
+// every other axis of `ldmbench run` are flags here too, from the same declarations.
 //
 // Each iteration is timed with ldmbench's own timer (GL timestamps on GPUs, a fenced wall
 // clock on software rasterisers; see harness/measure/gpu_timer.h) and reported as manual
@@ -11,11 +12,11 @@
 // frames, in ms: what `ldmbench run` records. Repetitions are Google Benchmark's own
 // (--benchmark_repetitions=K with its mean/median/stddev/cv aggregates and compare.py's U
 // test over them); each repetition measures in a fresh GL context, as `ldmbench run
-// --repetitions` does. Axes come from these flags, given before or among Google
-// Benchmark's own:
+// --repetitions` does. Axes come from flags --ldm_<axis>=LIST, one per harness axis
+// (harness/app/harness_axes.h), given before or among Google Benchmark's own:
 //   --ldm_scenes=cornell,atrium  --ldm_structures=all  --ldm_passes=all  --ldm_views=32
-//   --ldm_r=128  --ldm_width=256 --ldm_height=256  --ldm_frames=10  --ldm_warmup=2
-//   --ldm_param=STRUCTURE:KEY=VALUE (repeatable, as `ldmbench run --param`)
+//   --ldm_r_ldm=128  --ldm_image_size=256x256  --ldm_sizing=oracle  --ldm_frames=10 ...
+//   --ldm_param=OWNER:KEY=VALUE (repeatable, as `ldmbench run --param`)
 // `ldmbench_gbench --help` lists them with Google Benchmark's flags. A configuration whose
 // builds BuildHealth judges invalid (exactly those `ldmbench run` records as "invalid") is
 // reported as an error, not as a time; a lossy one is timed, with its fragments_lost counter
@@ -31,9 +32,13 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <set>
 #include <sstream>
 
+#include "harness/app/harness_axes.h"
+#include "harness/app/measure_configuration.h"
 #include "harness/app/measurement.h"
+#include "harness/app/run_command.h"
 #include "harness/gl/egl_context.h"
 #include "harness/passes/pass.h"
 #include "harness/scene/scene_loader.h"
@@ -51,94 +56,103 @@ std::vector<std::string> structure_pass_names() {
 
 using namespace ldm;
 
+// The flag of a harness axis: --ldm_<key> (--ldm_views, --ldm_sizing, --ldm_image_size...).
+std::string flag_of(const HarnessAxis& axis) { return "--ldm_" + axis.spec.key; }
+
+// What the benchmarks measure: ldmbench run's settings (the same axes, from the same
+// declarations), gbench's own defaults, and the axes the user set (named in the benchmarks).
 struct Axes {
-  std::vector<std::string> scenes = {"cornell", "atrium"};
-  std::vector<std::string> structures = structure_names();
-  // The passes that read a structure: a peer (hbao) has no build to time per structure and
-  // is measured by `ldmbench run` alone.
-  std::vector<std::string> passes = structure_pass_names();
-  std::vector<uint32_t> views = {32};
-  std::vector<uint32_t> resolutions = {128};
-  int width = 256, height = 256;
-  int frames = 10, warmup = 2;
-  std::map<std::string, std::map<std::string, std::string>> params;  // structure -> key -> value
+  RunSettings settings;
+  std::set<std::string> given;
 };
 
-constexpr const char* kLdmFlagsHelp =
-    "ldmbench_gbench: Google Benchmark over ldmbench's configurations.\n"
-    "ldmbench's own flags (before or among Google Benchmark's):\n"
-    "  --ldm_scenes=LIST       scenes (built-in names or scene files), default cornell,atrium\n"
-    "  --ldm_structures=LIST   structures, or all (default)\n"
-    "  --ldm_passes=LIST       passes that read a structure, or all (default)\n"
-    "  --ldm_views=LIST        N, default 32\n"
-    "  --ldm_r=LIST            R_LDM, default 128\n"
-    "  --ldm_width=W --ldm_height=H   image size, default 256x256\n"
-    "  --ldm_frames=F          measured frames per benchmark (its iterations), default 10\n"
-    "  --ldm_warmup=W          warm-up frames before them, default 2\n"
-    "  --ldm_param=S:K=V       a structure parameter, repeatable\n"
-    "Benchmarks are named <pass>/<scene>/<structure>/N:<n>/R:<r>; the time is the mean frame\n"
-    "time, the counters <subpass>_ms the medians. Google Benchmark's flags follow.\n\n";
-
-std::vector<std::string> split(const std::string& text) {
-  std::vector<std::string> out;
-  std::stringstream in(text);
-  for (std::string item; std::getline(in, item, ',');)
-    if (!item.empty()) out.push_back(item);
-  return out;
+Axes default_axes() {
+  Axes axes;
+  RunSettings& s = axes.settings;
+  s.scenes = {"cornell", "atrium"};
+  s.structures = structure_names();
+  // The passes that read a structure: a peer (hbao) has no build to time per structure and
+  // is measured by `ldmbench run` alone.
+  s.passes = structure_pass_names();
+  s.frames = 10;
+  return axes;
 }
 
-std::vector<uint32_t> split_numbers(const std::string& flag, const std::string& text) {
-  std::vector<uint32_t> out;
-  for (const auto& item : split(text)) {
-    char* end = nullptr;
-    const unsigned long v = std::strtoul(item.c_str(), &end, 10);
-    if (*end != '\0' || v == 0 || v > 8192)
-      throw UserError(flag + ": '" + item + "' is not a count in [1, 8192]");
-    out.push_back(uint32_t(v));
+std::string flags_help() {
+  std::string help =
+      "ldmbench_gbench: Google Benchmark over ldmbench's configurations.\n"
+      "ldmbench's own flags (before or among Google Benchmark's), one per axis of `ldmbench run`\n"
+      "(`ldmbench axes` describes each); a comma list is an axis:\n";
+  for (const HarnessAxis& axis : harness_axes()) {
+    const std::string flag = "  " + flag_of(axis) + "=" + (axis.spec.list ? "LIST" : "VALUE");
+    help += flag + std::string(flag.size() < 38 ? 38 - flag.size() : 2, ' ');
+    help += axis.spec.display_name();
+    if (!axis.spec.default_value.empty()) help += " (run's default " + axis.spec.default_value + ")";
+    help += "\n";
   }
-  return out;
+  help +=
+      "  --ldm_param=OWNER:KEY=VALUE         a structure's or pass's parameter, repeatable\n"
+      "gbench's defaults: scenes cornell,atrium, every structure, every pass that reads one,\n"
+      "10 frames. Benchmarks are named <pass>/<scene>/<structure>/N:<n>/R:<r>[/<axis>:<value>\n"
+      "for each other axis given]; the time is the mean frame time, the counters <subpass>_ms\n"
+      "the medians. Google Benchmark's flags follow.\n\n";
+  return help;
 }
 
 // Takes the --ldm_* flags out of argv, leaving Google Benchmark's.
 Axes parse_axes(int* argc, char** argv) {
-  Axes axes;
+  Axes axes = default_axes();
   int kept = 1;
   for (int i = 1; i < *argc; ++i) {
     const std::string arg = argv[i];
-    auto value = [&](const char* flag) -> const char* {
-      const size_t n = std::strlen(flag);
-      return arg.compare(0, n, flag) == 0 && arg.size() > n && arg[n] == '=' ? argv[i] + n + 1
-                                                                             : nullptr;
-    };
-    if (const char* v = value("--ldm_scenes")) axes.scenes = split(v);
-    else if (const char* v = value("--ldm_structures"))
-      axes.structures = std::string(v) == "all" ? structure_names() : split(v);
-    else if (const char* v = value("--ldm_passes"))
-      axes.passes = std::string(v) == "all" ? structure_pass_names() : split(v);
-    else if (const char* v = value("--ldm_views")) axes.views = split_numbers("--ldm_views", v);
-    else if (const char* v = value("--ldm_r")) axes.resolutions = split_numbers("--ldm_r", v);
-    else if (const char* v = value("--ldm_width")) axes.width = int(split_numbers("--ldm_width", v).at(0));
-    else if (const char* v = value("--ldm_height")) axes.height = int(split_numbers("--ldm_height", v).at(0));
-    else if (const char* v = value("--ldm_frames")) axes.frames = int(split_numbers("--ldm_frames", v).at(0));
-    else if (const char* v = value("--ldm_warmup")) {
-      const std::string text = v;
-      if (text.empty() || text.size() > 6 || text.find_first_not_of("0123456789") != std::string::npos)
-        throw UserError("--ldm_warmup: '" + text + "' is not a count in [0, 999999]");
-      axes.warmup = std::stoi(text);
+    if (arg.rfind("--ldm_", 0) != 0) {
+      argv[kept++] = argv[i];
+      continue;
     }
-    else if (const char* v = value("--ldm_param")) {
-      const std::string text = v;
-      const auto colon = text.find(':'), equals = text.find('=');
-      if (colon == std::string::npos || equals == std::string::npos || equals < colon + 2 || colon == 0)
-        throw UserError("--ldm_param: expected STRUCTURE:KEY=VALUE, got '" + text + "'");
-      axes.params[text.substr(0, colon)][text.substr(colon + 1, equals - colon - 1)] =
-          text.substr(equals + 1);
+    const auto equals = arg.find('=');
+    const std::string flag = arg.substr(0, equals);
+    const std::string value = equals == std::string::npos ? std::string() : arg.substr(equals + 1);
+    if (flag == "--ldm_param") {
+      const auto colon = value.find(':'), eq = value.find('=');
+      if (colon == std::string::npos || eq == std::string::npos || eq < colon + 2 || colon == 0)
+        throw UserError("--ldm_param: expected OWNER:KEY=VALUE, got '" + value + "'");
+      axes.settings.structure_params[value.substr(0, colon)][value.substr(colon + 1, eq - colon - 1)] =
+          value.substr(eq + 1);
+      continue;
     }
-    else if (arg.rfind("--ldm_", 0) == 0) throw UserError("unknown flag " + arg);
-    else argv[kept++] = argv[i];
+    const HarnessAxis* axis = nullptr;
+    for (const HarnessAxis& a : harness_axes())
+      if (flag_of(a) == flag) axis = &a;
+    if (!axis) throw UserError("unknown flag " + arg + " (`ldmbench_gbench --help` lists the --ldm_* flags)");
+    std::vector<std::string> values;
+    for (size_t start = 0;;) {
+      const size_t comma = axis->spec.list ? value.find(',', start) : std::string::npos;
+      std::string item = value.substr(start, comma == std::string::npos ? comma : comma - start);
+      std::vector<std::string> items = {item};
+      if (axis->spec.key == "structures" && item == "all") items = structure_names();
+      if (axis->spec.key == "passes" && item == "all") items = structure_pass_names();
+      for (const auto& it : items) values.push_back(canonical_axis_value(axis->spec, it, flag));
+      if (comma == std::string::npos) break;
+      start = comma + 1;
+    }
+    set_axis_list(axes.settings, *axis, values);
+    axes.given.insert(axis->spec.key);
   }
   *argc = kept;
   return axes;
+}
+
+// <pass>/<scene>/<structure>/N:<n>/R:<r>, then /<axis>:<value> for the other axes the user
+// set and the parameters, so that every configuration's name is unique.
+std::string benchmark_name(const Configuration& c, const Axes& axes) {
+  std::string name = c.pass + "/" + scene_id_name(c.scene) + "/" + c.structure + "/N:" +
+                     std::to_string(c.views) + "/R:" + std::to_string(c.resolution);
+  static const std::set<std::string> named = {"scenes", "passes", "structures", "views", "r_ldm",
+                                              "image_size", "frames", "warmup"};
+  for (const auto& [key, value] : c.values)
+    if (!named.count(key) && (axes.given.count(key) || key.find(':') != std::string::npos))
+      name += "/" + key + ":" + value;
+  return name;
 }
 
 std::unique_ptr<HeadlessContext> g_context;
@@ -146,24 +160,16 @@ std::unique_ptr<HeadlessContext> g_context;
 // One benchmark: a whole configuration's frames through the same measure() as `ldmbench
 // run`, every build judged by the same BuildHealth, so a configuration `ldmbench run` marks
 // invalid is an error here, never a time.
-void run_measurement(benchmark::State& state, const Scene* scene, std::string structure,
-                     std::map<std::string, std::string> params, std::string pass, uint32_t views,
-                     uint32_t resolution, const Axes* axes) {
+void run_measurement(benchmark::State& state, const Scene* scene, Configuration config,
+                     const RunSettings* settings) {
   try {
     // A fresh context per run of the benchmark: Google Benchmark's repetitions are then
     // independent the way `ldmbench run --repetitions` makes them.
     g_context.reset();
     g_context = HeadlessContext::create(default_context_options());
-    MeasurementRequest request;
-    request.structure = structure;
-    request.structure_params = params;
-    request.pass = pass;
-    request.views = views;
-    request.resolution = resolution;
-    request.width = axes->width;
-    request.height = axes->height;
-    request.warmup = axes->warmup;
-    request.frames = axes->frames;
+    MeasurementRequest request = measurement_request(config, *settings, g_context->device());
+    // Fixed iterations: exactly the frames asked for, no adaptive stopping.
+    request.precision.target = 0;
     request.timer = default_timer_source(g_context->device().gl_renderer);
     request.keep_running = [&state] { return state.KeepRunning(); };
     request.on_frame = [&state](const FrameTimes& times) {
@@ -192,21 +198,19 @@ void run_measurement(benchmark::State& state, const Scene* scene, std::string st
 
 int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i)
-    if (std::string(argv[i]) == "--help" || std::string(argv[i]) == "-h") std::cout << kLdmFlagsHelp;
+    if (std::string(argv[i]) == "--help" || std::string(argv[i]) == "-h") std::cout << flags_help();
   Axes axes;
+  std::vector<Configuration> configurations;
   std::map<std::string, Scene> scenes;
   try {
     axes = parse_axes(&argc, argv);
-    for (const auto& s : axes.structures)
-      make_structure(s, StructureParams(axes.params[s], "--ldm_param " + s));
-    for (const auto& [s, p] : axes.params)
-      if (std::find(axes.structures.begin(), axes.structures.end(), s) == axes.structures.end())
-        throw UserError("--ldm_param " + s + ":...: structure '" + s + "' is not benchmarked");
-    for (const auto& p : axes.passes)
+    for (const auto& p : axes.settings.passes)
       if (!make_pass(p, StructureParams())->requirements().needs_structure)
         throw UserError("--ldm_passes: pass '" + p +
                         "' reads no LDM structure; measure it with `ldmbench run`");
-    for (const auto& scene : axes.scenes) scenes.emplace(scene, load_scene(scene));
+    validate_axes(axes.settings);  // the checks of `ldmbench run`, parameters included
+    configurations = expand_configurations(axes.settings);
+    for (const auto& scene : axes.settings.scenes) scenes.emplace(scene, load_scene(scene));
   } catch (const UserError& e) {
     std::cerr << "ldmbench_gbench: error: " << e.what() << "\n";
     return 2;
@@ -215,27 +219,20 @@ int main(int argc, char** argv) {
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;
   g_context = HeadlessContext::create(default_context_options());
   const DeviceInfo device = g_context->device();
+  const RunSettings& s = axes.settings;
   benchmark::AddCustomContext("gl_renderer", device.gl_renderer);
   benchmark::AddCustomContext("gl_version", device.gl_version);
   benchmark::AddCustomContext("timer", timer_source_name(default_timer_source(device.gl_renderer)));
   benchmark::AddCustomContext("ldmbench_version", ldmbench_version());
   benchmark::AddCustomContext("git_commit", git_commit());
-  benchmark::AddCustomContext("ldm_frames", std::to_string(axes.frames));
-  benchmark::AddCustomContext("ldm_warmup", std::to_string(axes.warmup));
-  benchmark::AddCustomContext("ldm_image", std::to_string(axes.width) + "x" + std::to_string(axes.height));
-  for (const auto& scene : axes.scenes)
-    for (const auto& structure : axes.structures)
-      for (const auto& pass : axes.passes)
-        for (uint32_t n : axes.views)
-          for (uint32_t r : axes.resolutions) {
-            const std::string name = pass + "/" + scene + "/" + structure + "/N:" + std::to_string(n) +
-                                     "/R:" + std::to_string(r);
-            benchmark::RegisterBenchmark(name.c_str(), run_measurement, &scenes.at(scene), structure,
-                                         axes.params[structure], pass, n, r, &axes)
-                ->UseManualTime()
-                ->Iterations(axes.frames)
-                ->Unit(benchmark::kMillisecond);
-          }
+  benchmark::AddCustomContext("ldm_frames", std::to_string(s.frames));
+  benchmark::AddCustomContext("ldm_warmup", std::to_string(s.warmup));
+  benchmark::AddCustomContext("ldm_image", std::to_string(s.width) + "x" + std::to_string(s.height));
+  for (const Configuration& c : configurations)
+    benchmark::RegisterBenchmark(benchmark_name(c, axes).c_str(), run_measurement, &scenes.at(c.scene), c, &s)
+        ->UseManualTime()
+        ->Iterations(s.frames)
+        ->Unit(benchmark::kMillisecond);
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   g_context.reset();

@@ -1,12 +1,13 @@
-// `ldmbench scenes`, `structures`, `passes`, `columns`, `info`.
+// `ldmbench scenes`, `structures`, `passes`, `columns`, `axes`, `info`.
 #include <iostream>
 #include <memory>
 
+#include "harness/app/axis_registry.h"
 #include "harness/app/run_command.h"
 #include "harness/cli/commands.h"
 #include "harness/gl/egl_context.h"
 #include "harness/passes/pass.h"
-#include "harness/records/columns.h"
+#include "harness/app/record_schema.h"
 #include "harness/scene/generators.h"
 #include "ldm_impls/ldm_structure.h"
 
@@ -20,7 +21,17 @@ Runner add_listing_commands(CLI::App& app) {
   auto markdown = std::make_shared<bool>(false);
   columns->add_flag("--markdown", *markdown, "As the Markdown table of the README");
   auto* info = app.add_subcommand("info", "Print the OpenGL device ldmbench runs on");
-  return [scenes, structures, passes, columns, markdown, info]() {
+  auto* axes = app.add_subcommand("axes", "List every axis a sweep can vary: the harness's and each structure's and pass's parameters");
+  auto axes_format = std::make_shared<std::string>("text");
+  axes->add_flag("--json{json}", *axes_format, "As JSON (what the report reads)");
+  axes->add_flag("--markdown{markdown}", *axes_format, "As the Markdown table of docs/reference/axes.md");
+  return [scenes, structures, passes, columns, markdown, info, axes, axes_format]() {
+    if (axes->parsed()) {
+      if (*axes_format == "json") std::cout << axes_json().dump(2) << "\n";
+      else if (*axes_format == "markdown") std::cout << axes_markdown();
+      else std::cout << axes_text();
+      return kExitOk;
+    }
     if (scenes->parsed()) {
       for (const auto& g : scene_generators()) std::cout << g.name << "\t" << g.description << "\n";
     } else if (structures->parsed()) {

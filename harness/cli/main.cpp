@@ -8,6 +8,7 @@
 //   ldmbench compare         regressions between two runs (time, memory, accuracy, status)
 //   ldmbench interleave      two builds measured alternately on one sweep, then compared
 //   ldmbench view            interactive viewer of one configuration (GLFW, Dear ImGui)
+//   ldmbench axes            every axis: the harness's and the structures' and passes' parameters
 //   ldmbench scenes | structures | passes | columns | info
 #include <CLI/CLI.hpp>
 

@@ -4,6 +4,7 @@
 // nothing written and no Python started, then finds the script and a Python that has the
 // plotting packages, and runs it.
 #include <cstdlib>
+#include <unistd.h>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -11,6 +12,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "harness/app/axis_registry.h"
 #include "harness/app/run_command.h"
 #include "harness/cli/commands.h"
 #include "harness/compare/run_comparison.h"
@@ -175,13 +177,24 @@ Runner add_report_command(CLI::App& app) {
     check_out_folder(out, o->runs);
     const std::string script = find_script();
     const std::string python = find_python();
+    // The axes the report groups and labels by: the registry's declarations, as JSON.
+    std::string scratch = (std::filesystem::temp_directory_path() / "ldmbench-report-XXXXXX").string();
+    if (!mkdtemp(scratch.data())) throw UserError("cannot make a temporary folder for the report's axis registry");
+    const std::filesystem::path axes = std::filesystem::path(scratch) / "axes.json";
+    {
+      std::ofstream file(axes);
+      file << axes_json().dump() << "\n";
+      if (!file) throw UserError(axes.string() + ": cannot write the axis registry for the report");
+    }
     std::vector<std::string> argv = {python, script};
     argv.insert(argv.end(), o->runs.begin(), o->runs.end());
-    argv.insert(argv.end(), {"--out", out});
+    argv.insert(argv.end(), {"--out", out, "--axes", axes.string()});
     if (o->svg) argv.push_back("--svg");
     if (!o->title.empty()) argv.insert(argv.end(), {"--title", o->title});
     for (const std::string& axis : o->axes) argv.insert(argv.end(), {"--axis", axis});
     const ProcessResult result = run_process(argv, /*capture=*/false);
+    std::error_code ignored;
+    std::filesystem::remove_all(scratch, ignored);
     if (!result.started) throw UserError(python + ": cannot run: " + result.output);
     return result.status;
   };

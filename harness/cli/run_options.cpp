@@ -1,9 +1,13 @@
 // `ldmbench run`: the options of a sweep.
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <memory>
 
+#include "harness/app/axis_options.h"
+#include "harness/app/harness_axes.h"
 #include "harness/app/run_command.h"
 #include "harness/cli/commands.h"
 #include "harness/cli/run_options.h"
@@ -32,12 +36,21 @@ std::string joined(const std::vector<std::string>& names) {
   return out;
 }
 
-Visibility parse_visibility(const std::string& text) {
-  if (text == "attenuated") return Visibility::Attenuated;
-  if (text == "unattenuated") return Visibility::Unattenuated;
-  return Visibility::Scene;
+// "psppsll: capacity, atomic_reads; ppfla: k; ..." of every declared parameter.
+std::string declared_parameters() {
+  std::vector<std::string> owners;
+  auto add = [&owners](const std::string& owner, const std::vector<AxisSpec>& specs) {
+    std::vector<std::string> keys;
+    for (const auto& s : specs)
+      if (s.pass_parameter.empty()) keys.push_back(s.key);
+    if (!keys.empty()) owners.push_back(owner + ": " + joined(keys));
+  };
+  for (const auto& name : structure_names()) add(name, structure_parameters(name));
+  for (const auto& name : pass_names()) add(name, pass_parameters(name));
+  std::string out;
+  for (const auto& o : owners) out += (out.empty() ? "" : "; ") + o;
+  return out;
 }
-
 
 std::string format_g(double x) {
   char buffer[32];
@@ -45,17 +58,7 @@ std::string format_g(double x) {
   return buffer;
 }
 
-// Numbers are checked after the conversion to the type the run uses (float): CLI11's range
-// checks let NaN through, and 1e39 or 1e-50 only become inf or 0 when converted.
 void validate_numbers(const RunOptions& o) {
-  for (float d : o.settings.d_max)
-    if (!(std::isfinite(d) && d > 0.0f))
-      throw UserError("--d-max: the value reads as " + format_g(d) +
-                      " in a 32-bit float; it must be positive and finite (1.4e-45 to 3.4e38)");
-  if (o.normal_offset_option->count() &&
-      !(std::isfinite(o.normal_offset) && o.normal_offset >= 0.0f && o.normal_offset <= 1000.0f))
-    throw UserError("--normal-offset: " + format_g(o.normal_offset) +
-                    " is not a number in [0, 1000]");
   const double noise = o.settings.reference.spp.target_noise_mse;
   if (!(std::isfinite(noise) && noise > 0.0))
     throw UserError("--reference-noise: " + format_g(noise) + " is not a positive number");
@@ -68,13 +71,19 @@ void validate_numbers(const RunOptions& o) {
 }  // namespace
 
 void reject_empty_list_items(int argc, const char* const* argv) {
-  static const char* const kListOptions[] = {"--scene", "--structure", "--pass", "-N", "--views",
-                                             "-R", "--r-ldm", "--d-max", "--visibility",
-                                             "--trace", "--ao-estimator", "--sizing"};
+  std::vector<std::string> list_options;
+  for (const HarnessAxis& axis : harness_axes()) {
+    if (!axis.spec.list || axis.spec.flags.empty()) continue;
+    for (size_t start = 0;;) {
+      const size_t comma = axis.spec.flags.find(',', start);
+      list_options.push_back(axis.spec.flags.substr(start, comma == std::string::npos ? comma : comma - start));
+      if (comma == std::string::npos) break;
+      start = comma + 1;
+    }
+  }
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
-    for (const char* option : kListOptions) {
-      const std::string name = option;
+    for (const std::string& name : list_options) {
       std::string value;
       if (arg == name && i + 1 < argc)
         value = argv[i + 1];
@@ -92,73 +101,12 @@ void reject_empty_list_items(int argc, const char* const* argv) {
 
 void add_run_options(CLI::App* run, RunOptions* o) {
   RunSettings& s = o->settings;
-  run->add_option("--scene", s.scenes,
-                  "Built-in scene name (see `ldmbench scenes`) or scene file path")
-      ->delimiter(',')
-      ->capture_default_str();
-  run->add_option("--structure", s.structures, "LDM structure(s): " + joined(structure_names()) + ", or all")
-      ->delimiter(',')
-      ->capture_default_str();
-  run->add_option("--pass", s.passes, "Pass(es) run on each structure: " + joined(pass_names()))
-      ->delimiter(',')
-      ->capture_default_str();
-  run->add_option("-N,--views", s.views,
-                  "Number of LDM views N (regions of the hemisphere partition)")
-      ->delimiter(',')
-      ->check(CLI::Range(1u, 4096u))
-      ->capture_default_str();
-  run->add_option("-R,--r-ldm", s.resolutions, "LDM resolution R_LDM (R x R pixels per view)")
-      ->delimiter(',')
-      ->check(CLI::Range(1u, 8192u))
-      ->capture_default_str();
-  run->add_option("--width", s.width, "Output image width in pixels")
-      ->check(CLI::Range(16, 16384))
-      ->capture_default_str();
-  run->add_option("--height", s.height, "Output image height in pixels")
-      ->check(CLI::Range(16, 16384))
-      ->capture_default_str();
-  run->add_option("--d-max", s.d_max,
-                  "AO attenuation distance d_max in scene units (default: the scene's)")
-      ->delimiter(',')
-      ->check(CLI::PositiveNumber);
-  run->add_option("--visibility", o->visibility,
-                  "AO visibility: attenuated (min(d/d_max,1)^2), unattenuated, or scene (the "
-                  "scene's own choice)")
-      ->delimiter(',')
-      ->check(CLI::IsMember({"scene", "attenuated", "unattenuated"}));
-  run->add_option("--trace", o->traces,
-                  "AO trace variant(s): listing5 (thesis Listing 5: nearest fragment is x's own "
-                  "surface), interval (split at x's depth; needs --normal-offset >= ~0.7), "
-                  "plane (skip x's own plane predicted from the normal; works with offset 0) "
-                  "(default: " + ao_trace_name(kDefaultAoTrace) + ")")
-      ->delimiter(',')
-      ->check(CLI::IsMember(ao_trace_names()));
-  run->add_option("--ao-estimator", o->estimators,
-                  "AO estimator(s): eq13 (thesis Eq. 13, 2/N sum V|cos|, may exceed 1) or "
-                  "normalized (sum V|cos| / sum |cos|) (default: eq13)")
-      ->delimiter(',')
-      ->check(CLI::IsMember(ao_estimator_names()));
-  run->add_option("--sizing", o->sizing,
-                  "Sizing policy: previous_frame (default: the last frame's own counters, "
-                  "rebuild on overflow, timed), census (a timed counting pass every frame), "
-                  "oracle (the untimed census before the run; free, not a renderer's cost), "
-                  "budget (a fixed memory budget, overflow counted)")
-      ->delimiter(',')
-      ->check(CLI::IsMember({"oracle", "census", "previous_frame", "budget"}));
-  run->add_option("--sizing-budget-mib", s.sizing_budget_mib,
-                  "Memory budget of the budget policy per structure, MiB (all its buffers)")
-      ->check(CLI::Range(0.001, 1048576.0));
-  run->add_option("--sizing-initial-per-pixel", s.sizing_initial_per_pixel,
-                  "previous_frame's first guess: fragments per LDM pixel")
-      ->check(CLI::Range(1u, 4096u))
-      ->capture_default_str();
-  o->normal_offset_option = run->add_option("--normal-offset", o->normal_offset,
-                  "Normal offset of thesis §4.4.2 in LDM pixels (default: the scene's; 0 = off)")
-      ->check(CLI::Range(0.0f, 1000.0f));
-  run->add_option("--frames", s.frames,
-                  "Measured frames per repetition, at least (more until --time-target is met)")
-      ->check(CLI::Range(1, 100000))
-      ->capture_default_str();
+  // Every harness axis's option, from its declaration (harness/app/harness_axes.cpp).
+  add_axis_options(run, o->axes);
+  run->add_option("--width", o->width, "Output image width in pixels (with --height: --image-size)")
+      ->check(CLI::Range(16, 16384));
+  run->add_option("--height", o->height, "Output image height in pixels (with --width: --image-size)")
+      ->check(CLI::Range(16, 16384));
   run->add_option("--time-target", s.precision.target,
                   "Measure frames until the 95% interval of the median (order statistics) is "
                   "within this relative half-width for build and frame (0.03: +-3%), or "
@@ -184,12 +132,9 @@ void add_run_options(CLI::App* run, RunOptions* o) {
                   "repetitions (what `ldmbench compare` needs to judge time)")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
-  run->add_option("--warmup", s.warmup, "Warm-up frames discarded before measuring")
-      ->check(CLI::Range(0, 100000))
-      ->capture_default_str();
   run->add_option("--param", o->params,
-                  "Structure parameter STRUCTURE:KEY=VALUE, repeatable (e.g. psppsll:capacity=1000, "
-                  "ppfla:k=4, habuffer:load_factor=0.5)");
+                  "A structure's or pass's parameter OWNER:KEY=VALUE, repeatable; a comma list "
+                  "is an axis (`ldmbench axes` describes each): " + declared_parameters());
   run->add_option("--out", s.out_dir,
                   "Output folder for records.jsonl, records.csv, records.json and images/ "
                   "(default: results/runs/<timestamp>). A folder holding an interrupted run "
@@ -233,33 +178,19 @@ void add_run_options(CLI::App* run, RunOptions* o) {
 }
 
 RunSettings run_settings_from(RunOptions* o) {
-  {
-    RunSettings& settings = o->settings;
-    validate_numbers(*o);
-    for (const auto& p : o->params) parse_structure_param(p, settings);
-    if (!o->visibility.empty()) {
-      settings.visibility.clear();
-      for (const auto& v : o->visibility) settings.visibility.push_back(parse_visibility(v));
-    }
-    if (!o->traces.empty()) {
-      settings.traces.clear();
-      for (const auto& t : o->traces) settings.traces.push_back(parse_ao_trace(t));
-    }
-    if (!o->estimators.empty()) {
-      settings.estimators.clear();
-      for (const auto& e : o->estimators) settings.estimators.push_back(parse_ao_estimator(e));
-    }
-    if (o->normal_offset_option->count()) settings.normal_offset_pixels = o->normal_offset;
-    if (!o->sizing.empty()) {
-      settings.sizing.clear();
-      for (const auto& name : o->sizing) settings.sizing.push_back(parse_sizing_policy(name));
-    }
-    settings.context.platform = parse_egl_platform(o->platform);
-    settings.isolation = parse_repetition_isolation(o->isolation);
-    if (settings.structures.size() == 1 && settings.structures[0] == "all")
-      settings.structures = structure_names();
+  RunSettings& settings = o->settings;
+  validate_numbers(*o);
+  for (const auto& p : o->params) parse_structure_param(p, settings);
+  apply_axis_options(o->axes, settings);
+  if (o->width || o->height) {
+    if (o->axes.given("image_size"))
+      throw UserError("--width/--height and --image-size: give the image size once");
+    settings.width = o->width ? o->width : settings.width;
+    settings.height = o->height ? o->height : settings.height;
   }
-  return o->settings;
+  settings.context.platform = parse_egl_platform(o->platform);
+  settings.isolation = parse_repetition_isolation(o->isolation);
+  return settings;
 }
 
 Runner add_run_command(CLI::App& app, const std::string& command_line,

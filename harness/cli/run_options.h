@@ -3,20 +3,22 @@
 // of them), so that both read a command line alike.
 #include <CLI/CLI.hpp>
 
+#include <map>
 #include <string>
 #include <vector>
 
+#include "harness/app/axis_options.h"
 #include "harness/app/run_settings.h"
 
 namespace ldm::cli {
 
 struct RunOptions {
   RunSettings settings;
-  std::vector<std::string> params, visibility, traces, estimators, sizing;
+  AxisOptions axes;  // every harness axis's option (harness/app/axis_options.h)
+  std::vector<std::string> params;
+  int width = 0, height = 0;  // --width/--height: the image size's two sides
   std::string platform = "auto";
   std::string isolation = "context";
-  float normal_offset = 0.0f;
-  CLI::Option* normal_offset_option = nullptr;
 };
 
 // Registers every option of `run` on `command`; `o` must outlive the parse.

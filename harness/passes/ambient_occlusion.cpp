@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "harness/metrics/ao_range.h"
+#include "harness/passes/ao_parameters.h"
 #include "harness/reference/ao_reference.h"
 #include "harness/reference/reference_settings.h"
 #include "harness/util/error.h"
@@ -11,17 +12,25 @@ namespace ldm {
 
 AmbientOcclusion::AmbientOcclusion(StructureParams& params) {
   // An absent key keeps the scene's value.
-  if (params.has("d_max")) overrides_.d_max = float(params.get_double("d_max", 0.0, 1e-30, 1e30));
-  const std::string visibility =
-      params.get_choice("visibility", "scene", {"scene", "attenuated", "unattenuated"});
+  if (params.has("d_max")) overrides_.d_max = float(params.get_double("d_max"));
+  const std::string visibility = params.get_choice("visibility");
   if (visibility != "scene") overrides_.attenuated = visibility == "attenuated";
   if (params.has("normal_offset_pixels"))
-    overrides_.normal_offset_pixels =
-        float(params.get_double("normal_offset_pixels", 0.0, 0.0, 1000.0));
-  overrides_.trace = parse_ao_trace(
-      params.get_choice("trace", ao_trace_name(kDefaultAoTrace), ao_trace_names()));
-  overrides_.estimator = parse_ao_estimator(params.get_choice(
-      "ao_estimator", ao_estimator_name(AoEstimatorChoice::Eq13), ao_estimator_names()));
+    overrides_.normal_offset_pixels = float(params.get_double("normal_offset_pixels"));
+  overrides_.trace = parse_ao_trace(params.get_choice("trace"));
+  overrides_.estimator = parse_ao_estimator(params.get_choice("ao_estimator"));
+}
+
+std::vector<AxisSpec> AmbientOcclusion::parameters() {
+  return {ao_pass_parameter(AoAxis::DMax), ao_pass_parameter(AoAxis::Visibility),
+          ao_pass_parameter(AoAxis::NormalOffset), ao_pass_parameter(AoAxis::Trace),
+          ao_pass_parameter(AoAxis::Estimator)};
+}
+
+std::vector<ColumnSpec> AmbientOcclusion::columns() {
+  std::vector<ColumnSpec> columns = ao_setting_columns(true);
+  for (auto& c : ao_range_columns()) columns.push_back(c);
+  return columns;
 }
 
 AoSettings AmbientOcclusion::settings_for(const Scene& scene) const {

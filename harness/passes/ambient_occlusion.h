@@ -14,12 +14,17 @@
 #include "harness/passes/ao_pass.h"
 #include "harness/passes/gbuffer_pass.h"
 #include "harness/passes/pass.h"
+#include "harness/records/columns.h"
 
 namespace ldm {
 
 class AmbientOcclusion : public Pass {
  public:
   explicit AmbientOcclusion(StructureParams& params);
+  // The parameters it reads (--param and the AO axes it takes), declared (harness/axes/axis.h).
+  static std::vector<AxisSpec> parameters();
+  // The record columns it writes (describe(), results(), its counts), declared.
+  static std::vector<ColumnSpec> columns();
 
   std::string name() const override { return "ao"; }
   PassRequirements requirements() const override;

@@ -7,22 +7,73 @@
 #include "harness/metrics/ao_range.h"
 #include "harness/reference/ao_reference.h"
 #include "harness/reference/reference_settings.h"
+#include "harness/passes/ao_parameters.h"
 #include "harness/scene/camera.h"
 #include "harness/util/error.h"
 
 namespace ldm {
 
 Hbao::Hbao(StructureParams& params) {
-  hbao_.directions = uint32_t(params.get_uint("directions", hbao_.directions, 1, 256));
-  hbao_.steps = uint32_t(params.get_uint("steps", hbao_.steps, 1, 512));
-  hbao_.angle_bias = float(params.get_double("angle_bias", hbao_.angle_bias, 0.0, 1.5));
-  hbao_.jitter = params.get_choice("jitter", "off", {"off", "on"}) == "on";
-  hbao_.blur_radius = uint32_t(params.get_uint("blur", 0, 0, 16));
+  hbao_.directions = uint32_t(params.get_uint("directions"));
+  hbao_.steps = uint32_t(params.get_uint("steps"));
+  hbao_.angle_bias = float(params.get_double("angle_bias"));
+  hbao_.jitter = params.get_choice("jitter") == "on";
+  hbao_.blur_radius = uint32_t(params.get_uint("blur"));
   // An absent key keeps the scene's value, as for the LDM AO.
-  if (params.has("d_max")) overrides_.d_max = float(params.get_double("d_max", 0.0, 1e-30, 1e30));
-  const std::string visibility =
-      params.get_choice("visibility", "scene", {"scene", "attenuated", "unattenuated"});
+  if (params.has("d_max")) overrides_.d_max = float(params.get_double("d_max"));
+  const std::string visibility = params.get_choice("visibility");
   if (visibility != "scene") overrides_.attenuated = visibility == "attenuated";
+}
+
+std::vector<AxisSpec> Hbao::parameters() {
+  auto uint_param = [](const char* key, double lo, double hi, const char* fallback, const char* unit,
+                       const char* column, const char* description) {
+    AxisSpec p;
+    p.key = key;
+    p.kind = AxisKind::UInt;
+    p.min = lo;
+    p.max = hi;
+    p.default_value = fallback;
+    p.unit = unit;
+    p.column = column;
+    p.description = description;
+    return p;
+  };
+  AxisSpec angle_bias;
+  angle_bias.key = "angle_bias";
+  angle_bias.kind = AxisKind::Real;
+  angle_bias.min = 0.0;
+  angle_bias.max = 1.5;
+  angle_bias.default_value = "0.1";
+  angle_bias.unit = "radians";
+  angle_bias.column = "hbao_angle_bias";
+  angle_bias.description = "horizon angle bias (ignores tangent-plane occluders)";
+  AxisSpec jitter;
+  jitter.key = "jitter";
+  jitter.kind = AxisKind::Choice;
+  jitter.choices = {"off", "on"};
+  jitter.default_value = "off";
+  jitter.column = "hbao_jitter";
+  jitter.description = "per-pixel rotation of the directions";
+  return {uint_param("directions", 1, 256, "8", "directions", "hbao_directions", "directions sampled per pixel"),
+          uint_param("steps", 1, 512, "8", "steps", "hbao_steps", "ray-marching steps per direction, within d_max"),
+          angle_bias, jitter,
+          uint_param("blur", 0, 16, "0", "pixels", "hbao_blur", "cross-bilateral blur radius (0: none)"),
+          ao_pass_parameter(AoAxis::DMax), ao_pass_parameter(AoAxis::Visibility)};
+}
+
+std::vector<ColumnSpec> Hbao::columns() {
+  std::vector<ColumnSpec> columns = ao_setting_columns(false);
+  const std::vector<ColumnSpec> own = {
+      {"pass", "hbao_directions", "", "HBAO: N_HBAO screen-space directions per pixel (--param hbao:directions=)"},
+      {"pass", "hbao_steps", "", "HBAO: S_HBAO ray-marching steps per direction, out to d_max (--param hbao:steps=)"},
+      {"pass", "hbao_angle_bias", "radians", "HBAO: bias added to the tangent angle (--param hbao:angle_bias=)"},
+      {"pass", "hbao_jitter", "", "HBAO: off, or on (per-pixel rotation and step offset from a tiled 4x4 random table)"},
+      {"pass", "hbao_blur", "pixels", "HBAO: radius of the cross-bilateral blur after the AO, timed as blur (0: none; --param hbao:blur=)"},
+  };
+  columns.insert(columns.end(), own.begin(), own.end());
+  for (auto& c : ao_range_columns()) columns.push_back(c);
+  return columns;
 }
 
 Hbao::~Hbao() = default;

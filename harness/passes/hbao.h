@@ -19,12 +19,17 @@
 #include "harness/passes/gbuffer_pass.h"
 #include "harness/passes/hbao_kernel.h"
 #include "harness/passes/pass.h"
+#include "harness/records/columns.h"
 
 namespace ldm {
 
 class Hbao : public Pass {
  public:
   explicit Hbao(StructureParams& params);
+  // The parameters it reads (--param and the AO axes it takes), declared (harness/axes/axis.h).
+  static std::vector<AxisSpec> parameters();
+  // The record columns it writes (describe(), results(), its counts), declared.
+  static std::vector<ColumnSpec> columns();
   ~Hbao() override;
 
   std::string name() const override { return "hbao"; }

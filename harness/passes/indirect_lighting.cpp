@@ -3,32 +3,111 @@
 #include <cmath>
 
 #include "harness/metrics/ao_range.h"
+#include "harness/passes/ao_parameters.h"
 #include "harness/util/error.h"
 
 namespace ldm {
 
 IndirectLighting::IndirectLighting(StructureParams& params) {
   IndirectSettings& s = settings_;
-  s.splat_scale = float(params.get_double("s", s.splat_scale, 1e-6, 1e6));
-  if (params.has("a")) s.topological_bias = float(params.get_double("a", 0.0, 0.0, 1e6));
-  s.footprint_threshold = float(params.get_double("t_foot", INFINITY, 1e-30, INFINITY));
-  if (params.has("depth_threshold"))
-    s.depth_threshold = float(params.get_double("depth_threshold", 0.0, 0.0, INFINITY));
-  s.light_resolution = uint32_t(params.get_uint("r_light", s.light_resolution, 1, 4096));
-  if (params.has("photon_capacity"))
-    s.photon_capacity = params.get_uint("photon_capacity", 0, 0, uint64_t(1) << 32);
-  if (params.has("photon_budget_mib"))
-    s.photon_budget_mib = params.get_double("photon_budget_mib", 0.0, 0.0, 1e6);
+  s.splat_scale = float(params.get_double("s"));
+  if (params.has("a")) s.topological_bias = float(params.get_double("a"));
+  if (params.has("t_foot")) s.footprint_threshold = float(params.get_double("t_foot"));
+  if (params.has("depth_threshold")) s.depth_threshold = float(params.get_double("depth_threshold"));
+  s.light_resolution = uint32_t(params.get_uint("r_light"));
+  if (params.has("photon_capacity")) s.photon_capacity = params.get_uint("photon_capacity");
+  if (params.has("photon_budget_mib")) s.photon_budget_mib = params.get_double("photon_budget_mib");
   // The run's AO axes: the trace variant and normal offset apply to the photons' trace; the
   // AO estimator, d_max and visibility do not apply to light.
-  s.trace = parse_ao_trace(
-      params.get_choice("trace", ao_trace_name(kDefaultAoTrace), ao_trace_names()));
+  s.trace = parse_ao_trace(params.get_choice("trace"));
   if (params.has("normal_offset_pixels"))
-    normal_offset_pixels_ = float(params.get_double("normal_offset_pixels", 0.0, 0.0, 1000.0));
-  params.get_choice("ao_estimator", "eq13", {"eq13"});  // AO only: only its default is accepted
+    normal_offset_pixels_ = float(params.get_double("normal_offset_pixels"));
+  if (params.get_choice("ao_estimator") != ao_estimator_name(AoEstimatorChoice::Eq13))
+    throw UserError("--pass indirect: --ao-estimator is an AO setting; the indirect pass takes "
+                    "only its default, eq13");
   if (params.has("d_max") || params.has("visibility"))
     throw UserError("--pass indirect: --d-max and --visibility are AO settings and do not "
                     "apply to the indirect pass");
+}
+
+std::vector<AxisSpec> IndirectLighting::parameters() {
+  auto real = [](const char* key, double lo, double hi, const char* fallback, const char* note,
+                 const char* unit, const char* column, const char* description) {
+    AxisSpec p;
+    p.key = key;
+    p.kind = AxisKind::Real;
+    p.min = lo;
+    p.max = hi;
+    p.default_value = fallback;
+    p.default_note = note;
+    p.unit = unit;
+    p.column = column;
+    p.description = description;
+    return p;
+  };
+  const double largest = 3.4028234663852886e38;  // FLT_MAX: any finite float
+  AxisSpec r_light;
+  r_light.key = r_light.column = "r_light";
+  r_light.label = "R_light";
+  r_light.kind = AxisKind::UInt;
+  r_light.min = 1;
+  r_light.max = 4096;
+  r_light.default_value = "64";
+  r_light.unit = "pixels";
+  r_light.description = "the light's G-buffer is R_light x R_light: one primary photon per texel";
+  AxisSpec capacity;
+  capacity.key = "photon_capacity";
+  capacity.kind = AxisKind::UInt;
+  capacity.min = 0;
+  capacity.max = double(uint64_t(1) << 32);
+  capacity.default_note = "sized by the sizing policy";
+  capacity.unit = "photons";
+  capacity.description = "fixes the photon buffer, overriding the sizing policy (overflow counted, lossy)";
+  AxisSpec budget = real("photon_budget_mib", 0, 1e6, "", "the structure's budget", "MiB", "",
+                         "budget policy: the photon buffer's own budget");
+  budget.real_is_double = true;
+  return {real("s", 1e-6, 1e6, "4", "", "", "splat_scale", "splat footprint scale s (1: one light texel's beam)"),
+          real("a", 0, 1e6, "", "a = s (the thesis's choice)", "", "topological_bias",
+               "topological bias a of the splat kernel"),
+          real("t_foot", 1e-30, largest, "", "off (no footprint test)", "scene units", "footprint_threshold",
+               "T_foot: photons whose footprint s |D x| exceeds it are culled"),
+          real("depth_threshold", 0, largest, "", "3 LDM pixels", "scene units", "",
+               "a photon's hit must lie within this distance of the camera G-buffer's depth to splat"),
+          r_light, capacity, budget,
+          ao_pass_parameter(AoAxis::Trace), ao_pass_parameter(AoAxis::NormalOffset),
+          ao_pass_parameter(AoAxis::Estimator), ao_pass_parameter(AoAxis::DMax),
+          ao_pass_parameter(AoAxis::Visibility)};
+}
+
+std::vector<ColumnSpec> IndirectLighting::columns() {
+  std::vector<ColumnSpec> columns = {
+      {"pass", "normal_offset_pixels", "LDM pixels", "normal offset of thesis §4.4.2 (after --normal-offset)"},
+      {"pass", "trace", "", "AO trace variant: listing5, interval or plane (after --trace)"},
+      {"pass", "r_light", "pixels", "indirect: R_light, the side of the light's G-buffer (one primary photon per texel in the cone; --param indirect:r_light=)"},
+      {"pass", "splat_scale", "", "indirect: s, the footprint scale (1: a splat covers one light texel's beam; --param indirect:s=)"},
+      {"pass", "topological_bias", "", "indirect: a, the kernel's cut off the photon's tangent plane (a = s unless --param indirect:a=)"},
+      {"pass", "footprint_threshold", "scene units", "indirect: T_foot, photons whose s * D x exceeds it (max norm) are culled; inf: off (--param indirect:t_foot=)"},
+      {"pass", "depth_threshold", "scene units", "indirect: tolerance of the photons' depth test against the camera G-buffer (default 3 LDM pixels; --param indirect:depth_threshold=)"},
+      {"pass", "photons_primary", "photons", "indirect: light texels inside the cone that hit a surface (primary photons)"},
+      {"pass", "photons_primary_degenerate", "photons", "indirect: primary photons whose transfer to the hit was degenerate (grazing), culled"},
+      {"pass", "photons_emitted", "photons", "indirect: secondary photons emitted (of the 2N view directions, those in the hit's hemisphere)"},
+      {"pass", "photons_escaped", "photons", "indirect: secondary photons whose LDM trace found no surface"},
+      {"pass", "photons_culled_depth", "photons", "indirect: secondary photons whose hit the camera does not see (outside the image, behind the G-buffer's surface by more than depth_threshold, or its unlit side)"},
+      {"pass", "photons_culled_footprint", "photons", "indirect: secondary photons culled by T_foot"},
+      {"pass", "photons_degenerate", "photons", "indirect: secondary photons with a degenerate differential (grazing transfer, opposite rotation, zero area, non-finite), culled"},
+      {"pass", "photons_stored", "photons", "indirect: photons in the photon buffer (splatted)"},
+      {"pass", "photons_overflow", "photons", "indirect: photons that did not fit the photon buffer (counted; makes the record lossy)"},
+      {"pass", "photon_rebuilds", "frames", "indirect, previous_frame: traces repeated after the photon buffer overflowed (warm-up included)"},
+      {"pass", "photon_reallocations", "frames", "indirect, census: photon buffer reallocations"},
+      {"pass", "m_lists_allocated", "bytes", "indirect: the thesis's M_lists, the structure's storage (= bytes_allocated without the sizing policy's buffers)"},
+      {"pass", "m_lists_used", "bytes", "indirect: M_lists used by the last build"},
+      {"pass", "m_photons_allocated", "bytes", "indirect: the thesis's M_photons, the photon buffer (80 bytes a photon)"},
+      {"pass", "m_photons_used", "bytes", "indirect: M_photons holding the last trace's photons"},
+      {"pass", "flux_primary", "W", "indirect: flux of the primary photons (mean of RGB)"},
+      {"pass", "flux_emitted", "W", "indirect: flux emitted into secondary photons (rho times the primary flux, up to the N-direction quadrature)"},
+      {"pass", "flux_stored", "W", "indirect: flux of the stored photons"},
+  };
+  return columns;
 }
 
 IndirectSettings IndirectLighting::settings_for(const Scene& scene) const {

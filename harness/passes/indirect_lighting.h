@@ -19,6 +19,7 @@
 
 #include "harness/passes/gbuffer_pass.h"
 #include "harness/passes/pass.h"
+#include "harness/records/columns.h"
 #include "harness/passes/photon_lighting.h"
 
 namespace ldm {
@@ -26,6 +27,10 @@ namespace ldm {
 class IndirectLighting : public Pass {
  public:
   explicit IndirectLighting(StructureParams& params);
+  // The parameters it reads (--param and the AO axes it takes), declared (harness/axes/axis.h).
+  static std::vector<AxisSpec> parameters();
+  // The record columns it writes (describe(), results(), its counts), declared.
+  static std::vector<ColumnSpec> columns();
 
   std::string name() const override { return "indirect"; }
   PassRequirements requirements() const override;

@@ -13,6 +13,7 @@
 // Adding a pass touches its own files (harness/passes/<name>*, shaders/passes/, its
 // reference renderer under harness/reference/) and one line in
 // harness/passes/pass_registry.cpp.
+#include <functional>
 #include <memory>
 #include <string>
 #include <utility>
@@ -20,6 +21,7 @@
 
 #include "harness/image/image.h"
 #include "harness/measure/gpu_timer.h"
+#include "harness/records/columns.h"
 #include "harness/records/record.h"
 #include "harness/reference/reference_image.h"
 #include "harness/scene/gpu_scene.h"
@@ -122,7 +124,24 @@ class Pass {
   }
 };
 
+// What the pass registry holds of a pass (harness/passes/pass_registry.cpp): its name, its
+// declared parameters and record columns, and how to make it from checked parameters.
+struct PassRegistration {
+  std::string name;
+  std::function<std::vector<AxisSpec>()> parameters;
+  std::function<std::vector<ColumnSpec>()> columns;
+  std::function<std::unique_ptr<Pass>(StructureParams&)> make;
+};
+// Adds a pass beyond the built-in ones (a test's, or a plugin's) before anything reads the
+// registry's derived lists (the axis registry, the record schema).
+void register_pass(PassRegistration registration);
+
 std::vector<std::string> pass_names();
+// The parameters a pass declares (its --param PASS:KEY=VALUE and the AO axes it reads),
+// owner set; throws UserError for an unknown name.
+std::vector<AxisSpec> pass_parameters(const std::string& name);
+// The record columns a pass declares (harness/records/columns.h).
+std::vector<ColumnSpec> pass_columns(const std::string& name);
 // Throws UserError for an unknown name (listing the known ones) or bad parameters; `params`
 // should carry a context such as "--pass ao" for its messages.
 std::unique_ptr<Pass> make_pass(const std::string& name, StructureParams params);

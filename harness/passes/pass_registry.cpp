@@ -1,5 +1,7 @@
-// The list of passes `--pass` accepts. A new pass adds one line here.
+// The list of passes `--pass` accepts, each with its declared parameters and record columns.
+// A new pass adds one line here.
 #include <functional>
+#include <stdexcept>
 
 #include "harness/passes/ambient_occlusion.h"
 #include "harness/passes/hbao.h"
@@ -11,19 +13,24 @@
 namespace ldm {
 namespace {
 
-struct Entry {
-  const char* name;
-  std::function<std::unique_ptr<Pass>(StructureParams&)> make;
-};
+using Entry = PassRegistration;
 
-const std::vector<Entry>& registry() {
-  static const std::vector<Entry> entries = {
-      {"ao", [](StructureParams& p) { return std::make_unique<AmbientOcclusion>(p); }},
-      {"hbao", [](StructureParams& p) { return std::make_unique<Hbao>(p); }},
-      {"rtao", [](StructureParams& p) { return std::make_unique<Rtao>(p); }},
-      {"indirect", [](StructureParams& p) { return std::make_unique<IndirectLighting>(p); }},
+std::vector<Entry>& registry() {
+  static std::vector<Entry> entries = {
+      {"ao", AmbientOcclusion::parameters, AmbientOcclusion::columns, [](StructureParams& p) { return std::make_unique<AmbientOcclusion>(p); }},
+      {"hbao", Hbao::parameters, Hbao::columns, [](StructureParams& p) { return std::make_unique<Hbao>(p); }},
+      {"rtao", Rtao::parameters, Rtao::columns, [](StructureParams& p) { return std::make_unique<Rtao>(p); }},
+      {"indirect", IndirectLighting::parameters, IndirectLighting::columns, [](StructureParams& p) { return std::make_unique<IndirectLighting>(p); }},
   };
   return entries;
+}
+
+const Entry& entry(const std::string& name) {
+  for (const auto& e : registry())
+    if (name == e.name) return e;
+  std::string known;
+  for (const auto& n : pass_names()) known += (known.empty() ? "" : ", ") + n;
+  throw UserError("--pass: unknown pass '" + name + "' (known: " + known + ")");
 }
 
 }  // namespace
@@ -34,17 +41,26 @@ std::vector<std::string> pass_names() {
   return names;
 }
 
+std::vector<AxisSpec> pass_parameters(const std::string& name) {
+  std::vector<AxisSpec> specs = entry(name).parameters();
+  for (AxisSpec& s : specs) s.owner = name;
+  return specs;
+}
+
+std::vector<ColumnSpec> pass_columns(const std::string& name) { return entry(name).columns(); }
+
+void register_pass(PassRegistration registration) {
+  for (const auto& e : registry())
+    if (e.name == registration.name) throw std::logic_error("pass '" + e.name + "' is registered twice");
+  registry().push_back(std::move(registration));
+}
+
 std::unique_ptr<Pass> make_pass(const std::string& name, StructureParams params) {
-  for (const auto& e : registry()) {
-    if (name == e.name) {
-      auto pass = e.make(params);
-      params.finish("pass " + name);
-      return pass;
-    }
-  }
-  std::string known;
-  for (const auto& n : pass_names()) known += (known.empty() ? "" : ", ") + n;
-  throw UserError("--pass: unknown pass '" + name + "' (known: " + known + ")");
+  const Entry& e = entry(name);
+  params.declare(pass_parameters(name));
+  auto pass = e.make(params);
+  params.check("pass " + name);
+  return pass;
 }
 
 }  // namespace ldm

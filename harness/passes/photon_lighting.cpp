@@ -89,6 +89,7 @@ PhotonLighting::PhotonLighting(const LdmStructure& structure, const BuildInputs&
       gpu_scene_(in.scene),
       scene_(scene),
       policy_(in.sizing.policy),
+      strategy_(in.sizing.strategy()),
       width_(width),
       height_(height),
       settings_(settings),
@@ -121,14 +122,14 @@ PhotonLighting::PhotonLighting(const LdmStructure& structure, const BuildInputs&
     capacity_fixed_ = true;
     capacity_source_ = "parameter";
     allocate_photons(*settings.photon_capacity);
-  } else if (policy_ == SizingPolicy::Budget) {
+  } else if (strategy_.fixed_by_budget()) {
     const double mib = settings.photon_budget_mib.value_or(double(in.sizing.budget_bytes) /
                                                            double(1u << 20));
     budget_bytes_ = uint64_t(mib * double(1u << 20));
     capacity_fixed_ = true;
     capacity_source_ = "budget";
     allocate_photons(budget_bytes_ / kPhotonBytes);
-  } else if (policy_ == SizingPolicy::PreviousFrame) {
+  } else if (strategy_.grows_from_counters()) {
     capacity_source_ = "previous_frame";
     allocate_photons(uint64_t(r) * r);  // the first guess: one photon per light texel
   } else {
@@ -282,46 +283,52 @@ void PhotonLighting::composite() {
   draw_fullscreen(sum_fb_, width_, height_, empty_vao_);
 }
 
+// The photon buffer as a sizing strategy sees it (ldm_impls/common/sizing_strategy.h).
+class PhotonLighting::PhotonWork final : public SizedWork {
+ public:
+  PhotonWork(PhotonLighting& lighting, const GBufferPass& camera) : l_(lighting), camera_(camera) {}
+  bool fits(const SizingNeeds& needs) const override {
+    return l_.capacity_fixed_ || needs.fragments <= l_.capacity_;
+  }
+  void resize(const SizingNeeds& needs) override {
+    l_.allocate_photons(needs.fragments);
+    l_.sized_ = true;
+  }
+  void run(GpuTimer* timer) override {
+    ScopedSubpass timed(timer, "photon_tracing");
+    l_.trace(camera_, l_.capacity_);
+  }
+  SizingNeeds needed() override {
+    l_.read_counts();
+    return photon_needs();
+  }
+  bool has_census() const override { return true; }
+  SizingNeeds census() override {
+    l_.trace(camera_, 0);  // counts only: nothing stored
+    l_.read_counts();
+    return photon_needs();
+  }
+  bool sized() const override { return l_.capacity_fixed_ || l_.sized_; }
+
+ private:
+  SizingNeeds photon_needs() const {
+    SizingNeeds needs;
+    needs.fragments = l_.counts_.appended;
+    needs.lost = l_.counts_.overflow > 0;
+    return needs;
+  }
+  PhotonLighting& l_;
+  const GBufferPass& camera_;
+};
+
 void PhotonLighting::render(const GBufferPass& camera, GpuTimer* timer) {
   if (structure_.storage_generation() != generation_) compile();  // untimed, as AoPass
   light_gbuffer_.render_view(gpu_scene_, light_vp_, scene_.light.position, timer,
                              "light_gbuffer");
-  if (policy_ == SizingPolicy::Oracle && !capacity_fixed_ && !sized_) {
-    // The oracle: an untimed counting trace before the first frame's (a free pre-pass).
-    trace(camera, 0);
-    read_counts();
-    allocate_photons(counts_.appended);
-    sized_ = true;
-  }
-  if (policy_ == SizingPolicy::Census) {
-    {
-      ScopedSubpass timed(timer, "photon_census");
-      trace(camera, 0);
-      read_counts();
-    }
-    if (!capacity_fixed_ && counts_.appended > capacity_) {
-      ScopedSubpass timed(timer, "photon_reallocate");
-      allocate_photons(counts_.appended);
-      ++reallocations_;
-    }
-  }
-  {
-    ScopedSubpass timed(timer, "photon_tracing");
-    trace(camera, capacity_);
-  }
-  if (policy_ == SizingPolicy::PreviousFrame) {
-    {
-      ScopedSubpass timed(timer, "photon_readback");
-      read_counts();
-    }
-    if (!capacity_fixed_ && counts_.overflow > 0) {
-      // Grown to what the counter asked for, and traced again (as a structure's rebuild).
-      ScopedSubpass timed(timer, "photon_rebuild");
-      allocate_photons(counts_.appended);
-      trace(camera, capacity_);
-      ++rebuilds_;
-    }
-  }
+  // The photon buffer under the structures' sizing strategy: the trace is its run, a
+  // counting trace (capacity 0) its census, the counters its needs.
+  PhotonWork work(*this, camera);
+  strategy_.frame(work, timer, "photon_", sizing_state_, sizing_counts_);
   {
     ScopedSubpass timed(timer, "splatting");
     splat(camera);
@@ -377,9 +384,9 @@ std::vector<std::pair<std::string, std::string>> PhotonLighting::sizing() const 
       {"photon_capacity", std::to_string(capacity_)},
       {"photon_capacity_source", capacity_source_}};
   if (budget_bytes_) out.emplace_back("photon_budget_bytes", std::to_string(budget_bytes_));
-  if (policy_ == SizingPolicy::PreviousFrame && !capacity_fixed_)
+  if (strategy_.grows_from_counters() && !capacity_fixed_)
     out.emplace_back("photon_initial", "guess: one photon per light texel");
-  if (policy_ == SizingPolicy::Oracle && !capacity_fixed_)
+  if (strategy_.sized_by_oracle() && !capacity_fixed_)
     out.emplace_back("photon_note", "untimed counting trace before the first frame");
   return out;
 }

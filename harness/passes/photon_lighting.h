@@ -24,6 +24,7 @@
 #include "harness/passes/gbuffer_pass.h"
 #include "harness/passes/trace_steps.h"
 #include "harness/scene/scene.h"
+#include "ldm_impls/common/sizing_strategy.h"
 #include "ldm_impls/ldm_structure.h"
 
 namespace ldm {
@@ -106,8 +107,8 @@ class PhotonLighting {
   std::vector<BufferMemory> memory() const;
   // How the photon buffer was sized: capacity, its source, the policy's notes.
   std::vector<std::pair<std::string, std::string>> sizing() const;
-  uint64_t rebuilds() const { return rebuilds_; }
-  uint64_t reallocations() const { return reallocations_; }
+  uint64_t rebuilds() const { return sizing_counts_.rebuilds; }
+  uint64_t reallocations() const { return sizing_counts_.reallocations; }
   float depth_threshold() const { return depth_threshold_; }  // the effective one
   // The photon trace's loop iterations over every trace so far (harness/passes/trace_steps.h).
   TraceStepCounts trace_steps() const { return steps_.read(); }
@@ -126,7 +127,9 @@ class PhotonLighting {
   const GpuViewSet& views_;
   const GpuScene& gpu_scene_;
   const Scene& scene_;
+  class PhotonWork;
   SizingPolicy policy_;
+  const SizingStrategy& strategy_;
   uint64_t budget_bytes_ = 0;
   int width_, height_;
   IndirectSettings settings_;
@@ -142,7 +145,8 @@ class PhotonLighting {
   bool capacity_fixed_ = false;  // by photon_capacity or the budget
   std::string capacity_source_;
   bool sized_ = false;  // oracle: the untimed counting trace ran
-  uint64_t rebuilds_ = 0, reallocations_ = 0;
+  SizingState sizing_state_;
+  SizingCounts sizing_counts_;
   PhotonCounts counts_;
   TraceStepCounter steps_;
   GlProgram trace_program_, draw_count_program_, splat_program_, direct_program_,

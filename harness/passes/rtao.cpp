@@ -1,5 +1,7 @@
 #include "harness/passes/rtao.h"
 
+#include "harness/passes/ao_parameters.h"
+
 
 #include "harness/reference/ao_reference.h"
 #include "harness/reference/embree_scene.h"
@@ -14,13 +16,55 @@ constexpr uint64_t kDefaultSeed = 0x5254414fu;  // "RTAO"
 }  // namespace
 
 Rtao::Rtao(StructureParams& params) {
-  spp_ = uint32_t(params.get_uint("spp", 1, 1, 65536));
-  threads_ = int(params.get_uint("threads", 0, 0, 1024));
-  seed_ = params.get_uint("seed", kDefaultSeed, 0, uint64_t(1) << 53);  // exact in JSON
-  if (params.has("d_max")) overrides_.d_max = float(params.get_double("d_max", 0.0, 1e-30, 1e30));
-  const std::string visibility =
-      params.get_choice("visibility", "scene", {"scene", "attenuated", "unattenuated"});
+  spp_ = uint32_t(params.get_uint("spp"));
+  threads_ = int(params.get_uint("threads"));
+  seed_ = params.get_uint("seed");
+  if (params.has("d_max")) overrides_.d_max = float(params.get_double("d_max"));
+  const std::string visibility = params.get_choice("visibility");
   if (visibility != "scene") overrides_.attenuated = visibility == "attenuated";
+}
+
+std::vector<AxisSpec> Rtao::parameters() {
+  AxisSpec spp;
+  spp.key = "spp";
+  spp.kind = AxisKind::UInt;
+  spp.min = 1;
+  spp.max = 65536;
+  spp.default_value = "1";
+  spp.unit = "samples per pixel";
+  spp.column = "rtao_spp";
+  spp.description = "rays per pixel (cosine-weighted, Embree)";
+  AxisSpec threads;
+  threads.key = "threads";
+  threads.kind = AxisKind::UInt;
+  threads.min = 0;
+  threads.max = 1024;
+  threads.default_value = "0";
+  threads.identity = false;  // how fast, not what: the image is the same with any count
+  threads.unit = "threads";
+  threads.column = "rtao_threads";
+  threads.description = "CPU threads tracing (0: every core)";
+  AxisSpec seed;
+  seed.key = "seed";
+  seed.kind = AxisKind::UInt;
+  seed.min = 0;
+  seed.max = double(uint64_t(1) << 53);  // exact in JSON
+  seed.default_value = std::to_string(kDefaultSeed);
+  seed.column = "rtao_seed";
+  seed.description = "seed of the sample stream (independent of the reference's halves)";
+  return {spp, threads, seed, ao_pass_parameter(AoAxis::DMax), ao_pass_parameter(AoAxis::Visibility)};
+}
+
+std::vector<ColumnSpec> Rtao::columns() {
+  std::vector<ColumnSpec> columns = ao_setting_columns(false);
+  const std::vector<ColumnSpec> own = {
+      {"pass", "rtao_spp", "samples", "RTAO: AO rays per pixel of the Embree CPU tracer (--param rtao:spp=)"},
+      {"pass", "rtao_seed", "", "RTAO: seed of its random stream (a pass index no reference uses: independent of the reference's halves)"},
+      {"pass", "rtao_threads", "threads", "RTAO: CPU worker threads that traced (--param rtao:threads=, 0 = all cores)"},
+      {"pass", "rtao_bvh_ms", "ms", "RTAO: wall time of the Embree BVH build, once before the frames (static scene; not in frame)"},
+  };
+  columns.insert(columns.end(), own.begin(), own.end());
+  return columns;
 }
 
 Rtao::~Rtao() = default;

@@ -19,6 +19,7 @@
 #include <memory>
 
 #include "harness/passes/pass.h"
+#include "harness/records/columns.h"
 
 namespace ldm {
 
@@ -30,6 +31,10 @@ inline constexpr uint32_t kRtaoStreamPass = 0x80000000u;
 class Rtao : public Pass {
  public:
   explicit Rtao(StructureParams& params);
+  // The parameters it reads (--param and the AO axes it takes), declared (harness/axes/axis.h).
+  static std::vector<AxisSpec> parameters();
+  // The record columns it writes (describe(), results(), its counts), declared.
+  static std::vector<ColumnSpec> columns();
   ~Rtao() override;
 
   std::string name() const override { return "rtao"; }

@@ -33,7 +33,7 @@ std::vector<ColumnSpec> main_columns();
 
 }  // namespace
 
-const std::vector<ColumnSpec>& record_columns() {
+const std::vector<ColumnSpec>& harness_record_columns() {
   static const std::vector<ColumnSpec> columns = [] {
     std::vector<ColumnSpec> all = main_columns();
     for (auto& column : scene_profile_columns()) all.push_back(std::move(column));
@@ -74,46 +74,6 @@ std::vector<ColumnSpec> main_columns() {
       {"scene", "scene_attributes", "", "vertex attributes uploaded, as the pass requires (position+normal, ...)"},
       {"scene", "scene_gpu_bytes", "bytes", "geometry buffers on the device"},
       {"scene", "payload", "", "what the structure stores per fragment, as the pass requires (depth, ...)"},
-      {"pass", "visibility", "", "AO visibility: attenuated or unattenuated (after --visibility)"},
-      {"pass", "d_max", "scene units", "AO attenuation distance (after --d-max)"},
-      {"pass", "falloff_exponent", "", "AO falloff exponent of min(d/d_max, 1)^e"},
-      {"pass", "normal_offset_pixels", "LDM pixels", "normal offset of thesis §4.4.2 (after --normal-offset)"},
-      {"pass", "trace", "", "AO trace variant: listing5, interval or plane (after --trace)"},
-      {"pass", "ao_estimator", "", "AO estimator: eq13 (thesis Eq. 13, 2/N sum of V cos) or normalized (divided by the sum of cos instead)"},
-      {"pass", "hbao_directions", "", "HBAO: N_HBAO screen-space directions per pixel (--param hbao:directions=)"},
-      {"pass", "hbao_steps", "", "HBAO: S_HBAO ray-marching steps per direction, out to d_max (--param hbao:steps=)"},
-      {"pass", "hbao_angle_bias", "radians", "HBAO: bias added to the tangent angle (--param hbao:angle_bias=)"},
-      {"pass", "hbao_jitter", "", "HBAO: off, or on (per-pixel rotation and step offset from a tiled 4x4 random table)"},
-      {"pass", "hbao_blur", "pixels", "HBAO: radius of the cross-bilateral blur after the AO, timed as blur (0: none; --param hbao:blur=)"},
-      {"pass", "rtao_spp", "samples", "RTAO: AO rays per pixel of the Embree CPU tracer (--param rtao:spp=)"},
-      {"pass", "rtao_seed", "", "RTAO: seed of its random stream (a pass index no reference uses: independent of the reference's halves)"},
-      {"pass", "rtao_threads", "threads", "RTAO: CPU worker threads that traced (--param rtao:threads=, 0 = all cores)"},
-      {"pass", "rtao_bvh_ms", "ms", "RTAO: wall time of the Embree BVH build, once before the frames (static scene; not in frame)"},
-      {"pass", "r_light", "pixels", "indirect: R_light, the side of the light's G-buffer (one primary photon per texel in the cone; --param indirect:r_light=)"},
-      {"pass", "splat_scale", "", "indirect: s, the footprint scale (1: a splat covers one light texel's beam; --param indirect:s=)"},
-      {"pass", "topological_bias", "", "indirect: a, the kernel's cut off the photon's tangent plane (a = s unless --param indirect:a=)"},
-      {"pass", "footprint_threshold", "scene units", "indirect: T_foot, photons whose s * D x exceeds it (max norm) are culled; inf: off (--param indirect:t_foot=)"},
-      {"pass", "depth_threshold", "scene units", "indirect: tolerance of the photons' depth test against the camera G-buffer (default 3 LDM pixels; --param indirect:depth_threshold=)"},
-      {"pass", "photons_primary", "photons", "indirect: light texels inside the cone that hit a surface (primary photons)"},
-      {"pass", "photons_primary_degenerate", "photons", "indirect: primary photons whose transfer to the hit was degenerate (grazing), culled"},
-      {"pass", "photons_emitted", "photons", "indirect: secondary photons emitted (of the 2N view directions, those in the hit's hemisphere)"},
-      {"pass", "photons_escaped", "photons", "indirect: secondary photons whose LDM trace found no surface"},
-      {"pass", "photons_culled_depth", "photons", "indirect: secondary photons whose hit the camera does not see (outside the image, behind the G-buffer's surface by more than depth_threshold, or its unlit side)"},
-      {"pass", "photons_culled_footprint", "photons", "indirect: secondary photons culled by T_foot"},
-      {"pass", "photons_degenerate", "photons", "indirect: secondary photons with a degenerate differential (grazing transfer, opposite rotation, zero area, non-finite), culled"},
-      {"pass", "photons_stored", "photons", "indirect: photons in the photon buffer (splatted)"},
-      {"pass", "photons_overflow", "photons", "indirect: photons that did not fit the photon buffer (counted; makes the record lossy)"},
-      {"pass", "photon_rebuilds", "frames", "indirect, previous_frame: traces repeated after the photon buffer overflowed (warm-up included)"},
-      {"pass", "photon_reallocations", "frames", "indirect, census: photon buffer reallocations"},
-      {"pass", "m_lists_allocated", "bytes", "indirect: the thesis's M_lists, the structure's storage (= bytes_allocated without the sizing policy's buffers)"},
-      {"pass", "m_lists_used", "bytes", "indirect: M_lists used by the last build"},
-      {"pass", "m_photons_allocated", "bytes", "indirect: the thesis's M_photons, the photon buffer (80 bytes a photon)"},
-      {"pass", "m_photons_used", "bytes", "indirect: M_photons holding the last trace's photons"},
-      {"pass", "flux_primary", "W", "indirect: flux of the primary photons (mean of RGB)"},
-      {"pass", "flux_emitted", "W", "indirect: flux emitted into secondary photons (rho times the primary flux, up to the N-direction quadrature)"},
-      {"pass", "flux_stored", "W", "indirect: flux of the stored photons"},
-      {"pass", "ao_max", "", "largest AO value over the covered pixels (Eq. 13 may exceed 1)"},
-      {"pass", "ao_fraction_above_1", "", "share of covered pixels whose AO is above 1"},
       {"census", "fragments", "fragments", "fragments of all views, counted by the census before allocation"},
       {"census", "max_depth_complexity", "fragments", "longest list of any LDM pixel"},
       {"census", "mean_depth_complexity", "fragments", "mean list length over non-empty pixels"},
@@ -198,19 +158,19 @@ bool matches(const std::string& pattern, const std::string& column) {
 
 }  // namespace
 
-const ColumnSpec* find_column(const std::string& column) {
-  for (const auto& c : record_columns())
+const ColumnSpec* find_column_in(const std::vector<ColumnSpec>& columns, const std::string& column) {
+  for (const auto& c : columns)
     if (c.name == column) return &c;
-  for (const auto& c : record_columns())
+  for (const auto& c : columns)
     if (matches(c.name, column)) return &c;
   return nullptr;
 }
 
-std::string columns_markdown() {
+std::string columns_markdown(const std::vector<ColumnSpec>& columns) {
   std::ostringstream out;
   out << "| group | column | unit | description |\n| --- | --- | --- | --- |\n";
   std::string group;
-  for (const auto& c : record_columns()) {
+  for (const auto& c : columns) {
     out << "| " << (c.group == group ? "" : c.group) << " | `" << c.name << "` | " << c.unit
         << " | " << c.description << " |\n";
     group = c.group;
@@ -218,12 +178,12 @@ std::string columns_markdown() {
   return out.str();
 }
 
-std::string columns_text() {
+std::string columns_text(const std::vector<ColumnSpec>& columns) {
   size_t width = 0;
-  for (const auto& c : record_columns()) width = std::max(width, c.name.size());
+  for (const auto& c : columns) width = std::max(width, c.name.size());
   std::ostringstream out;
   std::string group;
-  for (const auto& c : record_columns()) {
+  for (const auto& c : columns) {
     if (c.group != group) out << (group.empty() ? "" : "\n") << c.group << ":\n";
     group = c.group;
     out << "  " << c.name << std::string(width + 2 - c.name.size(), ' ')

@@ -1,8 +1,10 @@
 #pragma once
-// The record schema: every column `ldmbench run` writes, with its unit and a one-line
-// description, in one place. `ldmbench columns` prints it; the README's records table is
-// generated from it (`ldmbench columns --markdown`) and a test checks that they agree and
-// that every column of a real run is described here.
+// The record schema's parts: every column has a unit and a one-line description, declared by
+// the code that writes it. The harness's own columns (identity, device, scene, census, build,
+// time, memory, accuracy, images, profile) are here; each pass declares the columns it writes
+// (Pass columns(), beside its describe() and results()); harness/app/record_schema.h puts them
+// together for `ldmbench columns`, the generated records table (docs) and the tests that
+// check every column of a real run is described.
 //
 // A name may hold one placeholder in angle brackets standing for a non-empty word:
 // "counter_<name>" describes counter_max_age_used, counter_lists_sorted_in_place, ...
@@ -18,11 +20,11 @@ struct ColumnSpec {
   std::string description;
 };
 
-const std::vector<ColumnSpec>& record_columns();
-// The spec describing `column` (exact names first, then patterns), or null.
-const ColumnSpec* find_column(const std::string& column);
-// The README's records table (Markdown) and the plain listing of `ldmbench columns`.
-std::string columns_markdown();
-std::string columns_text();
+const std::vector<ColumnSpec>& harness_record_columns();
+// The spec in `columns` describing `column` (exact names first, then patterns), or null.
+const ColumnSpec* find_column_in(const std::vector<ColumnSpec>& columns, const std::string& column);
+// The records table (Markdown) and the plain listing of `ldmbench columns`.
+std::string columns_markdown(const std::vector<ColumnSpec>& columns);
+std::string columns_text(const std::vector<ColumnSpec>& columns);
 
 }  // namespace ldm

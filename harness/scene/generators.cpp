@@ -6,6 +6,7 @@
 
 #include "harness/scene/scene_defaults.h"
 #include "harness/util/error.h"
+#include "harness/util/hash.h"
 
 namespace ldm {
 namespace {
@@ -130,6 +131,10 @@ Scene generate_scene(const std::string& name, const nlohmann::json& params,
     throw UserError(context + ": unknown scene generator '" + name + "' (known: " + known + ")");
   }
   Scene scene = generator->make(params, context);
+  Fnv1a source;
+  source.add_string("generator " + name);
+  source.add_string(params.dump());  // sorted keys: the parameters, not their spelling
+  scene.source_hash = source.value();
   scene.validate();
   return scene;
 }

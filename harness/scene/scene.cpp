@@ -84,6 +84,21 @@ uint64_t Scene::content_hash() const {
   return h.value();
 }
 
+uint64_t Scene::identity_hash() const {
+  Fnv1a h;
+  h.add(content_hash());
+  h.add(source_hash);
+  h.add_string(name);
+  h.add(ao.normal_offset_pixels);
+  h.add_string(ao_trace_name(ao.trace));
+  h.add_string(ao_estimator_name(ao.estimator));
+  h.add_string(sources.camera);
+  h.add_string(sources.light);
+  h.add_string(sources.d_max);
+  h.add(frame_origin);
+  return h.value();
+}
+
 void Scene::validate() const {
   const std::string where = "scene '" + name + "' (" + origin + ")";
   if (mesh.triangles.empty()) throw UserError(where + ": has no triangles");

@@ -111,6 +111,10 @@ struct Scene {
   // bounding-sphere centre for the centred copy that the GPU and the reference compute in
   // (centred_on_bounding_sphere). World point = scene point + frame_origin.
   glm::vec3 frame_origin{0.0f};
+  // What the scene was made from: a generator's name and parameters, or a scene file's JSON
+  // (canonical: formatting and key order do not count) and the bytes of every mesh file it
+  // names, or a mesh file's bytes. Set by the loader (harness/scene/scene_loader.h).
+  uint64_t source_hash = 0;
 
   Bounds bounds() const;
   // Centre of the bounds and the largest vertex distance from it: every vertex lies inside.
@@ -118,6 +122,10 @@ struct Scene {
   // A 64-bit FNV-1a hash of everything that affects a reference image (geometry, materials,
   // camera, light, AO visibility and d_max; not the LDM-only normal offset), for caching.
   uint64_t content_hash() const;
+  // Everything that can change a measurement of this scene, for the resume identity of a
+  // run: the source (source_hash) and every field of the loaded scene, the LDM-only normal
+  // offset included. Editing any key of a scene file or any byte of its meshes changes it.
+  uint64_t identity_hash() const;
   // Throws UserError (naming the scene) on empty geometry, NaN coordinates, bad indices.
   void validate() const;
 };

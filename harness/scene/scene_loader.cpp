@@ -13,6 +13,7 @@
 #include "harness/scene/mesh_import.h"
 #include "harness/scene/scene_defaults.h"
 #include "harness/util/error.h"
+#include "harness/util/hash.h"
 
 namespace ldm {
 namespace {
@@ -128,7 +129,21 @@ void read_ao(const Fields& f, AoSettings& ao) {
   if (!(ao.normal_offset_pixels >= 0)) f.fail("normal_offset", "must be >= 0");
 }
 
-void append_mesh(Scene& scene, const Fields& f, const std::filesystem::path& base_dir) {
+// The bytes of a file, hashed (0 when it cannot be read: the importer then says why).
+uint64_t file_bytes_hash(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  Fnv1a h;
+  char buffer[1 << 16];
+  while (in) {
+    in.read(buffer, sizeof buffer);
+    if (in.gcount() <= 0) break;
+    h.add_string(std::string_view(buffer, size_t(in.gcount())));
+  }
+  return h.value();
+}
+
+void append_mesh(Scene& scene, const Fields& f, const std::filesystem::path& base_dir,
+                 Fnv1a& source) {
   f.only({"file", "material", "scale", "translate"});
   const std::string file = f.string("file");
   std::filesystem::path path = file;
@@ -141,6 +156,7 @@ void append_mesh(Scene& scene, const Fields& f, const std::filesystem::path& bas
   options.translate = f.vec3("translate", glm::vec3(0.0f));
   if (f.has("material")) options.override_material = f.string("material");
   import_mesh_into(scene, path.string(), options, f.file() + ": " + f.path() + "/file");
+  source.add(file_bytes_hash(path.string()));
 }
 
 // The 1-based line and column of a byte offset into `text`.
@@ -210,6 +226,9 @@ Scene parse_scene_file(const std::string& text, const std::string& path) {
     scene = generate_scene(type, root.at("generator"), path + ": /generator");
   }
   scene.origin = path;
+  Fnv1a source;
+  source.add_string("scene file");
+  source.add_string(root.dump());  // canonical: nlohmann sorts keys, whitespace is gone
   // The file's own name, else its file name: never the generator's, which would give two
   // files of one generator (and the built-in scene) the same configuration ids.
   scene.name = top.has("name") ? top.string("name") : std::string();
@@ -230,7 +249,7 @@ Scene parse_scene_file(const std::string& text, const std::string& path) {
     if (!meshes.is_array()) throw UserError(path + ": /meshes must be an array");
     const auto base = std::filesystem::path(path).parent_path();
     for (size_t i = 0; i < meshes.size(); ++i)
-      append_mesh(scene, Fields(meshes[i], path, "/meshes/" + std::to_string(i)), base);
+      append_mesh(scene, Fields(meshes[i], path, "/meshes/" + std::to_string(i)), base, source);
   }
   // Without a generator, nothing but the geometry is known yet: what the file does not
   // set follows the scene's size (harness/scene/scene_defaults.h). The file's own keys are
@@ -248,6 +267,7 @@ Scene parse_scene_file(const std::string& text, const std::string& path) {
     read_ao(top.child("ao"), scene.ao);
     if (root.at("ao").is_object() && root.at("ao").contains("d_max")) scene.sources.d_max = "scene file";
   }
+  scene.source_hash = source.value();
   scene.validate();
   return scene;
 }
@@ -272,6 +292,7 @@ Scene load_mesh_scene(const std::string& path) {
   scene.name = std::filesystem::path(path).stem().string();
   scene.origin = path;
   import_mesh_into(scene, path, {}, "--scene " + path);
+  scene.source_hash = file_bytes_hash(path);
   derive_size_defaults(scene, {});
   scene.validate();
   return scene;

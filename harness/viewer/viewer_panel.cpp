@@ -10,6 +10,7 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
+#include "harness/app/harness_axes.h"
 #include "harness/app/timing_columns.h"
 #include "harness/passes/pass.h"
 #include "harness/scene/generators.h"
@@ -53,30 +54,36 @@ void Viewer::draw_panel() {
     scenes.push_back(settings_.scenes.front());
   if (ImGui::CollapsingHeader("Configuration", ImGuiTreeNodeFlags_DefaultOpen)) {
     combo("scene", settings_.scenes, scenes);
-    combo("structure (S)", settings_.structures, structure_names());
-    combo("pass (P)", settings_.passes, pass_names());
+    // Choices and ranges from the axes' declarations (harness/app/harness_axes.cpp).
+    auto choices = [](const char* key) { return axis_choices(find_harness_axis(key)->spec); };
+    auto clamped = [](const char* key, int v) {
+      const AxisSpec& spec = find_harness_axis(key)->spec;
+      return uint32_t(std::clamp(v, int(spec.min), int(spec.max)));
+    };
+    combo("structure (S)", settings_.structures, choices("structures"));
+    combo("pass (P)", settings_.passes, choices("passes"));
     int n = int(settings_.views.front()), r = int(settings_.resolutions.front());
     if (ImGui::InputInt("N (N)", &n, 1, 8, ImGuiInputTextFlags_EnterReturnsTrue)) {
-      settings_.views = {uint32_t(std::clamp(n, 1, 4096))};
+      settings_.views = {clamped("views", n)};
       config_dirty_ = true;
     }
     if (ImGui::InputInt("R_LDM (R)", &r, 8, 64, ImGuiInputTextFlags_EnterReturnsTrue)) {
-      settings_.resolutions = {uint32_t(std::clamp(r, 1, 8192))};
+      settings_.resolutions = {clamped("r_ldm", r)};
       config_dirty_ = true;
     }
     std::vector<std::string> trace = {ao_trace_name(settings_.traces.front())};
-    combo("trace (T)", trace, ao_trace_names());
+    combo("trace (T)", trace, choices("trace"));
     settings_.traces = {parse_ao_trace(trace.front())};
     std::vector<std::string> estimator = {ao_estimator_name(settings_.estimators.front())};
-    combo("estimator (E)", estimator, ao_estimator_names());
+    combo("estimator (E)", estimator, choices("ao_estimator"));
     settings_.estimators = {parse_ao_estimator(estimator.front())};
     std::vector<std::string> visibility = {visibility_name(settings_.visibility.front())};
-    combo("visibility", visibility, {"scene", "attenuated", "unattenuated"});
+    combo("visibility", visibility, choices("visibility"));
     settings_.visibility = {visibility.front() == "attenuated"     ? Visibility::Attenuated
                             : visibility.front() == "unattenuated" ? Visibility::Unattenuated
                                                                    : Visibility::Scene};
     std::vector<std::string> sizing = {sizing_policy_name(settings_.sizing.front())};
-    combo("sizing (Z)", sizing, {"previous_frame", "census", "oracle", "budget"});
+    combo("sizing (Z)", sizing, choices("sizing"));
     settings_.sizing = {parse_sizing_policy(sizing.front())};
     if (settings_.sizing.front() == SizingPolicy::Budget) {
       double mib = settings_.sizing_budget_mib;

@@ -1,4 +1,5 @@
 #include "ldm_impls/common/list_node_pool.h"
+#include "ldm_impls/common/sizing_strategy.h"
 
 #include <algorithm>
 
@@ -14,7 +15,19 @@ ListNodePool::ListNodePool(const std::string& structure, StructureParams& params
                     ":pool is replaced by the sizing policy: --sizing oracle (was pool=counted), "
                     "--sizing previous_frame (was pool=grow), --sizing budget or " + structure_ +
                     ":capacity=<nodes> (was pool=fixed)");
-  fixed_capacity_ = params.get_uint("capacity", 0, 1, (uint64_t(1) << 31) - 1);
+  fixed_capacity_ = params.has("capacity") ? params.get_uint("capacity") : 0;
+}
+
+AxisSpec ListNodePool::capacity_parameter() {
+  AxisSpec p;
+  p.key = "capacity";
+  p.kind = AxisKind::UInt;
+  p.min = 1;
+  p.max = double((uint64_t(1) << 31) - 1);
+  p.default_note = "sized by the sizing policy";
+  p.unit = "nodes";
+  p.description = "fixes the node pool (all views), overriding the sizing policy; what does not fit is dropped and counted";
+  return p;
 }
 
 void ListNodePool::prepare(const BuildInputs& in, const std::string& build_shader,
@@ -29,7 +42,7 @@ void ListNodePool::prepare(const BuildInputs& in, const std::string& build_shade
   fragments_ = &in.fragments;
   if (fixed_capacity_ > 0) {
     allocate(fixed_capacity_);
-  } else if (plan_.policy == SizingPolicy::Budget) {
+  } else if (plan_.strategy().fixed_by_budget()) {
     const uint64_t fixed = heads_ * sizeof(uint32_t) + counters_.bytes();
     allocate(budget_after(structure_, plan_, fixed) / (kWordsPerNode * sizeof(uint32_t)));
   } else {

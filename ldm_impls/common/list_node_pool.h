@@ -15,6 +15,7 @@
 #include <string>
 
 #include "harness/gl/gl_objects.h"
+#include "ldm_impls/common/sizing_strategy.h"
 #include "ldm_impls/ldm_structure.h"
 
 namespace ldm {
@@ -24,6 +25,8 @@ class ListNodePool {
   static constexpr uint64_t kWordsPerNode = 2;  // next index, depth
 
   ListNodePool(const std::string& structure, StructureParams& params);
+  // The `capacity` parameter of a structure built on a pool.
+  static AxisSpec capacity_parameter();
 
   // Sizes the pool by the sizing plan and compiles `build_shader` (a fragment shader of the
   // LDM geometry pass) with the pool's defines and `extra_defines`.
@@ -52,7 +55,7 @@ class ListNodePool {
 
  private:
   void allocate(uint64_t capacity);
-  bool size_is_fixed() const { return fixed_capacity_ > 0 || plan_.policy == SizingPolicy::Budget; }
+  bool size_is_fixed() const { return fixed_capacity_ > 0 || plan_.strategy().fixed_by_budget(); }
 
   std::string structure_;
   SizingPlan plan_;

@@ -18,7 +18,8 @@ namespace ldm {
 constexpr uint32_t kMaxSortLocal = 128;
 
 // The `local` parameter: K, in [1, kMaxSortLocal]; 0 when the user left it unset.
-uint32_t read_sort_local_param(StructureParams& params);
+AxisSpec sort_local_parameter();
+uint32_t read_sort_local_param(const StructureParams& params);
 
 // K when neither the parameter nor the oracle sets it: a compile-time constant, as in a
 // renderer that does not know the scene's depth complexity; deeper lists are sorted in

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "harness/util/error.h"
+#include "ldm_impls/common/sizing_strategy.h"
 
 namespace ldm {
 
@@ -15,6 +16,12 @@ const char* sizing_policy_name(SizingPolicy policy) {
   }
 }
 
+std::vector<std::string> sizing_policy_names() { return {"oracle", "census", "previous_frame", "budget"}; }
+
+std::string sizing_id_name(SizingPolicy policy) {
+  return policy == SizingPolicy::PreviousFrame ? "prevframe" : sizing_policy_name(policy);
+}
+
 SizingPolicy parse_sizing_policy(const std::string& name) {
   for (SizingPolicy p : {SizingPolicy::Oracle, SizingPolicy::Census, SizingPolicy::PreviousFrame,
                          SizingPolicy::Budget})
@@ -22,6 +29,8 @@ SizingPolicy parse_sizing_policy(const std::string& name) {
   throw UserError("--sizing: unknown policy '" + name +
                   "' (known: oracle, census, previous_frame, budget)");
 }
+
+const SizingStrategy& SizingPlan::strategy() const { return sizing_strategy(policy); }
 
 SizingPlan plan_without_census(const SizingSettings& settings, uint64_t ldm_pixels) {
   SizingPlan plan;

@@ -15,12 +15,18 @@
 // A structure sees only a SizingPlan (never the census): the census is verification.
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace ldm {
+
+class SizingStrategy;
 
 enum class SizingPolicy { Oracle, Census, PreviousFrame, Budget };
 
 const char* sizing_policy_name(SizingPolicy policy);
+std::vector<std::string> sizing_policy_names();
+// The policy's part of a configuration id: oracle, census, prevframe, budget.
+std::string sizing_id_name(SizingPolicy policy);
 // Throws UserError naming the known policies.
 SizingPolicy parse_sizing_policy(const std::string& name);
 
@@ -42,6 +48,9 @@ struct SizingPlan {
   uint64_t budget_bytes = 0;  // budget: the structure's whole allocation
   // Where `initial` came from, for records: "census (untimed oracle)", "guess: ...".
   std::string initial_source;
+  // The policy's behaviour (ldm_impls/common/sizing_strategy.h): what a structure asks when it
+  // plans its storage (fixed_by_budget(), sized_by_oracle(), ...).
+  const SizingStrategy& strategy() const;
 };
 
 // What a run asks for (--sizing, --sizing-budget-mib, --sizing-initial-per-pixel).

@@ -5,71 +5,47 @@
 namespace ldm {
 
 namespace {
-// A static scene needs one rebuild at most; more would mean needs that keep growing between
-// two identical builds, so the loop stops and the build stays lossy (and is recorded so).
-constexpr int kMaxRebuildsPerFrame = 4;
+
+// A structure as the sizing strategy sees it: its build, its own counters, and (unless its
+// build counts its own fragments, as the DF-buffer's does) the census pass.
+class StructureWork final : public SizedWork {
+ public:
+  StructureWork(LdmStructure& structure, const BuildInputs& in, CensusPass* census)
+      : structure_(structure), in_(in), census_(census) {}
+  bool fits(const SizingNeeds& needs) const override { return structure_.fits(needs); }
+  void resize(const SizingNeeds& needs) override { structure_.resize(needs); }
+  void run(GpuTimer* timer) override { structure_.build(in_, timer); }
+  SizingNeeds needed() override { return structure_.needed(); }
+  bool has_census() const override { return census_ != nullptr; }
+  SizingNeeds census() override { return census_->run(); }
+
+ private:
+  LdmStructure& structure_;
+  const BuildInputs& in_;
+  CensusPass* census_;
+};
+
 }  // namespace
 
 SizingDriver::SizingDriver(LdmStructure& structure, const BuildInputs& in)
-    : structure_(structure), in_(in) {
-  if (in.sizing.policy == SizingPolicy::Census && !structure.counts_own_fragments())
+    : structure_(structure), in_(in), strategy_(in.sizing.strategy()) {
+  if (strategy_.counts_every_frame() && !structure.counts_own_fragments())
     census_ = std::make_unique<CensusPass>(in.fragments, in.views.views().total_pixels());
 }
 
 SizingDriver::~SizingDriver() = default;
 
-void SizingDriver::grow(const SizingNeeds& needs, GpuTimer* timer, const char* subpass) {
-  if (structure_.fits(needs)) return;
-  ScopedSubpass timed(timer, subpass);
-  structure_.resize(needs);
-  ++reallocations_;
-}
-
 void SizingDriver::build(GpuTimer* timer) {
-  switch (in_.sizing.policy) {
-    case SizingPolicy::Oracle:
-    case SizingPolicy::Budget:
-      structure_.build(in_, timer);
-      return;
-    case SizingPolicy::Census:
-      if (census_) {
-        SizingNeeds needs;
-        {
-          ScopedSubpass timed(timer, "census");
-          needs = census_->run();
-        }
-        grow(needs, timer, "reallocate");
-      }
-      structure_.build(in_, timer);
-      return;
-    case SizingPolicy::PreviousFrame:
-      if (have_last_needs_) grow(last_needs_, timer, "reallocate");
-      structure_.build(in_, timer);
-      {
-        ScopedSubpass timed(timer, "readback");
-        last_needs_ = structure_.needed();
-        have_last_needs_ = true;
-      }
-      for (int i = 0; i < kMaxRebuildsPerFrame && last_needs_.lost && !structure_.fits(last_needs_);
-           ++i) {
-        // The build overflowed: resize from its own counters and build again.
-        ScopedSubpass timed(timer, "rebuild");
-        structure_.resize(last_needs_);
-        ++reallocations_;
-        ++rebuilds_;
-        structure_.build(in_, nullptr);
-        last_needs_ = structure_.needed();
-      }
-      return;
-  }
+  StructureWork work(structure_, in_, census_.get());
+  strategy_.frame(work, timer, "", state_, counts_);
 }
 
 std::vector<std::pair<std::string, std::string>> SizingDriver::describe() const {
   const SizingPlan& plan = in_.sizing;
-  std::vector<std::pair<std::string, std::string>> d = {{"policy", sizing_policy_name(plan.policy)}};
-  if (plan.policy == SizingPolicy::Oracle)
+  std::vector<std::pair<std::string, std::string>> d = {{"policy", strategy_.name()}};
+  if (strategy_.sized_by_oracle())
     d.emplace_back("note", "sized from the untimed census before the run (not a real renderer's cost)");
-  if (plan.policy == SizingPolicy::Budget) {
+  if (strategy_.fixed_by_budget()) {
     char mib[32];
     std::snprintf(mib, sizeof mib, "%.6g", double(plan.budget_bytes) / double(1u << 20));
     d.emplace_back("budget_mib", mib);

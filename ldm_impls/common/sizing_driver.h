@@ -1,6 +1,7 @@
 #pragma once
-// Runs one structure's build under its sizing policy (ldm_impls/common/sizing.h), charging
-// every step of sizing to the build's timed sub-passes:
+// Runs one structure's build under its sizing policy's strategy
+// (ldm_impls/common/sizing_strategy.h), charging every step of sizing to the build's timed
+// sub-passes:
 //   oracle, budget   build()                                (sized in prepare())
 //   census           "census" (count pass, GPU reduction, two words read back), then
 //                    "reallocate" when the storage does not hold it, then build(); for a
@@ -18,6 +19,7 @@
 #include <vector>
 
 #include "ldm_impls/common/fragment_census.h"
+#include "ldm_impls/common/sizing_strategy.h"
 #include "ldm_impls/ldm_structure.h"
 
 namespace ldm {
@@ -31,22 +33,20 @@ class SizingDriver {
   void build(GpuTimer* timer);
 
   // Rebuilds after an overflow and reallocations, over every build so far.
-  uint64_t rebuilds() const { return rebuilds_; }
-  uint64_t reallocations() const { return reallocations_; }
+  uint64_t rebuilds() const { return counts_.rebuilds; }
+  uint64_t reallocations() const { return counts_.reallocations; }
   // Record fields (strings): policy, budget, first guess, the oracle's label.
   std::vector<std::pair<std::string, std::string>> describe() const;
   // Buffers the policy itself needs (the census pass's counts).
   std::vector<BufferMemory> memory() const;
 
  private:
-  void grow(const SizingNeeds& needs, GpuTimer* timer, const char* subpass);
-
   LdmStructure& structure_;
   const BuildInputs& in_;
+  const SizingStrategy& strategy_;
   std::unique_ptr<CensusPass> census_;
-  SizingNeeds last_needs_;
-  bool have_last_needs_ = false;
-  uint64_t rebuilds_ = 0, reallocations_ = 0;
+  SizingState state_;
+  SizingCounts counts_;
 };
 
 }  // namespace ldm

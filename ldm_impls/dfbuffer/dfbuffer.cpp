@@ -1,4 +1,5 @@
 #include "ldm_impls/dfbuffer/dfbuffer.h"
+#include "ldm_impls/common/sizing_strategy.h"
 
 #include <algorithm>
 
@@ -20,6 +21,8 @@ constexpr uint64_t kUnfilledWord = 3;
 
 DfBuffer::DfBuffer(StructureParams& params) { requested_local_ = read_sort_local_param(params); }
 
+std::vector<AxisSpec> DfBuffer::parameters() { return {sort_local_parameter()}; }
+
 void DfBuffer::prepare(const BuildInputs& in) {
   plan_ = in.sizing;
   pixels_ = in.views.views().total_pixels();
@@ -32,7 +35,7 @@ void DfBuffer::prepare(const BuildInputs& in) {
   fragments_ = &in.fragments;
   base_defines_ = common_structure_defines(in);
   count_program_ = in.fragments.build_program("ldm/dfbuffer/count.frag", base_defines_);
-  if (plan_.policy == SizingPolicy::Budget) {
+  if (plan_.strategy().fixed_by_budget()) {
     const uint64_t fixed = counts_.bytes() + offsets_.bytes() + scan_->scratch_bytes() +
                            counters_.bytes();
     allocate_depths(budget_after("dfbuffer", plan_, fixed) / sizeof(uint32_t));
@@ -70,7 +73,7 @@ SizingNeeds DfBuffer::needed() {
 }
 
 bool DfBuffer::fits(const SizingNeeds& needs) const {
-  return plan_.policy == SizingPolicy::Budget || needs.fragments <= capacity_;
+  return plan_.strategy().fixed_by_budget() || needs.fragments <= capacity_;
 }
 
 void DfBuffer::resize(const SizingNeeds& needs) {
@@ -121,7 +124,7 @@ void DfBuffer::build(const BuildInputs& in, GpuTimer* timer) {
   clear(timer);
   count(in, timer);
   prefix_sum(timer);
-  if (plan_.policy == SizingPolicy::Census) {
+  if (plan_.strategy().counts_every_frame()) {
     // The count pass and scan are this structure's census: the scan total, read back (a
     // sync), sizes the depth array before the storing pass, growing it when needed.
     SizingNeeds needs;

@@ -29,6 +29,8 @@ namespace ldm {
 class DfBuffer final : public LdmStructure {
  public:
   explicit DfBuffer(StructureParams& params);
+  // The parameters --param dfbuffer:KEY=VALUE sets, declared (harness/axes/axis.h).
+  static std::vector<AxisSpec> parameters();
 
   std::string name() const override { return "dfbuffer"; }
   void prepare(const BuildInputs& in) override;

@@ -1,4 +1,5 @@
 #include "ldm_impls/fixed_arrays/fixed_array_layout.h"
+#include "ldm_impls/common/sizing_strategy.h"
 
 #include <algorithm>
 
@@ -6,8 +7,21 @@
 
 namespace ldm {
 
-uint32_t read_fixed_array_k(StructureParams& params) {
-  return uint32_t(params.get_uint("k", 0, 0, 1u << 20));
+AxisSpec fixed_array_k_parameter() {
+  AxisSpec p;
+  p.key = "k";
+  p.label = "k";
+  p.kind = AxisKind::UInt;
+  p.min = 0;
+  p.max = 1u << 20;
+  p.default_note = "the deepest pixel, as the sizing policy knows it (0 too)";
+  p.unit = "entries per pixel";
+  p.description = "entries of every pixel's array; fragments beyond k are dropped and counted (lossy)";
+  return p;
+}
+
+uint32_t read_fixed_array_k(const StructureParams& params) {
+  return params.has("k") ? uint32_t(params.get_uint("k")) : 0;
 }
 
 uint32_t k_for(const SizingNeeds& needs, uint64_t pixels) {
@@ -35,7 +49,7 @@ FixedArrayLayout plan_fixed_arrays(const std::string& structure, uint32_t reques
   layout.k_source = size_source(in.sizing, requested_k != 0);
   if (requested_k != 0) {
     layout.k = requested_k;
-  } else if (in.sizing.policy == SizingPolicy::Budget) {
+  } else if (in.sizing.strategy().fixed_by_budget()) {
     const uint64_t k = budget_after(structure, in.sizing, fixed_bytes) /
                        (layout.pixels * sizeof(uint32_t));
     if (k == 0)

@@ -28,7 +28,8 @@ struct FixedArrayLayout {
 };
 
 // Reads the `k` parameter: 0 (the default) means "as the sizing policy says".
-uint32_t read_fixed_array_k(StructureParams& params);
+AxisSpec fixed_array_k_parameter();
+uint32_t read_fixed_array_k(const StructureParams& params);
 
 // k for `needs`: the deepest pixel when known, else the fragments per pixel rounded up; >= 1.
 uint32_t k_for(const SizingNeeds& needs, uint64_t pixels);

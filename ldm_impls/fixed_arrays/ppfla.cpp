@@ -1,4 +1,5 @@
 #include "ldm_impls/fixed_arrays/ppfla.h"
+#include "ldm_impls/common/sizing_strategy.h"
 
 #include <algorithm>
 
@@ -8,11 +9,13 @@ namespace ldm {
 
 Ppfla::Ppfla(StructureParams& params) : requested_k_(read_fixed_array_k(params)) {}
 
+std::vector<AxisSpec> Ppfla::parameters() { return {fixed_array_k_parameter()}; }
+
 void Ppfla::prepare(const BuildInputs& in) {
   pixels_ = in.views.views().total_pixels();
   counts_ = GlBuffer("counts", pixels_ * sizeof(uint32_t));
   dropped_ = GlBuffer("dropped", sizeof(uint32_t));
-  size_fixed_ = requested_k_ != 0 || in.sizing.policy == SizingPolicy::Budget;
+  size_fixed_ = requested_k_ != 0 || in.sizing.strategy().fixed_by_budget();
   fragments_ = &in.fragments;
   if (!reduction_) reduction_ = std::make_unique<UintReduction>();
   allocate(plan_fixed_arrays("ppfla", requested_k_, in, counts_.bytes() + dropped_.bytes()));

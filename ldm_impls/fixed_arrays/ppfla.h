@@ -20,6 +20,8 @@ namespace ldm {
 class Ppfla final : public LdmStructure {
  public:
   explicit Ppfla(StructureParams& params);
+  // The parameters --param ppfla:KEY=VALUE sets, declared (harness/axes/axis.h).
+  static std::vector<AxisSpec> parameters();
 
   std::string name() const override { return "ppfla"; }
   void prepare(const BuildInputs& in) override;

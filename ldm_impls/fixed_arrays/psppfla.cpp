@@ -1,4 +1,5 @@
 #include "ldm_impls/fixed_arrays/psppfla.h"
+#include "ldm_impls/common/sizing_strategy.h"
 
 #include "harness/gl/bindings.h"
 
@@ -12,12 +13,14 @@ constexpr uint32_t kEmptyEntry = 0xFFFFFFFFu;
 
 Psppfla::Psppfla(StructureParams& params) : requested_k_(read_fixed_array_k(params)) {}
 
+std::vector<AxisSpec> Psppfla::parameters() { return {fixed_array_k_parameter()}; }
+
 void Psppfla::prepare(const BuildInputs& in) {
   pixels_ = in.views.views().total_pixels();
   dropped_ = GlBuffer("dropped", sizeof(uint32_t));
-  size_fixed_ = requested_k_ != 0 || in.sizing.policy == SizingPolicy::Budget;
+  size_fixed_ = requested_k_ != 0 || in.sizing.strategy().fixed_by_budget();
   // Only previous_frame asks a build what it needed; the others learn k up front.
-  track_overflow_ = !size_fixed_ && in.sizing.policy == SizingPolicy::PreviousFrame;
+  track_overflow_ = !size_fixed_ && in.sizing.strategy().grows_from_counters();
   if (track_overflow_) {
     overflow_ = GlBuffer("overflow_counts", pixels_ * sizeof(uint32_t));
     overflow_.clear_to_zero();

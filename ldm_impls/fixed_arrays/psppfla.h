@@ -22,6 +22,8 @@ namespace ldm {
 class Psppfla final : public LdmStructure {
  public:
   explicit Psppfla(StructureParams& params);
+  // The parameters --param psppfla:KEY=VALUE sets, declared (harness/axes/axis.h).
+  static std::vector<AxisSpec> parameters();
 
   std::string name() const override { return "psppfla"; }
   void prepare(const BuildInputs& in) override;

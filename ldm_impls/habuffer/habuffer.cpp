@@ -1,4 +1,5 @@
 #include "ldm_impls/habuffer/habuffer.h"
+#include "ldm_impls/common/sizing_strategy.h"
 
 #include <algorithm>
 #include <cmath>
@@ -80,10 +81,37 @@ std::string format_double(double value) {
 }  // namespace
 
 HaBuffer::HaBuffer(StructureParams& params) {
-  load_factor_ = params.get_double("load_factor", 0.75, 0.01, 64.0);
-  max_age_ = uint32_t(params.get_uint("max_age", 254, 0, 254));
+  load_factor_ = params.get_double("load_factor");
+  max_age_ = uint32_t(params.get_uint("max_age"));
+  key_bits_request_ = params.get_choice("key_bits");
+}
+
+std::vector<AxisSpec> HaBuffer::parameters() {
+  AxisSpec load_factor;
+  load_factor.key = "load_factor";
+  load_factor.kind = AxisKind::Real;
+  load_factor.min = 0.01;
+  load_factor.max = 64.0;
+  load_factor.real_is_double = true;
+  load_factor.default_value = "0.75";
+  load_factor.unit = "fragments per entry";
+  load_factor.description = "table size |H| = max(N R^2, fragments / load_factor)";
+  AxisSpec max_age;
+  max_age.key = "max_age";
+  max_age.kind = AxisKind::UInt;
+  max_age.min = 0;
+  max_age.max = 254;
+  max_age.default_value = "254";
+  max_age.unit = "probes";
+  max_age.description = "longest probe sequence; fragments that would need more are dropped and counted";
+  AxisSpec key_bits;
+  key_bits.key = "key_bits";
+  key_bits.kind = AxisKind::Choice;
+  key_bits.choices = {"32", "64", "auto"};
   // 32 by default on every device: the records of two devices then compare the same packing.
-  key_bits_request_ = params.get_choice("key_bits", "32", {"32", "64", "auto"});
+  key_bits.default_value = "32";
+  key_bits.description = "key packing: 32 (8-bit age, 24-bit depth), 64 (the exact float; needs 64-bit atomics), auto";
+  return {load_factor, max_age, key_bits};
 }
 
 uint32_t HaBuffer::choose_key_bits() const {
@@ -131,7 +159,7 @@ void HaBuffer::prepare(const BuildInputs& in) {
   age_summary_ = GlBuffer("age_summary", sizeof(uint32_t));
   fragments_ = &in.fragments;
   base_defines_ = common_structure_defines(in);
-  if (plan_.policy == SizingPolicy::Budget) {
+  if (plan_.strategy().fixed_by_budget()) {
     const uint64_t entries = budget_after("habuffer", plan_, fixed_bytes()) / (key_bits_ / 8);
     if (entries < pixels_)
       throw UserError("habuffer: the sizing budget holds " + std::to_string(entries) +
@@ -151,7 +179,7 @@ SizingNeeds HaBuffer::needed() {
 }
 
 bool HaBuffer::fits(const SizingNeeds& needs) const {
-  return plan_.policy == SizingPolicy::Budget || table_size_for(needs) <= table_size_;
+  return plan_.strategy().fixed_by_budget() || table_size_for(needs) <= table_size_;
 }
 
 void HaBuffer::resize(const SizingNeeds& needs) {
@@ -264,7 +292,7 @@ std::vector<std::pair<std::string, std::string>> HaBuffer::sizing() const {
   std::vector<std::pair<std::string, std::string>> s = {
       {"table_entries", std::to_string(table_size_)},
       {"table_size_source", size_source(plan_, false)},
-      {"table_policy", plan_.policy == SizingPolicy::Budget
+      {"table_policy", plan_.strategy().fixed_by_budget()
                            ? "budget / key bytes"
                            : "max(N*R_LDM^2, ceil(fragments / load_factor))"},
       {"load_factor", format_double(load_factor_)},

@@ -39,6 +39,8 @@ namespace ldm {
 class HaBuffer final : public LdmStructure {
  public:
   explicit HaBuffer(StructureParams& params);
+  // The parameters --param habuffer:KEY=VALUE sets, declared (harness/axes/axis.h).
+  static std::vector<AxisSpec> parameters();
 
   std::string name() const override { return "habuffer"; }
   void prepare(const BuildInputs& in) override;

@@ -14,6 +14,8 @@ Ppsll::Ppsll(StructureParams& params) : pool_("ppsll", params) {
   requested_local_ = read_sort_local_param(params);
 }
 
+std::vector<AxisSpec> Ppsll::parameters() { return {ListNodePool::capacity_parameter(), sort_local_parameter()}; }
+
 void Ppsll::prepare(const BuildInputs& in) {
   plan_ = in.sizing;
   local_ = sort_local_size(requested_local_, plan_);

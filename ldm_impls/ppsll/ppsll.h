@@ -19,6 +19,8 @@ namespace ldm {
 class Ppsll final : public LdmStructure {
  public:
   explicit Ppsll(StructureParams& params);
+  // The parameters --param ppsll:KEY=VALUE sets, declared (harness/axes/axis.h).
+  static std::vector<AxisSpec> parameters();
 
   std::string name() const override { return "ppsll"; }
   void prepare(const BuildInputs& in) override;

@@ -3,7 +3,16 @@
 namespace ldm {
 
 Psppsll::Psppsll(StructureParams& params) : pool_("psppsll", params) {
-  atomic_reads_ = params.get_bool("atomic_reads", false);
+  atomic_reads_ = params.get_bool("atomic_reads");
+}
+
+std::vector<AxisSpec> Psppsll::parameters() {
+  AxisSpec atomic_reads;
+  atomic_reads.key = "atomic_reads";
+  atomic_reads.kind = AxisKind::Bool;
+  atomic_reads.default_value = "false";
+  atomic_reads.description = "read list links with atomics (the thesis's §3.4.3 workaround)";
+  return {ListNodePool::capacity_parameter(), atomic_reads};
 }
 
 void Psppsll::prepare(const BuildInputs& in) {

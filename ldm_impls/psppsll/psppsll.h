@@ -16,6 +16,8 @@ namespace ldm {
 class Psppsll final : public LdmStructure {
  public:
   explicit Psppsll(StructureParams& params);
+  // The parameters --param psppsll:KEY=VALUE sets, declared (harness/axes/axis.h).
+  static std::vector<AxisSpec> parameters();
 
   std::string name() const override { return "psppsll"; }
   void prepare(const BuildInputs& in) override;

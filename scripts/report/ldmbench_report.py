@@ -21,6 +21,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 
+AXES_FILE = "axes.json"  # the axis registry the report was made with
 MANIFEST = "manifest.json"
 EXIT_USAGE = 2
 
@@ -50,6 +51,9 @@ def parse_arguments(argv):
     parser.add_argument("--dpi", type=int, default=100,
                         help="resolution of the PNG figures (e.g. 50 for a report to commit)")
     parser.add_argument("--title", default="ldmbench report", help="title of the pages")
+    parser.add_argument("--axes", metavar="AXES_JSON",
+                        help="the axis registry (`ldmbench axes --json`; `ldmbench report` passes "
+                             "it); default: axes.json beside --from-csv's tidy.csv")
     parser.add_argument("--axis", action="append", default=[], metavar="COLUMN",
                         help="another record column that tells configurations apart (a new "
                              "pass's setting), repeatable")
@@ -128,6 +132,24 @@ def runs_info_from_table(table, tidy_path):
     return info
 
 
+def read_axes(args):
+    """The axis registry's JSON: --axes, else the axes.json a report keeps beside its tidy.csv."""
+    path = args.axes or (os.path.join(os.path.dirname(args.from_csv) or ".", AXES_FILE)
+                         if args.from_csv else None)
+    if not path:
+        fail("--axes AXES_JSON is required with run folders (`ldmbench axes --json`; "
+             "`ldmbench report` passes it)")
+    try:
+        with open(path) as f:
+            axes = json.load(f)
+    except (OSError, ValueError) as e:
+        fail(f"{path}: cannot read the axis registry ({e}); write it with `ldmbench axes --json`"
+             + ("" if args.axes else " and pass --axes"))
+    if not isinstance(axes, dict) or not isinstance(axes.get("axes"), list):
+        fail(f"{path}: not the output of `ldmbench axes --json` (no \"axes\" list)")
+    return axes
+
+
 def main(argv):
     args = parse_arguments(argv)
     from ldmreport import runs  # the standard library only: checks need no plotting
@@ -144,15 +166,19 @@ def main(argv):
             columns, rows = runs.tidy_rows(loaded)
     except runs.InputError as e:
         fail(str(e))
+    axes = read_axes(args)
     earlier = check_out_folder(args.out, inputs)
     import_plotting()
     from ldmreport import figures, grids, pages
-    from ldmreport.table import Table
+    from ldmreport.table import Table, declare_axes
+    declare_axes(axes)
 
     os.makedirs(args.out, exist_ok=True)
     remove_earlier_report(args.out, earlier)
     tidy_path = os.path.join(args.out, "tidy.csv")
     runs.write_tidy_csv(tidy_path, columns, rows)
+    with open(os.path.join(args.out, AXES_FILE), "w") as f:  # what the tidy table's axes are
+        json.dump(axes, f, indent=1)
 
     table = Table(columns, rows, extra_axes=args.axis)
     canvas = figures.Canvas(args.out, svg=args.svg, dpi=args.dpi)
@@ -171,7 +197,7 @@ def main(argv):
                          canvas.figures, canvas.notes)
     pages.write_html(os.path.join(args.out, "index.html"), args.title, info, table,
                      canvas.figures, canvas.notes)
-    files = ["tidy.csv", "summary.md", "index.html"] + \
+    files = ["tidy.csv", AXES_FILE, "summary.md", "index.html"] + \
         [f for figure in canvas.figures for f in figure["files"]]
     with open(os.path.join(args.out, MANIFEST), "w") as f:
         json.dump({"ldmbench_report": 1, "files": files, "figures": canvas.figures,

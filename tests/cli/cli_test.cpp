@@ -268,8 +268,8 @@ TEST(Gbench, OneBenchmarkPerConfigurationWithEverySubpassAsACounter) {
   const std::string json = (fs::path(test::make_temp_dir("ldm-gbench")) / "out.json").string();
   std::string output;
   const int status = test::run_command(
-      std::string(LDM_GBENCH_PATH) + " --ldm_scenes=cornell --ldm_passes=all --ldm_views=4 --ldm_r=32 "
-      "--ldm_width=32 --ldm_height=32 --ldm_frames=3 --ldm_warmup=1 --benchmark_repetitions=2 "
+      std::string(LDM_GBENCH_PATH) + " --ldm_scenes=cornell --ldm_passes=all --ldm_views=4 --ldm_r_ldm=32 "
+      "--ldm_image_size=32x32 --ldm_frames=3 --ldm_warmup=1 --benchmark_repetitions=2 "
       "--benchmark_out_format=json --benchmark_out=" + json, &output);
   ASSERT_EQ(status, 0) << output;
   const auto j = nlohmann::json::parse(read_text(json));
@@ -312,7 +312,7 @@ TEST(Gbench, LossyBuildsAreTimedLikeRunMeasuresThem) {
   std::string output;
   const int status = test::run_command(
       std::string(LDM_GBENCH_PATH) + " --ldm_scenes=cornell --ldm_structures=ppfla --ldm_passes=ao "
-      "--ldm_views=4 --ldm_r=32 --ldm_width=16 --ldm_height=16 --ldm_param=ppfla:k=1 --ldm_frames=2 "
+      "--ldm_views=4 --ldm_r_ldm=32 --ldm_image_size=16x16 --ldm_param=ppfla:k=1 --ldm_frames=2 "
       "--benchmark_out_format=json "
       "--benchmark_out=" + json, &output);
   ASSERT_EQ(status, 0) << output;

@@ -6,7 +6,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "harness/records/columns.h"
+#include "harness/app/record_schema.h"
 #include "support/test_support.h"
 
 namespace ldm {

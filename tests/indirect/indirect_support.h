@@ -32,8 +32,9 @@ struct IndirectRun {
     structure = setup->prepare(structure_name, std::move(structure_params));
     structure->build(*setup->inputs, nullptr);
     StructureParams p(std::move(params), "indirect test");
+    p.declare(IndirectLighting::parameters());
     pass = std::make_unique<IndirectLighting>(p);
-    p.finish("pass indirect");
+    p.check("pass indirect");
     pass->prepare({setup->scene, *setup->gpu_scene, setup->inputs.get(), structure.get(), size,
                    size});
     pass->render(nullptr);

@@ -19,8 +19,9 @@ constexpr int kSize = 64;
 Image hbao_image(const Scene& scene, std::map<std::string, std::string> params) {
   test::gl_context();
   StructureParams p(std::move(params), "hbao test");
+  p.declare(Hbao::parameters());
   Hbao pass(p);
-  p.finish("pass hbao");
+  p.check("pass hbao");
   AttributeSet attributes;
   attributes.normals = true;
   const GpuScene gpu_scene(scene, attributes);
@@ -209,6 +210,7 @@ TEST(Hbao, BlurIsASubpassAndItsTargetsAreCounted) {
   test::gl_context();
   const Scene scene = load_scene("cornell");
   StructureParams p({{"blur", "2"}, {"jitter", "on"}}, "hbao test");
+  p.declare(Hbao::parameters());
   Hbao pass(p);
   ASSERT_EQ(pass.subpasses().back().name, "blur");
   AttributeSet attributes;

@@ -17,8 +17,9 @@ namespace {
 Image rtao_image(const Scene& scene, int size, std::map<std::string, std::string> params) {
   test::gl_context();  // the peer measurement uploads the scene; rtao itself draws nothing
   StructureParams p(std::move(params), "rtao test");
+  p.declare(Rtao::parameters());
   Rtao pass(p);
-  p.finish("pass rtao");
+  p.check("pass rtao");
   const GpuScene gpu_scene(scene, AttributeSet{});
   pass.prepare({scene, gpu_scene, nullptr, nullptr, size, size});
   GpuTimer timer(TimerSource::CpuWallClock);

@@ -188,6 +188,7 @@ TEST(Report, RegeneratesEveryFigureFromTheTidyCsvAlone) {
   // tidy.csv alone, the run folder gone: every figure but the image grids comes back.
   const fs::path alone = fs::path(test::make_temp_dir("ldm-report-csv"));
   fs::copy_file(r.dir / "tidy.csv", alone / "tidy.csv");
+  fs::copy_file(r.dir / "axes.json", alone / "axes.json");  // the axes the report was made with
   fs::remove_all(r.run);
   const fs::path again = alone / "again";
   const Outcome o = shell(std::string(LDM_PYTHON) + " " + script() + " --from-csv " +
@@ -239,6 +240,9 @@ TEST(Report, RanksErrorsOnlyAmongRecordsOfTheSameReference) {
         if (line.find(id) != std::string::npos) subset << line << "\n", ++kept;
     ASSERT_EQ(kept, 3) << "the committed report no longer holds the three records";
   }
+  // The committed report's axes (axes.json beside its tidy.csv) are not copied: the axis
+  // registry comes from the binary, as `ldmbench report` passes it.
+  ASSERT_EQ(shell(std::string(LDM_BINARY_PATH) + " axes --json > " + (dir / "axes.json").string()).status, 0);
   const Outcome o = shell(std::string(LDM_PYTHON) + " " + script() + " --from-csv " +
                           (dir / "tidy.csv").string() + " --out " + (dir / "report").string() +
                           " --dpi 20");

@@ -9,9 +9,20 @@ sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "scripts"
 import pandas as pd  # noqa: E402
 
 from ldmreport import pages, ties  # noqa: E402
-from ldmreport.table import Table  # noqa: E402
+from ldmreport.table import Table, declare_axes  # noqa: E402
 
 M = ties.Measure
+
+# The axes these tables are told apart by (a few of `ldmbench axes --json`'s).
+declare_axes({"axes": [
+    {"key": "scenes", "label": "scene", "owner": "harness", "owner_kind": "harness", "column": "scene"},
+    {"key": "passes", "label": "pass", "owner": "harness", "owner_kind": "harness", "column": "pass"},
+    {"key": "structures", "label": "structure", "owner": "harness", "owner_kind": "harness",
+     "column": "structure"},
+    {"key": "views", "label": "N", "owner": "harness", "owner_kind": "harness", "column": "n_views",
+     "ldm_only": True},
+    {"key": "r_ldm", "label": "R_LDM", "owner": "harness", "owner_kind": "harness", "column": "r_ldm",
+     "ldm_only": True}]})
 
 
 class Ties(unittest.TestCase):

@@ -323,16 +323,19 @@ TEST(Viewer, SavedRunCommandLineIsExplicitAndQuoted) {
   s.structure_params["psppsll"]["capacity"] = "9";
   s.reference.enabled = false;
   const std::string line = run_command_line(s, "build/ldmbench", "out dir");
-  for (const char* part : {"build/ldmbench run --scene 'scenes/my scene.json' --structure ppfla",
-                           " --pass ao -N 32 -R 128 --width 256 --height 256",
-                           " --d-max 0.100000001 ", " --visibility scene ", " --trace plane ",
-                           " --sizing budget --sizing-budget-mib 12.5 ", " --normal-offset 0.699999988 ",
-                           " --param ppfla:k=4 ", " --frames 5 --warmup 2 --repetitions 1 --isolation context --time-target 0.03 --time-cap 2 "
-                           "--max-frames 1000 --timer auto --no-reference",
+  // Every axis from its declaration (harness/app/harness_axes.cpp), in canonical order, reals
+  // as the shortest text that reads back as the same float.
+  for (const char* part : {"build/ldmbench run --scene 'scenes/my scene.json' --pass ao --structure ppfla",
+                           " --views 32 --r-ldm 128 ",
+                           " --d-max 0.1 ", " --visibility scene ", " --normal-offset 0.7 ", " --trace plane ",
+                           " --sizing budget --sizing-budget-mib 12.5 ", " --image-size 256x256 ",
+                           " --frames 5 --warmup 2 --param ppfla:k=4 --repetitions 1 --isolation context --time-target 0.03 "
+                           "--time-cap 2 --max-frames 1000 --timer auto --no-reference",
                            " --out 'out dir'"})
     EXPECT_NE(line.find(part), std::string::npos) << part << " not in: " << line;
   EXPECT_EQ(line.find("psppsll:capacity"), std::string::npos) << line;
-  EXPECT_EQ(std::stof("0.100000001"), 0.1f);
+  EXPECT_EQ(std::stof("0.1"), 0.1f);
+  EXPECT_EQ(std::stof("0.7"), 0.7f);
   EXPECT_EQ(shell_quoted("it's"), "'it'\\''s'");
 }
 

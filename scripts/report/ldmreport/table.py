@@ -14,19 +14,52 @@ MEASURED_STATUS = "ok"  # lossy, invalid and failed are flagged, never ranked
 # without noise, no surface in view, an AO range below a few LDM pixels): flagged as this.
 DEGENERATE_STATUS = "degenerate"
 
-# The record schema's identity and pass-setting columns (harness/records/columns.cpp) that
-# tell configurations apart; `sweep` is a sweep's name where a run records one. Other
-# settings join with --axis.
-KNOWN_AXES = ["run", "sweep", "scene", "structure", "pass", "n_views", "r_ldm", "width",
-              "height", "structure_params", "sizing_policy", "visibility", "d_max",
-              "falloff_exponent", "normal_offset_pixels", "trace", "ao_estimator",
-              # the peers' and the indirect pass's settings (issues 9, 10)
-              "hbao_directions", "hbao_steps", "hbao_angle_bias", "hbao_jitter", "hbao_blur",
-              "rtao_spp", "rtao_seed", "rtao_threads", "r_light", "splat_scale",
-              "topological_bias", "footprint_threshold", "frames"]
-# Axes that belong to an LDM structure: a pass without one (structure "none") has no value.
-STRUCTURE_AXES = {"n_views", "r_ldm", "structure_params", "sizing_policy"}
-AXIS_LABELS = {"n_views": "N", "r_ldm": "R_LDM", "r_light": "R_light", "fragments": "fragments"}
+# The axes come from ldmbench's axis registry (`ldmbench axes --json`, which `ldmbench report`
+# hands the script; a report keeps it as axes.json): each axis names the record column(s)
+# holding its value, its label (N, R_LDM), and whether only records with an LDM structure have
+# it. `run` (a report's run label) and `sweep` (a sweep's name) tell runs apart besides.
+RUN_AXES = ["run", "sweep"]
+# Structure parameters are one column (key=value;...) whatever their owner.
+STRUCTURE_PARAMS = "structure_params"
+# Labels of columns that are not axes but serve as a plot's x.
+OTHER_LABELS = {"fragments": "fragments"}
+
+
+class AxisDeclarations:
+    """The axes of a registry dump: columns in registry order, the LDM-only ones, labels."""
+
+    def __init__(self, declaration):
+        self.columns, self.structure_columns, self.labels = list(RUN_AXES), {STRUCTURE_PARAMS}, {}
+        for axis in declaration["axes"]:
+            structure_parameter = axis.get("owner_kind") == "structure"
+            names = [STRUCTURE_PARAMS] if structure_parameter else \
+                [c for c in axis.get("column", "").split(",") if c]
+            for c in names:
+                if c not in self.columns:
+                    self.columns.append(c)
+                if axis.get("ldm_only") or structure_parameter:
+                    self.structure_columns.add(c)
+                if axis.get("label") and axis["label"] != axis["key"]:
+                    self.labels.setdefault(c, axis["label"])
+        if STRUCTURE_PARAMS not in self.columns:
+            self.columns.append(STRUCTURE_PARAMS)
+
+
+_declared = None
+
+
+def declare_axes(declaration):
+    """Sets the axes every Table uses (once per report, from the registry's JSON)."""
+    global _declared
+    _declared = AxisDeclarations(declaration)
+
+
+def declared():
+    if _declared is None:
+        raise RuntimeError("the axes are not declared: call declare_axes() with `ldmbench axes --json`")
+    return _declared
+
+
 # <subpass>_ms_median columns that are not sub-passes of a frame: the sums, and the raster
 # baselines (timed beside the frame, not part of it).
 NOT_STACKED = {"build", "pass", "frame", "raster_baseline", "raster_touch"}
@@ -41,7 +74,7 @@ NOT_METRIC = re.compile(r"(^|_)ref_noise_")  # a reference's own noise, <prefix>
 
 
 def axis_label(column):
-    return AXIS_LABELS.get(column, column)
+    return declared().labels.get(column, OTHER_LABELS.get(column, column))
 
 
 class Table:
@@ -50,7 +83,7 @@ class Table:
     def __init__(self, columns, rows, extra_axes=()):
         self.columns = list(columns)
         self.df = pd.DataFrame(rows, columns=self.columns).fillna("")
-        self.extra_axes = [a for a in extra_axes if a not in KNOWN_AXES]
+        self.extra_axes = [a for a in extra_axes if a not in declared().columns]
 
     def __len__(self):
         return len(self.df)
@@ -108,13 +141,13 @@ class Table:
         return pd.Series(labels, index=self.df.index)
 
     def axes(self):
-        return [a for a in KNOWN_AXES + self.extra_axes if self.has(a)]
+        return [a for a in declared().columns + self.extra_axes if self.has(a)]
 
     def axis_values(self, column):
         """An axis's value per row, "" where it does not apply (structure axes of a pass
         without a structure)."""
         values = self.text(column)
-        if column in STRUCTURE_AXES:
+        if column in declared().structure_columns:
             values = values.where(self.has_structure(), "")
         return values
 

@@ -5,17 +5,55 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "harness/app/sweep_spec.h"
 #include "harness/util/error.h"
 
+namespace {
+
+// A vocabulary of every kind of axis the parser checks (names, integers, reals, image sizes,
+// parameters of two owners), declared here: the target links the parser alone, not the
+// registries whose declarations ldmbench uses.
+ldm::SweepVocabulary fuzz_vocabulary() {
+  using ldm::AxisKind;
+  using ldm::AxisSpec;
+  auto axis = [](const char* key, AxisKind kind, double lo, double hi, std::vector<std::string> choices = {}) {
+    AxisSpec a;
+    a.key = key;
+    a.kind = kind;
+    a.min = lo;
+    a.max = hi;
+    a.choices = std::move(choices);
+    return a;
+  };
+  ldm::SweepVocabulary v;
+  v.axes = {axis("scenes", AxisKind::Text, 0, 0),
+            axis("passes", AxisKind::Choice, 0, 0, {"ao", "hbao"}),
+            axis("structures", AxisKind::Choice, 0, 0, {"psppsll", "ppsll", "dfbuffer", "habuffer", "ppfla", "psppfla"}),
+            axis("views", AxisKind::UInt, 1, 4096),
+            axis("r_ldm", AxisKind::UInt, 1, 8192),
+            axis("d_max", AxisKind::Real, 1e-30, 1e30),
+            axis("visibility", AxisKind::Choice, 0, 0, {"scene", "attenuated", "unattenuated"}),
+            axis("trace", AxisKind::Choice, 0, 0, {"listing5", "interval", "plane"}),
+            axis("sizing_budget_mib", AxisKind::Real, 0.001, 1048576),
+            axis("image_size", AxisKind::ImageSize, 16, 16384),
+            axis("frames", AxisKind::UInt, 1, 100000)};
+  AxisSpec k = axis("k", AxisKind::UInt, 0, 1u << 20);
+  k.owner = "ppfla";
+  AxisSpec jitter = axis("jitter", AxisKind::Choice, 0, 0, {"off", "on"});
+  jitter.owner = "hbao";
+  AxisSpec reads = axis("atomic_reads", AxisKind::Bool, 0, 0);
+  reads.owner = "psppsll";
+  v.parameters = {{"ppfla", {k}}, {"hbao", {jitter}}, {"psppsll", {reads}}};
+  return v;
+}
+
+}  // namespace
+
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
-  const ldm::SweepVocabulary vocabulary = {
-      {"psppsll", "ppsll", "dfbuffer", "habuffer", "ppfla", "psppfla"},
-      {"ao", "hbao"},
-      {"listing5", "interval", "plane"},
-      {"eq13", "normalized"}};
+  static const ldm::SweepVocabulary vocabulary = fuzz_vocabulary();
   try {
     ldm::SweepSpec spec = ldm::parse_sweep_spec(text, "fuzz.json", vocabulary);
     const auto combinations = ldm::sweep_combinations(spec);

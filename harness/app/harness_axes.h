@@ -1,0 +1,55 @@
+#pragma once
+// The axes the harness owns (scene, structure, pass, N, R_LDM, the AO settings, the sizing
+// policy, image size, frames), each declared once in harness_axes.cpp with its binding to
+// RunSettings and its part of the configuration id. Structures and passes declare their own
+// parameters (structure_parameters(), pass_parameters()); harness/app/axis_registry.h puts
+// both together for everything that is derived from them.
+#include <functional>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "harness/app/run_settings.h"
+#include "harness/axes/axis.h"
+
+namespace ldm {
+
+struct HarnessAxis {
+  AxisSpec spec;
+  // The run's values of the axis, canonical (empty: none given, the default applies), and
+  // how a list of canonical values is stored. Without a binding the values live in
+  // RunSettings::axis_lists under the axis's key (an axis that only passes read).
+  std::function<std::vector<std::string>(const RunSettings&)> get;
+  std::function<void(RunSettings&, const std::vector<std::string>&)> set;
+  // The axis's part of the configuration id, from the configuration's values; `varied`
+  // tells whether the plan gives this axis more than one value (image size and frames are
+  // named only then). Null: not part of the id.
+  std::function<std::string(const AxisValues& values, bool varied)> id_fragment;
+  // Where the fragment stands in the id (smaller first).
+  int id_rank = 0;
+};
+
+// Every harness axis, in canonical order (sweep files list them so; the product runs the
+// first slowest).
+const std::vector<HarnessAxis>& harness_axes();
+// Adds an axis after the built-in ones (a test's, or an extension's), before anything derives
+// from the list (options, plans). Without get/set its values live in RunSettings::axis_lists,
+// and its consumer reads Configuration::values; the axis is then an option of `ldmbench run`
+// and ldmbench_gbench, a sweep-file key, part of the id and of `ldmbench axes`.
+void register_harness_axis(HarnessAxis axis);
+const HarnessAxis* find_harness_axis(const std::string& key);
+
+// The run's values of an axis (its binding, else RunSettings::axis_lists), and storing them.
+std::vector<std::string> axis_list(const RunSettings& settings, const HarnessAxis& axis);
+void set_axis_list(RunSettings& settings, const HarnessAxis& axis, const std::vector<std::string>& values);
+
+// The typed configuration of one combination of values, its id not yet assigned.
+Configuration configuration_of(const AxisValues& values);
+
+// The configuration id from its values: every harness axis's fragment in id_rank order, then
+// the parameters (structure's, then pass's) as -KEY=VALUE, then the characters a file name
+// cannot hold replaced by '_'. `varied` lists the axes the plan varies.
+std::string configuration_id(const AxisValues& values, const std::set<std::string>& varied);
+
+}  // namespace ldm

@@ -1,0 +1,98 @@
+#pragma once
+// One axis of a sweep, declared once by its owner (in the manner of nvbench's axes): the
+// harness declares the axes every configuration has (scene, N, R_LDM, image size, sizing
+// policy...: harness/app/harness_axes.cpp), a structure or a pass declares its own
+// parameters beside the code that reads them (ldm_impls/*, harness/passes/*). Everything
+// that names, parses, checks, lists or serialises an axis is derived from its AxisSpec:
+// the command line's options, sweep-file validation, ldmbench_gbench's flags, the viewer's
+// controls, configuration ids, the re-serialised command line, the records' identity
+// columns and `ldmbench axes` (harness/app/axis_registry.h).
+//
+// Values travel as canonical text: what `--param ppfla:k=4` or `-N 32` carries, checked and
+// normalised by canonical_axis_value() (an integer without leading zeros, a real as the
+// shortest text of the float or double the run uses, a choice as its name).
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace ldm {
+
+enum class AxisKind {
+  Text,       // any non-empty text (a scene name or file)
+  Choice,     // one of a list of names
+  UInt,       // an integer in [min, max]
+  Real,       // a real in [min, max], as the 32-bit float the GPU uses (or a double)
+  Bool,       // true or false (also 1/0, on/off, yes/no on input)
+  ImageSize,  // WIDTHxHEIGHT, or one integer for a square image, each side in [min, max]
+};
+const char* axis_kind_name(AxisKind kind);  // text, choice, uint, real, bool, image_size
+
+struct AxisSpec {
+  // The name in sweep files and records' axis lists ("views"); for an owner's parameter
+  // the key of --param OWNER:KEY ("k"), known qualified as "ppfla:k".
+  std::string key;
+  // "harness", or the structure or pass whose parameter this is.
+  std::string owner = "harness";
+  // How messages and tables call it ("N", "R_LDM"); the key when empty.
+  std::string label;
+  // Command-line names of a harness axis, CLI11 style: "-N,--views". Empty for parameters
+  // (set through --param OWNER:KEY=VALUE) and for axes only sweep files vary.
+  std::string flags;
+  AxisKind kind = AxisKind::Text;
+  double min = 0, max = 0;  // UInt, Real, ImageSize (inclusive)
+  bool real_is_double = false;  // Real: checked as a double rather than a 32-bit float
+  std::vector<std::string> choices;                           // Choice
+  std::function<std::vector<std::string>()> dynamic_choices;  // Choice known at run time
+  // The value when none is given, canonical; empty when there is none (the scene's own, the
+  // structure's automatic choice): default_note says what happens then.
+  std::string default_value;
+  std::string default_note;
+  // Whether the command line takes a comma list (a sweep axis) or one value.
+  bool list = true;
+  // Whether the value changes what is measured. Identity axes are part of the
+  // configuration's identity (its id, the resume identity); the others (notes) are not.
+  bool identity = true;
+  // Whether only configurations with an LDM structure have this axis (N, R_LDM, trace...).
+  bool ldm_only = false;
+  std::string unit;
+  std::string description;
+  // The record column(s) holding the axis's value, comma-separated ("width,height"; "" when
+  // it has none of its own; a structure's parameters share structure_params).
+  std::string column;
+  // Set when the value reaches the pass as a parameter of this name (d_max, trace...): the
+  // pass reads it, but it is set through this axis only, never as --param PASS:NAME.
+  std::string pass_parameter;
+
+  std::string qualified() const { return owner == "harness" ? key : owner + ":" + key; }
+  std::string display_name() const { return label.empty() ? key : label; }
+};
+
+// The names a Choice axis accepts (static or dynamic).
+std::vector<std::string> axis_choices(const AxisSpec& spec);
+
+// Checks `text` against the axis and returns it in canonical form. Throws UserError
+// "<where>: <what is wrong>" naming the axis, its range or its choices.
+std::string canonical_axis_value(const AxisSpec& spec, const std::string& text,
+                                 const std::string& where);
+
+// The value of a JSON item (a sweep file's) as the text --param would carry: strings as
+// they are, integers in decimal, reals as the shortest round-tripping text, booleans as
+// true/false. Throws UserError for anything else (objects, arrays, null, NaN).
+std::string axis_text_of_json(const nlohmann::json& value, const std::string& where);
+
+// The canonical text as the JSON a sweep file would hold (numbers as numbers).
+nlohmann::json axis_json_of_text(const AxisSpec& spec, const std::string& canonical);
+
+// The declaration as JSON (`ldmbench axes --json`).
+nlohmann::json axis_spec_json(const AxisSpec& spec);
+
+// The spec of `key` in `specs`, or null.
+const AxisSpec* find_axis(const std::vector<AxisSpec>& specs, const std::string& key);
+
+// "--name" of a CLI11 flags string ("-N,--views" -> "--views"; "-R" -> "-R").
+std::string long_flag(const std::string& flags);
+
+}  // namespace ldm

@@ -1,0 +1,29 @@
+#pragma once
+// The ambient-occlusion settings several passes read (d_max, visibility, the normal offset,
+// the LDM trace variant and the AO estimator), declared once here. The harness offers each
+// as an axis of every configuration (--d-max, --visibility, --normal-offset, --trace,
+// --ao-estimator: harness/app/harness_axes.cpp) and hands its value to the pass as the
+// parameter named in `pass_parameter`; a pass that reads one lists ao_pass_parameter(...) of
+// it among its own parameters(). Neither is set as --param PASS:KEY: one name per setting.
+#include <string>
+#include <vector>
+
+#include "harness/axes/axis.h"
+#include "harness/records/columns.h"
+
+namespace ldm {
+
+enum class AoAxis { DMax, Visibility, NormalOffset, Trace, Estimator };
+
+// The harness axis (key as in sweep files, command-line flags, record column).
+AxisSpec ao_axis(AoAxis which);
+// The same declaration as the pass reads it (key = the pass parameter's name).
+AxisSpec ao_pass_parameter(AoAxis which);
+
+// The record columns of the effective AO settings a pass writes in describe() (visibility,
+// d_max, falloff_exponent; with `ldm` the LDM trace's too: normal offset, trace, estimator),
+// and of the AO image's range (ao_max, ao_fraction_above_1).
+std::vector<ColumnSpec> ao_setting_columns(bool ldm);
+std::vector<ColumnSpec> ao_range_columns();
+
+}  // namespace ldm

@@ -1,0 +1,220 @@
+// The axis registry (harness/app/harness_axes.h, harness/app/axis_registry.h): every axis
+// declared once, by its owner, and everything else derived from the declaration. The proof
+// is an axis added here, in a test, touching nothing but its own declaration: a harness axis
+// and a pass with a parameter of its own reach the command line, sweep files, the product,
+// the ids, the re-serialised command line, the sweep file a viewer saves, `ldmbench axes`,
+// and the identity.
+#include <gtest/gtest.h>
+
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <set>
+
+#include "harness/app/axis_options.h"
+#include "harness/app/axis_registry.h"
+#include "harness/app/harness_axes.h"
+#include "harness/app/run_command_line.h"
+#include "harness/app/sweep_plan.h"
+#include "harness/app/sweep_spec.h"
+#include "harness/passes/ambient_occlusion.h"
+#include "harness/passes/pass.h"
+#include "harness/util/error.h"
+#include "ldm_impls/ldm_structure.h"
+
+namespace ldm {
+namespace {
+
+// A harness axis no consumer in the code knows: declared here and nowhere else. Its values
+// live in RunSettings::axis_lists (no binding); its consumer would read Configuration::values.
+void declare_test_gain_axis() {
+  if (find_harness_axis("test_gain")) return;
+  HarnessAxis axis;
+  axis.spec.key = "test_gain";
+  axis.spec.label = "gain";
+  axis.spec.flags = "--test-gain";
+  axis.spec.kind = AxisKind::Real;
+  axis.spec.min = 0.5;
+  axis.spec.max = 4;
+  axis.spec.unit = "x";
+  axis.spec.description = "a test's axis";
+  axis.id_rank = 150;
+  axis.id_fragment = [](const AxisValues& values, bool) {
+    const auto it = values.find("test_gain");
+    return it == values.end() ? std::string() : "-gain" + it->second;
+  };
+  register_harness_axis(axis);
+}
+
+// A pass with a parameter of its own, declared beside the pass (here: the AO pass with one
+// more parameter it accepts).
+void declare_test_pass() {
+  const auto names = pass_names();
+  if (std::find(names.begin(), names.end(), "test_ao") != names.end()) return;
+  PassRegistration pass;
+  pass.name = "test_ao";
+  pass.parameters = [] {
+    std::vector<AxisSpec> specs = AmbientOcclusion::parameters();
+    AxisSpec boost;
+    boost.key = "boost";
+    boost.kind = AxisKind::UInt;
+    boost.min = 1;
+    boost.max = 8;
+    boost.default_value = "1";
+    boost.description = "a test pass's parameter";
+    specs.push_back(boost);
+    return specs;
+  };
+  pass.columns = AmbientOcclusion::columns;
+  pass.make = [](StructureParams& p) { return std::make_unique<AmbientOcclusion>(p); };
+  register_pass(pass);
+}
+
+class Axes : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    declare_test_gain_axis();
+    declare_test_pass();
+  }
+};
+
+// The command line of `ldmbench run` as its options are made from the declarations.
+RunSettings parsed(std::vector<std::string> args) {
+  CLI::App app;
+  AxisOptions axes;
+  add_axis_options(&app, axes);
+  std::vector<std::string> params;
+  app.add_option("--param", params);
+  std::reverse(args.begin(), args.end());  // CLI11 parses a reversed vector
+  app.parse(args);
+  RunSettings s;
+  apply_axis_options(axes, s);
+  for (const auto& p : params) {
+    const auto colon = p.find(':'), equals = p.find('=');
+    s.structure_params[p.substr(0, colon)][p.substr(colon + 1, equals - colon - 1)] = p.substr(equals + 1);
+  }
+  return s;
+}
+
+std::vector<std::string> ids_of(const std::vector<Configuration>& configs) {
+  std::vector<std::string> ids;
+  for (const auto& c : configs) ids.push_back(c.id());
+  return ids;
+}
+
+TEST_F(Axes, AnAxisDeclaredInATestIsAnOptionAnAxisOfTheProductAndPartOfTheId) {
+  const RunSettings s = parsed({"--test-gain", "1,2.50", "--pass", "test_ao", "--param", "test_ao:boost=2,3",
+                                "-N", "4", "-R", "16"});
+  ASSERT_EQ(s.axis_lists.at("test_gain"), (std::vector<std::string>{"1", "2.5"}));  // canonical
+  const auto configs = expand_configurations(s);
+  const std::vector<std::string> expected = {
+      "cornell-psppsll-test_ao-n4-r16-plane-boost=2-prevframe-gain1",
+      "cornell-psppsll-test_ao-n4-r16-plane-boost=3-prevframe-gain1",
+      "cornell-psppsll-test_ao-n4-r16-plane-boost=2-prevframe-gain2.5",
+      "cornell-psppsll-test_ao-n4-r16-plane-boost=3-prevframe-gain2.5"};
+  std::vector<std::string> ids = ids_of(configs), sorted = expected;
+  std::sort(ids.begin(), ids.end());
+  std::sort(sorted.begin(), sorted.end());
+  EXPECT_EQ(ids, sorted);
+  // The consumer of the new axis reads its value from the configuration.
+  EXPECT_EQ(configs.front().values.at("test_gain"), "1");
+  EXPECT_EQ(configs.front().pass_params.at("boost"), "2");
+  // Bad values are refused by the declaration, naming the option and the range.
+  try {
+    parsed({"--test-gain", "9"});
+    FAIL() << "a gain outside [0.5, 4] was accepted";
+  } catch (const UserError& e) {
+    EXPECT_NE(std::string(e.what()).find("--test-gain: gain 9 reads as 9 in a 32-bit float; it must lie in [0.5, 4]"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW(expand_configurations(parsed({"--pass", "test_ao", "--param", "test_ao:boost=0"})), UserError);
+  // Duplicates are one configuration measured twice: refused.
+  EXPECT_THROW(parsed({"--test-gain", "1,1.0"}), UserError);
+}
+
+TEST_F(Axes, AnAxisDeclaredInATestIsASweepFileKeyAndIsWrittenBack) {
+  const SweepVocabulary vocabulary = current_sweep_vocabulary();
+  SweepSpec spec = parse_sweep_spec(
+      R"({"axes": {"passes": "test_ao", "test_gain": [1, 3], "test_ao:boost": [4]}})", "t.json", vocabulary);
+  const auto combinations = sweep_combinations(spec);
+  ASSERT_EQ(combinations.size(), 2u);
+  EXPECT_EQ(combinations[1].at("test_gain"), 3.0);
+  EXPECT_EQ(combinations[1].at("test_ao:boost"), "4");
+  try {
+    parse_sweep_spec(R"({"axes": {"test_gain": [0.1]}})", "t.json", vocabulary);
+    FAIL() << "a gain outside [0.5, 4] was accepted";
+  } catch (const UserError& e) {
+    EXPECT_NE(std::string(e.what()).find("t.json: axes.test_gain[0]: gain 0.1"), std::string::npos) << e.what();
+  }
+  try {
+    parse_sweep_spec(R"({"axes": {"test_ao:gain": [1]}})", "t.json", vocabulary);
+    FAIL() << "an undeclared parameter was accepted";
+  } catch (const UserError& e) {
+    EXPECT_NE(std::string(e.what()).find("test_ao has no parameter \"gain\""), std::string::npos) << e.what();
+  }
+  // What `ldmbench view` saves: the command line and the sweep file carry the new axis.
+  const RunSettings s = parsed({"--test-gain", "1,2", "--pass", "test_ao", "--param", "test_ao:boost=2"});
+  const std::string line = run_command_line(s, "ldmbench", "");
+  EXPECT_NE(line.find(" --test-gain 1,2 "), std::string::npos) << line;
+  EXPECT_NE(line.find(" --param test_ao:boost=2"), std::string::npos) << line;
+  const auto file = nlohmann::json::parse(sweep_file_json(s, ""));
+  EXPECT_EQ(file["axes"]["test_gain"], nlohmann::json({1.0, 2.0}));
+  EXPECT_EQ(file["axes"]["test_ao:boost"], "2");
+}
+
+TEST_F(Axes, TheRegistryListsEveryAxisWithItsDeclaration) {
+  const std::vector<AxisSpec> all = registered_axes();
+  auto find = [&all](const std::string& name) -> const AxisSpec* {
+    for (const auto& a : all)
+      if (a.qualified() == name) return &a;
+    return nullptr;
+  };
+  for (const char* name : {"scenes", "passes", "structures", "views", "r_ldm", "d_max", "visibility",
+                           "normal_offset", "trace", "ao_estimator", "sizing", "sizing_budget_mib",
+                           "sizing_initial_per_pixel", "image_size", "frames", "warmup", "ppfla:k",
+                           "psppfla:k", "habuffer:load_factor", "hbao:directions", "rtao:spp",
+                           "indirect:r_light", "test_gain", "test_ao:boost"})
+    EXPECT_NE(find(name), nullptr) << name;
+  // The AO settings a pass reads through a harness axis are listed once, as that axis.
+  EXPECT_EQ(find("ao:d_max"), nullptr);
+  EXPECT_EQ(find("views")->display_name(), "N");
+  EXPECT_EQ(find("views")->column, "n_views");
+  EXPECT_TRUE(find("views")->ldm_only);
+  EXPECT_FALSE(find("rtao:threads")->identity);  // how fast, not what
+  const nlohmann::json j = axes_json();
+  ASSERT_TRUE(j.contains("axes"));
+  EXPECT_EQ(j["axes"].size(), all.size());
+  EXPECT_EQ(j["axes"][0]["name"], "scenes");
+  // The markdown table has a row per axis.
+  const std::string md = axes_markdown();
+  EXPECT_EQ(size_t(std::count(md.begin(), md.end(), '\n')), all.size() + 2);
+}
+
+// Every parameter a structure or pass reads is declared: reading an undeclared one is a
+// programming error, and a --param its owner does not declare is refused naming the others.
+TEST_F(Axes, ParametersAreReadAgainstTheirDeclarations) {
+  for (const auto& name : structure_names()) EXPECT_NO_THROW(make_structure(name, StructureParams())) << name;
+  for (const auto& name : pass_names()) EXPECT_NO_THROW(make_pass(name, StructureParams())) << name;
+  try {
+    make_structure("habuffer", StructureParams({{"load_factr", "1"}}, "--param habuffer"));
+    FAIL();
+  } catch (const UserError& e) {
+    EXPECT_NE(std::string(e.what()).find("structure habuffer has no parameter 'load_factr' (its parameters: "
+                                         "load_factor, max_age, key_bits)"),
+              std::string::npos)
+        << e.what();
+  }
+  // An AO setting is an axis of every pass that reads it, never a --param of one of them.
+  RunSettings s;
+  s.structure_params["ao"]["d_max"] = "2";
+  try {
+    expand_configurations(s);
+    FAIL();
+  } catch (const UserError& e) {
+    EXPECT_NE(std::string(e.what()).find("set it with --d-max"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace ldm
