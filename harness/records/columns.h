@@ -1,7 +1,7 @@
 #pragma once
 // The record schema: every column `ldmbench run` writes, with its unit and a one-line
-// description, in one place. `ldmbench columns` prints it; the README's records table is
-// generated from it (`ldmbench columns --markdown`) and a test checks that they agree and
+// description, in one place. `ldmbench columns` prints it; the records table of
+// docs/reference/records.md is generated from it (`ldmbench columns --markdown`) and a test checks that they agree and
 // that every column of a real run is described here.
 //
 // A name may hold one placeholder in angle brackets standing for a non-empty word:
@@ -21,7 +21,7 @@ struct ColumnSpec {
 const std::vector<ColumnSpec>& record_columns();
 // The spec describing `column` (exact names first, then patterns), or null.
 const ColumnSpec* find_column(const std::string& column);
-// The README's records table (Markdown) and the plain listing of `ldmbench columns`.
+// The records table of docs/reference/records.md (Markdown) and the plain listing of `ldmbench columns`.
 std::string columns_markdown();
 std::string columns_text();
 
