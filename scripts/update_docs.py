@@ -96,6 +96,8 @@ def main():
     for part in stale:
         print(("stale: " if args.check else "updated: ") + part)
     if args.check:
+        if not stale:
+            print("the generated parts are up to date")
         return 1 if stale else 0
     with open(RECORDS, "w", encoding="utf-8") as f:
         f.write(records)
