@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The extremes sweep (issue 12): runs ldmbench at the edges of its input space and prints
 # one line per record with what came out, then checks that no NaN or infinity reached an
-# `ok` record. Small sizes (llvmpipe-friendly, a few minutes); findings are in the README
-# (section "Extremes"). Usage: scripts/extremes.sh [OUT_DIR]   (default results/extremes)
+# `ok` record. Small sizes (llvmpipe-friendly, a few minutes); findings are in
+# docs/measured/extremes.md. Usage: scripts/extremes.sh [OUT_DIR]   (default results/extremes)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bin="${LDMBENCH:-build/ldmbench}"

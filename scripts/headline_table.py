@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Prints the README's headline table (Measured section) from a run's records.csv.
+"""Prints the headline table of docs/measured/ao.md from a run's records.csv.
 
 Usage: scripts/headline_table.py results/runs/<run>/records.csv
 

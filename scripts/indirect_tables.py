@@ -1,4 +1,4 @@
-# Regenerates the README's indirect-lighting tables ("Indirect lighting") from the run
+# Regenerates the indirect-lighting tables (docs/measured/indirect.md) from the run
 # folders of the sweeps listed there: scripts/indirect_tables.py headline|N|s|R|Rl [RUNS_DIR]
 import json,sys
 RUNS = sys.argv[2] if len(sys.argv) > 2 else '/tmp/meas'

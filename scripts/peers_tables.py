@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Prints the README's peer tables (Measured > Peers) from a run's records.csv.
+"""Prints the peer tables of docs/measured/peers.md from a run's records.csv.
 
 Usage: scripts/peers_tables.py headline|dmax|samples RECORDS.csv
 

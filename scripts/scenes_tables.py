@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Regenerates the README's "Real scenes" tables from the committed records
+"""Regenerates the tables of docs/measured/real-scenes.md from the committed records
 (docs/measured/scenes/): scripts/scenes_tables.py profiles|memory|fit [CSV]
 
   profiles  the depth-complexity profile of every scene (profiles-llvmpipe.csv)

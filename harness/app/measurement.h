@@ -30,7 +30,7 @@ struct MeasurementRequest {
   std::string structure;
   std::map<std::string, std::string> structure_params;
   // How the structure learns its sizes (ldm_impls/common/sizing.h); the default is the
-  // run's (README "Sizing policies").
+  // run's (docs/reference/structures.md).
   SizingSettings sizing = {SizingPolicy::PreviousFrame};
   std::string pass = "ao";
   std::map<std::string, std::string> pass_params;

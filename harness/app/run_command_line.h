@@ -15,7 +15,7 @@ namespace ldm {
 std::string run_command_line(const RunSettings& settings, const std::string& program,
                              const std::string& out_dir = "");
 
-// The same settings as a sweep file (README "Sweep files"): every axis with its values and
+// The same settings as a sweep file (docs/guide/sweeps.md): every axis with its values and
 // the reference, image and timer settings, so that `ldmbench sweep FILE` plans the same
 // configurations (config_id) with the same settings as the command line. The cache folder
 // and EGL options are not part of a sweep file (the sweep's own command line gives them).

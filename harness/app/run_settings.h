@@ -35,7 +35,7 @@ struct RunSettings {
   std::vector<AoTrace> traces = {kDefaultAoTrace};
   std::vector<AoEstimatorChoice> estimators = {AoEstimatorChoice::Eq13};
   // How structures learn their sizes (ldm_impls/common/sizing.h). The default charges every
-  // structure for what it needs to know: see README "Sizing policies".
+  // structure for what it needs to know: see docs/reference/structures.md.
   std::vector<SizingPolicy> sizing = {SizingPolicy::PreviousFrame};
   double sizing_budget_mib = 0;         // budget: required with --sizing budget
   uint32_t sizing_initial_per_pixel = 1;  // previous_frame's first guess

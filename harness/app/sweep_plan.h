@@ -15,7 +15,7 @@
 
 namespace ldm {
 
-// --shard i/n: configuration k belongs to shard k mod n (README "Shards and merge").
+// --shard i/n: configuration k belongs to shard k mod n (docs/guide/sweeps.md).
 struct Shard {
   size_t index = 0, count = 1;
   std::string text() const { return std::to_string(index) + "/" + std::to_string(count); }

@@ -1,5 +1,5 @@
 #pragma once
-// The sweep file of `ldmbench sweep` (README "Sweep files"): a JSON object naming axes whose
+// The sweep file of `ldmbench sweep` (docs/guide/sweeps.md): a JSON object naming axes whose
 // cartesian product, plus "include" blocks, minus "exclude" filters, is the set of
 // configurations. This unit only reads and checks the file and enumerates the combinations
 // (each an assignment axis -> value); it knows the allowed names through a SweepVocabulary

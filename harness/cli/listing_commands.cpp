@@ -19,7 +19,7 @@ Runner add_listing_commands(CLI::App& app) {
   auto* passes = app.add_subcommand("passes", "List the passes and the sub-passes each times");
   auto* columns = app.add_subcommand("columns", "Describe every record column: unit and meaning");
   auto markdown = std::make_shared<bool>(false);
-  columns->add_flag("--markdown", *markdown, "As the Markdown table of the README");
+  columns->add_flag("--markdown", *markdown, "As the Markdown table of docs/reference/records.md");
   auto* info = app.add_subcommand("info", "Print the OpenGL device ldmbench runs on");
   auto* axes = app.add_subcommand("axes", "List every axis a sweep can vary: the harness's and each structure's and pass's parameters");
   auto axes_format = std::make_shared<std::string>("text");

@@ -56,7 +56,7 @@ Runner add_reference_command(CLI::App& app) {
   cmd->add_option("--kind", o->kind,
                   "What to render: `pass` (the reference --pass is scored against) or a "
                   "lighting component of the scene's spot light (direct, single_bounce, "
-                  "multi_bounce: outgoing radiance, RGB; see README Accuracy)")
+                  "multi_bounce: outgoing radiance, RGB; see docs/reference/accuracy.md)")
       ->check(CLI::IsMember(kinds))
       ->capture_default_str();
   cmd->add_option("--width", o->width, "Image width")->check(CLI::Range(1, 16384))->capture_default_str();

@@ -38,7 +38,7 @@ Runner add_sweep_command(CLI::App& app, const std::string& command_line,
                          const std::vector<std::string>& arguments) {
   auto o = std::make_shared<SweepOptions>();
   auto* sweep = app.add_subcommand(
-      "sweep", "Measure the configurations of a sweep file (README \"Sweep files\"): resumable, "
+      "sweep", "Measure the configurations of a sweep file (docs/guide/sweeps.md): resumable, "
                "shardable (--shard), through the same path as `ldmbench run`");
   sweep->add_option("FILE", o->file, "Sweep file (JSON)")->required();
   sweep->add_option("--out", o->out_dir,

@@ -48,7 +48,7 @@ Runner add_view_command(CLI::App& app, const std::string& program) {
   o->viewer.program = program;
   auto* view = app.add_subcommand(
       "view", "Interactive viewer (needs a display; headless: xvfb-run -a ldmbench view ...): "
-              "one configuration of the run options, changed live; keys in the README");
+              "one configuration of the run options, changed live; keys in docs/guide/viewer.md");
   add_run_options(view, &o->run);
   // Here --frames counts the viewer's frames (the brief of --frames K --screenshot PATH);
   // the run's own --frames is --measured-frames.

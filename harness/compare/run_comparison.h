@@ -46,7 +46,7 @@ struct CompareThresholds {
   double min_time_change = 0.05;  // relative change of interest: smaller ones are SAME
   // Assumed relative standard deviation between two processes' medians of the same work,
   // for a run of one repetition (which cannot show it). Measured on the development machine
-  // (README "Timing verdicts"); a run with repetitions uses its own instead.
+  // (docs/timing.md, "Comparing"); a run with repetitions uses its own instead.
   double process_spread = kDefaultProcessSpread;
   double memory_tolerance = 0;    // relative growth of bytes allowed before MORE
   double noise_factor = 1;        // MSE change allowed, in multiples of ref_noise_mse

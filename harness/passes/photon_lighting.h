@@ -5,7 +5,7 @@
 // rendered by the caller (IndirectLighting) and passed in.
 //
 // The photon buffer is sized by the run's sizing policy, like a structure's storage
-// (README "Sizing policies"): oracle (an untimed counting trace before the first frame),
+// (docs/reference/structures.md): oracle (an untimed counting trace before the first frame),
 // census (a timed counting trace every frame, `photon_census`), previous_frame (the last
 // trace's append counter, `photon_readback`; a trace that overflowed is resized and run
 // again, `photon_rebuild`) or budget (what the budget holds; the rest is counted as

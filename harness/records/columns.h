@@ -3,8 +3,8 @@
 // the code that writes it. The harness's own columns (identity, device, scene, census, build,
 // time, memory, accuracy, images, profile) are here; each pass declares the columns it writes
 // (Pass columns(), beside its describe() and results()); harness/app/record_schema.h puts them
-// together for `ldmbench columns`, the generated records table (docs) and the tests that
-// check every column of a real run is described.
+// together for `ldmbench columns`, the generated records table (docs/reference/records.md)
+// and the tests that check that every column of a real run is described.
 //
 // A name may hold one placeholder in angle brackets standing for a non-empty word:
 // "counter_<name>" describes counter_max_age_used, counter_lists_sorted_in_place, ...

@@ -25,7 +25,7 @@
 //                  divides the throughput).
 // Noise target: radiance has no fixed scale, so the automatic spp rule compares
 //   noise_mse · e² ≤ spp.target_noise_mse,   e = lighting_ssim_exposure(current mean)
-// i.e. the noise measured on the image as SSIM sees it (README "Accuracy"). `noise_mse` in
+// i.e. the noise measured on the image as SSIM sees it (docs/reference/accuracy.md). `noise_mse` in
 // the result stays in radiance² units, comparable with the MSE of a pass's image.
 #include <cstdint>
 #include <optional>

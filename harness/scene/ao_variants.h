@@ -19,7 +19,7 @@ enum class AoEstimatorChoice {
   Normalized,  // sum V |cos| / sum |cos|: exactly 1 where nothing occludes, at any N
 };
 
-// The default of the --trace axis (chosen from measurements, see README "Trace variants").
+// The default of the --trace axis (chosen from measurements, see docs/measured/trace-variants.md).
 inline constexpr AoTrace kDefaultAoTrace = AoTrace::Plane;
 
 // `interval` leaves x's own surface behind x only if the offset (k·s·tan a in depth) beats

@@ -65,7 +65,7 @@ struct AoSettings {
   float falloff_exponent = 2.0f;
   // Normal offset of §4.4.2, in LDM pixels: x += n * sin(angle(n, w)) * normal_offset * pixel.
   // Expressed in pixels (not scene units) so that it scales with R_LDM. The default, 0.5, is
-  // the measured best compromise for the default (plane) trace (README "Trace variants").
+  // the measured best compromise for the default (plane) trace (docs/measured/trace-variants.md).
   float normal_offset_pixels = 0.5f;
   // LDM pass only (run axes, not scene properties; no reference depends on them).
   AoTrace trace = kDefaultAoTrace;

@@ -1,4 +1,4 @@
-// Post-sorting at depth complexity 1024 (the extremes sweep's stack1024, README "Extremes"):
+// Post-sorting at depth complexity 1024 (the extremes sweep's stack1024, docs/measured/extremes.md):
 // every structure that sorts after construction (PPSLL, PPFLA, the DF-buffer) must return
 // the pixels' lists sorted, and PSPPSLL's, however long they are and whichever path (local
 // array or in place) their sort takes. A tiny LDM keeps it fast: N = 1, R = 4, every pixel

@@ -63,7 +63,7 @@ def declared():
 # <subpass>_ms_median columns that are not sub-passes of a frame: the sums, and the raster
 # baselines (timed beside the frame, not part of it).
 NOT_STACKED = {"build", "pass", "frame", "raster_baseline", "raster_touch"}
-# The structures' and sizing policies' sub-passes (README, Records), stacked first in this
+# The structures' and sizing policies' sub-passes (docs/reference/records.md), stacked first in this
 # order so that a bar reads build, then pass; any other sub-pass (a pass's) follows in
 # column order.
 BUILD_SUBPASSES = ["census", "clear", "count", "prefix_sum", "construct", "sort", "readback",

@@ -29,7 +29,7 @@ void main() {
   // Rows (Eq. 26): (Dv x n, n x Du) * 2 / (Du . (Dv x n)) map the footprint's inscribed ellipse
   // (semi-axes Du/2, Dv/2) onto the unit disc; the third, a * n / r with r = sqrt(area) / 2
   // the footprint's mean semi-axis, reaches the kernel's edge a footprint radius / a off the
-  // photon's tangent plane (the topological bias; README "Departures").
+  // photon's tangent plane (the topological bias; docs/design/departures.md).
   const float det = dot(du, cross(dv, n));
   const vec3 row0 = cross(dv, n) * (2.0 / det);
   const vec3 row1 = cross(n, du) * (2.0 / det);

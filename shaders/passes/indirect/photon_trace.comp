@@ -4,7 +4,7 @@
 //     transferred to the hit x1;
 //  2. split into one secondary photon per LDM view direction (+forward and -forward) that
 //     lies in x1's hemisphere, each carrying Phi1 * rho1/pi * |cos| * (2 pi / N), the solid
-//     angle each of the 2N directions stands for (the EQ partition, README "Departures");
+//     angle each of the 2N directions stands for (the EQ partition, docs/design/departures.md);
 //  3. each traced with the AO trace (passes/ldm_trace.glsl, the same variants), reflected
 //     (quaternion rotation of its directional differential), transferred to the hit x2,
 //     depth-tested against the camera's G-buffer, footprint-culled and appended.
