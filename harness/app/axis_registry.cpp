@@ -1,6 +1,7 @@
 #include "harness/app/axis_registry.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
@@ -17,10 +18,21 @@ std::string joined(const std::vector<std::string>& names, const char* separator)
   return out;
 }
 
+// Integers exactly (a pool of 2147483647 nodes, not 2.14748e+09); reals in %g.
 std::string number(double x) {
   char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%g", x);
+  if (x == static_cast<double>(static_cast<long long>(x)) && std::abs(x) < 1e15)
+    std::snprintf(buffer, sizeof buffer, "%lld", static_cast<long long>(x));
+  else
+    std::snprintf(buffer, sizeof buffer, "%g", x);
   return buffer;
+}
+
+// A Markdown table cell: a literal '|' (as in "sum V|cos|") would end the cell.
+std::string cell(const std::string& text) {
+  std::string out;
+  for (char c : text) out += c == '|' ? std::string("\\|") : std::string(1, c);
+  return out;
 }
 
 std::string domain(const AxisSpec& a) {
@@ -74,8 +86,8 @@ std::string axes_markdown() {
                                    ? (a.flags.empty() ? "sweep files" : "`" + joined({a.flags}, "") + "`")
                                    : "`--param " + a.qualified() + "=`";
     out << "| `" << a.qualified() << "` | " << set_by << " | " << axis_kind_name(a.kind) << " | "
-        << domain(a) << " | " << default_text(a) << " | " << a.unit << " | "
-        << (a.identity ? "yes" : "no (a note)") << " | " << a.description
+        << cell(domain(a)) << " | " << cell(default_text(a)) << " | " << cell(a.unit) << " | "
+        << (a.identity ? "yes" : "no (a note)") << " | " << cell(a.description)
         << (a.ldm_only ? " (LDM passes only)" : "") << " |\n";
   }
   return out.str();
