@@ -3,9 +3,11 @@
 
   scripts/timing_calibration.py [--trials N] [--out DIR] [--ldmbench PATH] [--only KIND,...]
 
-Each kind runs N trials of one experiment on the calibration sweep (8 configurations:
-the Cornell box and the knot, four structures, N = 16, R_LDM = 64, 96x96 images, no
-reference) and counts what `ldmbench compare` (or `ldmbench interleave`) concludes:
+Each kind runs N trials of one experiment on the calibration sweep (the Cornell box and the
+knot, each with the structures of --structures (default psppsll,habuffer: a list and the
+hash table, 4 configurations; the 4-structure sweep of 8 configurations doubles the time),
+N = 16, R_LDM = 64, 96x96 images, no reference) and counts what `ldmbench compare` (or
+`ldmbench interleave`) concludes:
 
   aa-single       two runs of the same command at `ldmbench run`'s defaults (one repetition),
                   compared: a trial is false when any configuration or sub-pass is FAST/SLOW.
@@ -25,7 +27,8 @@ Every trial's comparison JSON is kept under DIR/<kind>/<trial>/ (its result.json
 has ended: --resume keeps those and measures the rest); DIR/summary.json and
 DIR/summary.md hold the counts, the detection rate per configuration, the estimated true
 slowdown (median over trials) and the minimum detectable changes. Takes long on 2 cores
-(about 2 hours for 10 trials of everything); --trials 2 shows the shape in minutes.
+(10 trials of aa-single, aa-interleaved and power-interleaved: about 65 minutes at the
+default structures; everything: about 2 hours); --trials 2 shows the shape in minutes.
 """
 import argparse
 import json
@@ -39,7 +42,7 @@ import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 CALIBRATION = ["--scene", "cornell," + os.path.join(HERE, "..", "scenes", "knot_in_box.json"),
-               "--structure", "psppsll,dfbuffer,habuffer,psppfla", "-R", "64",
+               "--structure", "psppsll,habuffer", "-R", "64",
                "--width", "96", "--height", "96", "--no-reference", "--no-images"]
 REPETITIONS, PAIRS = "5", "8"  # set from the options
 KINDS = ["aa-single", "aa-repetitions", "aa-interleaved", "power-repetitions", "power-interleaved",
@@ -197,6 +200,8 @@ def main():
     parser.add_argument("--resume", action="store_true",
                         help="keep the trials an earlier invocation finished in --out (each "
                         "trial's result.json) and measure only the rest")
+    parser.add_argument("--structures", default="psppsll,habuffer",
+                        help="the calibration sweep's structures (default psppsll,habuffer)")
     parser.add_argument("--pairs", type=int, default=8,
                         help="repetitions (pairs) of the *-interleaved kinds (default 8)")
     args = parser.parse_args()
@@ -212,6 +217,7 @@ def main():
         trials[kind] = int(count)
     global REPETITIONS, PAIRS
     REPETITIONS, PAIRS = str(args.repetitions), str(args.pairs)
+    CALIBRATION[CALIBRATION.index("--structure") + 1] = args.structures
     ldmbench = os.path.abspath(args.ldmbench)
     os.makedirs(args.out, exist_ok=True)
     started = time.time()

@@ -1,0 +1,66 @@
+#!/usr/bin/env python3
+"""Prints the README's main table (its "Main results") from a run's records.csv.
+
+Usage: scripts/readme_table.py docs/measured/readme-main/records.csv
+
+The run is `scripts/readme-main.sh`: the default sweep's AO base point (the Cornell box and
+the atrium, N = 32, R_LDM = 128, 128x128, every structure and the peers) with
+--repetitions 3. Every time is the median with its 95 % interval, printed to the digits the
+interval supports, as the report prints it ("32.1 ±2.4%": the interval's relative
+half-width); memory is exact; MSE and MSSIM are against the Embree reference, whose own
+noise floor (ref_noise_mse) is the last column. Reads the CSV alone, so the table
+regenerates from the committed run.
+"""
+import csv
+import os
+import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "report"))
+from ldmreport.pages import fmt, fmt_time  # noqa: E402  (the report's own formatting)
+
+MIB = float(1 << 20)
+
+
+def number(row, key):
+    try:
+        return float(row.get(key, ""))
+    except ValueError:
+        return None
+
+
+def timed(row, subpass):
+    """The sub-pass's median with its interval, as the report prints it."""
+    return fmt_time(number(row, f"{subpass}_ms_median"), number(row, f"{subpass}_ms_ci_low"),
+                    number(row, f"{subpass}_ms_ci_high"))
+
+
+def method(row):
+    if row["pass"] == "ao":
+        return row["structure"]
+    if row["pass"] == "rtao":
+        return f"rtao (peer, {row.get('rtao_spp') or '1'} spp, CPU)"
+    return f"{row['pass']} (peer)"
+
+
+def main(path):
+    with open(path, newline="") as f:
+        rows = [r for r in csv.DictReader(f)]
+    print("| scene | method | status | build ms | query ms | frame ms | MiB allocated | MiB used "
+          "| MSE | MSSIM | reference noise MSE |")
+    print("| --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
+    for r in rows:
+        ldm = r["pass"] == "ao"
+        # The query is the AO pass's own time (frame minus build) for an LDM structure; a
+        # peer has no build, and its whole frame is its query.
+        query = timed(r, "pass") if ldm else timed(r, "frame")
+        allocated, used = number(r, "bytes_allocated"), number(r, "bytes_used")
+        print(f"| {r['scene']} | {method(r)} | {r['status']} | {timed(r, 'build') if ldm else '–'} | {query} "
+              f"| {timed(r, 'frame')} | {fmt(None if allocated is None else allocated / MIB)} "
+              f"| {fmt(None if used is None else used / MIB)} | {fmt(number(r, 'mse'))} "
+              f"| {fmt(number(r, 'mssim'))} | {fmt(number(r, 'ref_noise_mse'), 2)} |")
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 2:
+        sys.exit(__doc__.strip().split("\n\n")[1])
+    main(sys.argv[1])
