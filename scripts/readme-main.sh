@@ -12,5 +12,5 @@ ldmbench="${LDMBENCH:-build/ldmbench}"
 status=0
 "$ldmbench" run --scene cornell,atrium --pass ao,hbao,rtao --structure all -N 32 -R 128 \
   --image-size 128x128 --repetitions 3 --no-images --out "$out" || { s=$?; [[ $s -eq 3 ]] || exit $s; status=3; }
-python3 scripts/readme_table.py "$out/records.csv"
+"${PYTHON:-python3}" scripts/readme_table.py "$out/records.csv"  # needs numpy (scripts/setup.sh)
 exit $status
