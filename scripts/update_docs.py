@@ -67,27 +67,22 @@ def main():
         sys.exit("no %s: build first (cmake --build %s)" % (binaries["ldmbench"], args.build))
 
     stale = []
-    # The records table: `ldmbench columns --markdown`, exactly (columns_test.cpp).
-    with open(RECORDS, encoding="utf-8") as f:
-        records = f.read()
-    table = output_of(binaries["ldmbench"], "ldmbench", ["columns", "--markdown"])
-    if not COLUMNS.search(records):
-        sys.exit("%s: no columns:begin/columns:end markers" % RECORDS)
-    updated = COLUMNS.sub(lambda m: m.group(1) + table + m.group(3), records)
-    if updated != records:
-        stale.append(os.path.relpath(RECORDS, ROOT) + ": the records table")
-        records = updated
 
-    # The axes table: `ldmbench axes --markdown`, exactly (docs_test.cpp).
-    with open(AXES, encoding="utf-8") as f:
-        axes = f.read()
-    axes_table = output_of(binaries["ldmbench"], "ldmbench", ["axes", "--markdown"])
-    if not AXES_TABLE.search(axes):
-        sys.exit("%s: no axes:begin/axes:end markers" % AXES)
-    updated = AXES_TABLE.sub(lambda m: m.group(1) + axes_table + m.group(3), axes)
-    if updated != axes:
-        stale.append(os.path.relpath(AXES, ROOT) + ": the axes table")
-        axes = updated
+    def table(path, pattern, arguments, what):
+        """The file with its marked table replaced by `ldmbench ARGUMENTS`' output, exactly
+        (columns_test.cpp, docs_test.cpp check the same)."""
+        with open(path, encoding="utf-8") as f:
+            text = f.read()
+        if not pattern.search(text):
+            sys.exit("%s: no begin/end markers for %s" % (path, what))
+        output = output_of(binaries["ldmbench"], "ldmbench", arguments)
+        updated = pattern.sub(lambda m: m.group(1) + output + m.group(3), text)
+        if updated != text:
+            stale.append(os.path.relpath(path, ROOT) + ": " + what)
+        return updated
+
+    records = table(RECORDS, COLUMNS, ["columns", "--markdown"], "the records table")
+    axes = table(AXES, AXES_TABLE, ["axes", "--markdown"], "the axes table")
 
     # The command reference: each block is its command's output.
     with open(CLI, encoding="utf-8") as f:

@@ -1,8 +1,6 @@
 #include "harness/app/axis_registry.h"
 
 #include <algorithm>
-#include <cmath>
-#include <cstdio>
 #include <sstream>
 
 #include "harness/app/harness_axes.h"
@@ -18,16 +16,6 @@ std::string joined(const std::vector<std::string>& names, const char* separator)
   return out;
 }
 
-// Integers exactly (a pool of 2147483647 nodes, not 2.14748e+09); reals in %g.
-std::string number(double x) {
-  char buffer[32];
-  if (x == static_cast<double>(static_cast<long long>(x)) && std::abs(x) < 1e15)
-    std::snprintf(buffer, sizeof buffer, "%lld", static_cast<long long>(x));
-  else
-    std::snprintf(buffer, sizeof buffer, "%g", x);
-  return buffer;
-}
-
 // A Markdown table cell: a literal '|' (as in "sum V|cos|") would end the cell.
 std::string cell(const std::string& text) {
   std::string out;
@@ -39,8 +27,8 @@ std::string domain(const AxisSpec& a) {
   switch (a.kind) {
     case AxisKind::Choice: return joined(axis_choices(a), ", ");
     case AxisKind::UInt:
-    case AxisKind::Real: return "[" + number(a.min) + ", " + number(a.max) + "]";
-    case AxisKind::ImageSize: return "WxH, sides in [" + number(a.min) + ", " + number(a.max) + "]";
+    case AxisKind::Real: return axis_range_text(a);
+    case AxisKind::ImageSize: return "WxH, sides in " + axis_range_text(a);
     case AxisKind::Bool: return "true, false";
     default: return "text";
   }
@@ -83,7 +71,7 @@ std::string axes_markdown() {
       << "| --- | --- | --- | --- | --- | --- | --- | --- |\n";
   for (const AxisSpec& a : registered_axes()) {
     const std::string set_by = a.owner == "harness"
-                                   ? (a.flags.empty() ? "sweep files" : "`" + joined({a.flags}, "") + "`")
+                                   ? (a.flags.empty() ? "sweep files" : "`" + a.flags + "`")
                                    : "`--param " + a.qualified() + "=`";
     out << "| `" << a.qualified() << "` | " << set_by << " | " << axis_kind_name(a.kind) << " | "
         << cell(domain(a)) << " | " << cell(default_text(a)) << " | " << cell(a.unit) << " | "

@@ -16,18 +16,6 @@
 namespace ldm {
 namespace {
 
-// The shortest %g text that reads back as the same float (or double).
-std::string shortest(double value, bool as_float) {
-  char buffer[48];
-  for (int digits = 1; digits <= 17; ++digits) {
-    std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
-    const double back = std::strtod(buffer, nullptr);
-    if (as_float ? float(back) == float(value) : back == value) return buffer;
-  }
-  std::snprintf(buffer, sizeof buffer, "%.17g", value);
-  return buffer;
-}
-
 template <typename T, typename F>
 std::vector<std::string> texts(const std::vector<T>& values, F text) {
   std::vector<std::string> out;
@@ -149,7 +137,7 @@ std::vector<HarnessAxis> declare() {
       [](const AxisValues& c, bool) { return "-r" + value_of(c, "r_ldm"); });
 
   add(ao_axis(AoAxis::DMax), 5,
-      [](const RunSettings& s) { return texts(s.d_max, [](float d) { return shortest(d, true); }); },
+      [](const RunSettings& s) { return texts(s.d_max, [](float d) { return shortest_text(d, true); }); },
       [](RunSettings& s, const Values& v) {
         s.d_max = parsed<float>(v, [](const std::string& t) { return std::strtof(t.c_str(), nullptr); });
       },
@@ -165,7 +153,7 @@ std::vector<HarnessAxis> declare() {
 
   add(ao_axis(AoAxis::NormalOffset), 7,
       [](const RunSettings& s) {
-        return s.normal_offset_pixels ? Values{shortest(*s.normal_offset_pixels, true)} : Values{};
+        return s.normal_offset_pixels ? Values{shortest_text(*s.normal_offset_pixels, true)} : Values{};
       },
       [](RunSettings& s, const Values& v) {
         if (v.empty())
@@ -222,7 +210,7 @@ std::vector<HarnessAxis> declare() {
   budget.column = "sizing_budget_mib";
   budget.description = "memory budget of the budget policy per structure (all its buffers)";
   add(budget, 101,
-      [](const RunSettings& s) { return s.sizing_budget_mib > 0 ? Values{shortest(s.sizing_budget_mib, false)} : Values{}; },
+      [](const RunSettings& s) { return s.sizing_budget_mib > 0 ? Values{shortest_text(s.sizing_budget_mib, false)} : Values{}; },
       [](RunSettings& s, const Values& v) { s.sizing_budget_mib = v.empty() ? 0.0 : std::strtod(v.front().c_str(), nullptr); },
       [](const AxisValues& c, bool) -> std::string {
         if (value_of(c, "sizing") != "budget") return "";

@@ -17,22 +17,6 @@ std::string joined(const std::vector<std::string>& names) {
   return out;
 }
 
-// The shortest %g text that reads back as `value` (as a float when `as_float`).
-std::string shortest_text(double value, bool as_float) {
-  char buffer[48];
-  for (int digits = 1; digits <= 17; ++digits) {
-    std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
-    const double back = std::strtod(buffer, nullptr);
-    if (as_float ? float(back) == float(value) : back == value) return buffer;
-  }
-  std::snprintf(buffer, sizeof buffer, "%.17g", value);
-  return buffer;
-}
-
-std::string range_text(const AxisSpec& spec) {
-  return "[" + shortest_text(spec.min, false) + ", " + shortest_text(spec.max, false) + "]";
-}
-
 [[noreturn]] void refuse(const std::string& where, const std::string& what) {
   throw UserError(where + ": " + what);
 }
@@ -46,6 +30,27 @@ bool parse_unsigned(const std::string& text, uint64_t& value) {
 }
 
 }  // namespace
+
+std::string shortest_text(double value, bool as_float) {
+  char buffer[48];
+  for (int digits = 1; digits <= 17; ++digits) {
+    std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
+    const double back = std::strtod(buffer, nullptr);
+    if (as_float ? float(back) == float(value) : back == value) return buffer;
+  }
+  std::snprintf(buffer, sizeof buffer, "%.17g", value);
+  return buffer;
+}
+
+std::string axis_range_text(const AxisSpec& spec) {
+  // Integral bounds in full ("100000", not "1e+05"); canonical values keep shortest_text,
+  // since ids and sweep keys are made of them.
+  const auto bound = [](double x) {
+    if (x == std::floor(x) && std::abs(x) < 1e16) return std::to_string(static_cast<long long>(x));
+    return shortest_text(x, double(float(x)) == x);  // FLT_MAX as 3.4028235e+38
+  };
+  return "[" + bound(spec.min) + ", " + bound(spec.max) + "]";
+}
 
 const char* axis_kind_name(AxisKind kind) {
   switch (kind) {
@@ -82,7 +87,7 @@ std::string canonical_axis_value(const AxisSpec& spec, const std::string& text,
       if (!parse_unsigned(text, value))
         refuse(where, name + " '" + text + "' is not a non-negative integer");
       if (double(value) < spec.min || double(value) > spec.max)
-        refuse(where, name + " " + text + " is out of range " + range_text(spec));
+        refuse(where, name + " " + text + " is out of range " + axis_range_text(spec));
       return std::to_string(value);
     }
     case AxisKind::Real: {
@@ -97,7 +102,7 @@ std::string canonical_axis_value(const AxisSpec& spec, const std::string& text,
       if (!std::isfinite(used) || used < spec.min || used > spec.max)
         refuse(where, name + " " + text + " reads as " + shortest_text(used, false) +
                           (spec.real_is_double ? "" : " in a 32-bit float") + "; it must lie in " +
-                          range_text(spec));
+                          axis_range_text(spec));
       return shortest_text(used, !spec.real_is_double);
     }
     case AxisKind::Bool: {
@@ -114,7 +119,7 @@ std::string canonical_axis_value(const AxisSpec& spec, const std::string& text,
       if (!ok) refuse(where, "expected an image size WIDTHxHEIGHT (e.g. 64x48) or one integer, got '" + text + "'");
       for (uint64_t side : {w, h})
         if (double(side) < spec.min || double(side) > spec.max)
-          refuse(where, "image side " + std::to_string(side) + " is out of range " + range_text(spec));
+          refuse(where, "image side " + std::to_string(side) + " is out of range " + axis_range_text(spec));
       return std::to_string(w) + "x" + std::to_string(h);
     }
   }

@@ -86,6 +86,13 @@ std::string axis_text_of_json(const nlohmann::json& value, const std::string& wh
 // The canonical text as the JSON a sweep file would hold (numbers as numbers).
 nlohmann::json axis_json_of_text(const AxisSpec& spec, const std::string& canonical);
 
+// The shortest %g text that reads back as `value` (as a float when `as_float`): how
+// canonical values, ranges and messages print numbers (2147483647 exactly, 0.1 not 0.100000001).
+std::string shortest_text(double value, bool as_float);
+// "[min, max]" of a UInt, Real or ImageSize axis: integral bounds in full, others in
+// shortest_text.
+std::string axis_range_text(const AxisSpec& spec);
+
 // The declaration as JSON (`ldmbench axes --json`).
 nlohmann::json axis_spec_json(const AxisSpec& spec);
 
