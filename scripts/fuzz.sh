@@ -12,9 +12,9 @@ runs="${LDM_FUZZ_RUNS:-100000}"
 seed="${LDM_FUZZ_SEED:-1}"
 cmake -S . -B build-fuzz -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DLDMBENCH_BUILD_TESTS=OFF -DLDMBENCH_BUILD_BENCHMARKS=OFF -DLDMBENCH_FUZZ=ON > /dev/null
-cmake --build build-fuzz -j "$(nproc)" --target fuzz_scene_json fuzz_obj fuzz_import fuzz_sweep
+cmake --build build-fuzz -j "$(nproc)" --target fuzz_scene_json fuzz_obj fuzz_import fuzz_sweep fuzz_records
 status=0
-for target in scene_json obj import sweep; do
+for target in scene_json obj import sweep records; do
   corpus="build-fuzz/corpus/$target" artifacts="build-fuzz/artifacts/$target/"
   mkdir -p "$corpus" "$artifacts"
   echo "fuzz: $target for ${seconds}s"

@@ -138,7 +138,7 @@ Record measure_configuration(const Scene& scene, const Configuration& config,
   // is identical (later repetitions' lists are checked against the first's).
   const bool whole = repetition.index == 0;
 
-  const OutputFolder folder(paths.out_dir, paths.images_dir);
+  const OutputFolder folder(paths.out_dir, paths.images_dir, paths.written);
   const std::string stem = config.id() + "-" + m.images.front().name;
   const Image& image = m.images.front().image;
   if (whole && settings.write_images) {
@@ -162,7 +162,7 @@ Record measure_configuration(const Scene& scene, const Configuration& config,
   // Last, so that a configuration abandoned on the way (an interrupted reference) leaves no
   // samples behind, as it leaves no record.
   const OutputFolder samples(paths.out_dir,
-                             (std::filesystem::path(paths.out_dir) / "samples").string());
+                             (std::filesystem::path(paths.out_dir) / "samples").string(), paths.written);
   r.set("frame_samples_csv",
         samples.write_text(samples_file_name(config.id(), repetition), frame_samples_csv(m, repetition.index)));
   return r;

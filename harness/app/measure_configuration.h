@@ -15,6 +15,8 @@ namespace ldm {
 struct MeasurementPaths {
   std::string out_dir;     // where records.csv lives; image paths are relative to it
   std::string images_dir;  // absolute or relative to the working directory
+  // Collects every file the configuration writes (images, samples), when given.
+  std::vector<std::string>* written = nullptr;
 };
 
 // The measurement a configuration of a sweep asks for.

@@ -1,12 +1,17 @@
 #include "harness/app/run_command.h"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <ctime>
 #include <filesystem>
 #include <iomanip>
+#include <iostream>
 #include <map>
 #include <memory>
+#include <optional>
 #include <ostream>
 #include <set>
 #include <sstream>
@@ -21,6 +26,7 @@
 #include "harness/records/output_folder.h"
 #include "harness/records/record.h"
 #include "harness/records/run_folder.h"
+#include "harness/records/run_lock.h"
 #include "harness/reference/reference_cache.h"
 #include "harness/scene/scene_loader.h"
 #include "harness/util/error.h"
@@ -113,6 +119,11 @@ void check_cache_dir(const std::string& cache_dir) {
       if (!std::filesystem::is_directory(p, error))
         throw UserError("--cache-dir: '" + p.string() + "' is not a folder" +
                         (p == dir ? "" : " (in the cache path '" + dir.string() + "')"));
+      // Found now, not when the first reference is stored (an I/O error mid-run).
+      if (::access(p.c_str(), W_OK | X_OK) != 0)
+        throw UserError("--cache-dir: '" + p.string() + "' is not writable" +
+                        (p == dir ? "" : " (in the cache path '" + dir.string() + "')") + ": " +
+                        errno_text(errno));
       return;
     }
     if (p == p.parent_path()) break;
@@ -135,7 +146,10 @@ int run_benchmark(const RunSettings& settings, const std::string& command_line,
                   const std::vector<std::string>& arguments, std::ostream& log) {
   validate_axes(settings);
   std::map<std::string, Scene> scenes;
-  for (const auto& spec : settings.scenes) scenes.emplace(spec, load_scene(spec));
+  for (const auto& spec : settings.scenes) {
+    const Scene& scene = scenes.emplace(spec, load_scene(spec)).first->second;
+    for (const auto& warning : scene.warnings) std::cerr << "ldmbench: warning: " << warning << "\n";
+  }
   if (settings.reference.enabled) check_cache_dir(settings.reference.cache_dir);
 
   ConfigurationRun run;
@@ -223,6 +237,14 @@ std::map<std::string, std::vector<Record>> repetitions_in_progress(
     }
   }
   return out;
+}
+
+// Removes files a configuration wrote (it failed or was abandoned): no orphan stays.
+void remove_files(const std::vector<std::string>& paths) {
+  for (const std::string& path : paths) {
+    std::error_code error;
+    std::filesystem::remove(path, error);
+  }
 }
 
 // Removes the samples files of repetitions that are combined into a record (or abandoned
@@ -343,7 +365,11 @@ int drive_repetition_processes(const ConfigurationRun& job, const std::string& c
       const FolderProgress progress = folder_progress(read_journal(journal_path), job.redo_failed, out_dir);
       if (progress.finished.count(id)) continue;
       const auto partial = progress.partial.find(id);
-      if (partial != progress.partial.end() && partial->second.size() > round) continue;
+      // Every repetition journaled but not combined (a run stopped in between): the last
+      // round's child combines them (run_configurations does so before measuring).
+      const bool uncombined = round + 1 == repetitions && partial != progress.partial.end() &&
+                              partial->second.size() >= repetitions;
+      if (partial != progress.partial.end() && partial->second.size() > round && !uncombined) continue;
       if ((interrupted_by = stop_signal())) break;
       std::vector<std::string> argv = child;
       argv.push_back("--step");
@@ -354,7 +380,8 @@ int drive_repetition_processes(const ConfigurationRun& job, const std::string& c
       if (result.status > kExitInterruptedBase) interrupted_by = result.status - kExitInterruptedBase;
       else if (result.status != kExitOk && result.status != kExitSomeFailed) {
         log << "ldmbench: the child measuring " << id << " exited " << result.status << "\n";
-        return result.status == kExitUsage ? kExitUsage : kExitFailure;
+        if (result.status == kExitUsage || result.status == kExitIoError) return result.status;
+        return kExitFailure;
       }
     }
   }
@@ -376,6 +403,16 @@ std::map<std::string, size_t> recorded_repetitions(const std::string& out_dir, s
 
 int run_configurations(const ConfigurationRun& job, const std::string& command_line, std::ostream& log) {
   const std::string out_dir = default_out_dir(job.out_dir);
+  // Two configurations of one id would be measured twice and journaled as one (-N 4,4).
+  std::map<std::string, size_t> seen;
+  for (size_t k = 0; k < job.configurations.size(); ++k) {
+    const auto [it, fresh] = seen.emplace(job.configurations[k].config.id(), k);
+    if (!fresh)
+      throw UserError("configurations " + std::to_string(it->second + 1) + " and " + std::to_string(k + 1) +
+                      " are the same, " + it->first + " (a value given twice?)");
+  }
+  // One writer per folder, from before it is read to the end (records/run_lock.h).
+  const RunFolderLock lock(out_dir, command_line, log);
   if (job.isolation == RepetitionIsolation::Process && job.step.empty())
     return drive_repetition_processes(job, command_line, out_dir, log);
   const RunFolderPlan plan = plan_run_folder(out_dir, job.sweep_key, job.overwrite);
@@ -438,21 +475,138 @@ int run_configurations(const ConfigurationRun& job, const std::string& command_l
   SweepProgress progress(to_measure, SweepProgress::stderr_if_terminal());
   int interrupted_by = 0;
 
+  // Tables that cannot be brought in line with the journal are removed (unlinking frees
+  // space, so a full disk allows it): a folder with its journal and no tables is
+  // consistent, and the next run into it (or `ldmbench merge`) writes them from the journal.
+  auto drop_tables = [&] {
+    std::error_code ignored;
+    std::filesystem::remove(csv_path, ignored);
+    std::filesystem::remove(json_path, ignored);
+  };
+  // Whether the entry whose append (or the tables after it) failed stayed whole in the
+  // journal: the failure could not be taken back (a disk that stays full refuses even the
+  // cut). It then counts, like any journaled entry, and its files stay; the tables follow
+  // at the next run, which derives them from the journal.
+  bool kept_in_journal = false;
+  auto journal_holds = [&](off_t before, off_t length) {
+    off_t now = before;
+    try {
+      now = journal.size();
+    } catch (const IoError&) {
+    }
+    return now == before + length;
+  };
   // The record of a finished configuration: journaled (durable before the tables change),
-  // in the tables (a redone configuration takes its failed record's place).
-  auto finish = [&](Record record) {
-    journal.append_record(record);
+  // in the tables (a redone configuration takes its failed record's place). When the tables
+  // cannot be written (a full disk), the journal is cut back and the tables rewritten as
+  // they were, so that the folder stays in its state before this record; the IoError goes on.
+  auto finish = [&](const Record& record) {
     const std::string id = config_id_of(record);
+    const off_t before = journal.size();
+    const off_t length = off_t(journal_line("record", record).size());
     const auto same = std::find_if(records.begin(), records.end(),
                                    [&](const Record& r) { return config_id_of(r) == id; });
-    if (same != records.end())
-      *same = std::move(record);
-    else
-      records.push_back(std::move(record));
+    const size_t index = size_t(same - records.begin());
+    const bool redone = same != records.end();
+    std::optional<Record> replaced;  // the (failed) record this one takes the place of
+    auto apply = [&] {
+      if (redone) {
+        replaced = records[index];
+        records[index] = record;
+      } else {
+        records.push_back(record);
+      }
+    };
+    bool appended = false;
+    try {
+      journal.append_record(record);  // on failure it takes its line back itself
+      appended = true;
+      apply();
+      run.set("finished", timestamp("%Y-%m-%dT%H:%M:%S%z"));
+      write_records(csv_path, json_path, records, run);
+    } catch (const IoError&) {
+      if (appended) {
+        try {
+          journal.truncate(before);
+        } catch (const IoError&) {
+        }
+      }
+      if (journal_holds(before, length)) {
+        if (!appended) apply();
+        finished.insert(id);
+        kept_in_journal = true;
+        drop_tables();  // they lag the journal now; the next run writes them from it
+        throw;
+      }
+      if (appended) {
+        if (redone)
+          records[index] = *replaced;
+        else
+          records.pop_back();
+        try {
+          write_records(csv_path, json_path, records, run);
+        } catch (const IoError&) {
+          drop_tables();  // the disk refuses even that (one table may be a record ahead)
+        }
+      }
+      throw;
+    }
     finished.insert(id);
-    run.set("finished", timestamp("%Y-%m-%dT%H:%M:%S%z"));
-    write_records(csv_path, json_path, records, run);
   };
+  auto append_repetition = [&](const Record& repetition) {
+    const off_t before = journal.size();
+    const off_t length = off_t(journal_line("repetition", repetition).size());
+    try {
+      journal.append_repetition(repetition);
+    } catch (const IoError&) {
+      kept_in_journal = journal_holds(before, length);
+      throw;
+    }
+  };
+  // An I/O failure (a full disk) stops the run: the configuration in flight leaves nothing
+  // (its files removed, no record; a resume measures it again), what is recorded stays
+  // consistent, and the error says so (exit kExitIoError).
+  auto stop_for_io = [&](const IoError& e, const std::string& id, const std::vector<std::string>& written) {
+    if (!kept_in_journal) remove_files(written);
+    progress.erase();
+    std::string what = std::string(e.what()) + "\n  the run stopped";
+    if (!id.empty())
+      what += kept_in_journal ? "; " + id + " is in the journal, and the tables follow it at the next run"
+                              : "; " + id + " was abandoned (none of its files kept)";
+    throw IoError(what + "; " + std::to_string(records.size()) + " of " + std::to_string(configurations.size()) +
+                      " configurations are recorded in " + out_dir +
+                      "; once the cause is fixed, run the same command again to measure the rest",
+                  e.error_number());
+  };
+
+  // One record of all of a configuration's repetitions, their frames in one samples file.
+  auto combine = [&](const std::string& id, const std::vector<Record>& reps, const RunSettings& settings) {
+    std::vector<std::string> combined_written;
+    try {
+      Record combined = combine_repetitions(reps, out_dir, settings.precision);
+      const OutputFolder samples(out_dir, (std::filesystem::path(out_dir) / "samples").string(),
+                                 &combined_written);
+      combined.set("frame_samples_csv", samples.write_text(samples_file_name(id, {}),
+                                                           combined_samples_csv(reps, out_dir)));
+      log << "    " << id << ": " << reps.size() << " repetitions, " << status_of(combined)
+          << timed_sums(combined) << "\n";
+      finish(std::move(combined));
+    } catch (const IoError& e) {
+      // Its repetitions stay journaled, with their samples: a resume combines them (unless
+      // the combined record stayed in the journal, which replaces them).
+      if (kept_in_journal) remove_repetition_samples(reps, out_dir);
+      stop_for_io(e, id, combined_written);
+    }
+    remove_repetition_samples(reps, out_dir);
+  };
+  // A run stopped (a full disk) after a configuration's last repetition was journaled but
+  // before their combined record was: every repetition is there, so combine them now.
+  for (const auto& [config, settings] : configurations) {
+    const std::string id = config.id();
+    if (finished.count(id) || (stepping && id != job.step)) continue;
+    const auto found = partial.find(id);
+    if (found != partial.end() && found->second.size() >= repetitions) combine(id, found->second, settings);
+  }
 
   // Round robin: repetition 1 of every configuration, then repetition 2, ... Each round
   // after the first runs in a fresh GL context, so that no repetition shares another's.
@@ -492,18 +646,29 @@ int run_configurations(const ConfigurationRun& job, const std::string& command_l
       };
       Record record;
       bool failed = false;
+      std::vector<std::string> written;  // every file this configuration writes
+      const MeasurementPaths config_paths{paths.out_dir, paths.images_dir, &written};
       const auto started = std::chrono::steady_clock::now();
       try {
         record = measure_configuration(job.scenes->at(config.scene), config, settings, device,
-                                       paths, repetition);
+                                       config_paths, repetition);
       } catch (const Interrupted& e) {
         // Abandoned cleanly: no record, no images; a rerun of the same command measures it.
+        remove_files(written);
         if (repetition.index == 0) remove_configuration_images(paths.images_dir, id + "-" + config.pass);
         begin_line();
         log << "abandoned (" << e.what() << ")\n";
         interrupted_by = e.signal();
         break;
+      } catch (const IoError& e) {
+        begin_line();
+        log << "abandoned (I/O error)\n";
+        stop_for_io(e, id, written);
       } catch (const std::exception& e) {
+        // A failed configuration keeps no file: its record says why, and names none (the
+        // images of its first repetition neither, when a later one fails).
+        remove_files(written);
+        remove_configuration_images(paths.images_dir, id + "-" + config.pass);
         record = Record();
         describe_configuration(record, config, settings, device);
         record.set("status", "failed");
@@ -522,30 +687,33 @@ int run_configurations(const ConfigurationRun& job, const std::string& command_l
       if (status != "ok") log << "  (" << std::get<std::string>(*record.get("status_detail")) << ")";
       log << "\n" << std::flush;
       progress.finished_one();
-      if (repetitions == 1 || failed) {
-        if (failed) {
-          remove_repetition_samples(reps, out_dir);
-          progress.skip(repetitions - 1 - repetition.index);  // its later repetitions
+      try {
+        if (repetitions == 1 || failed) {
+          finish(record);
+          if (failed) {
+            remove_repetition_samples(reps, out_dir);
+            progress.skip(repetitions - 1 - repetition.index);  // its later repetitions
+          }
+          continue;
         }
-        finish(std::move(record));
-        continue;
+        append_repetition(record);
+      } catch (const IoError& e) {
+        // A failed record that counts replaces its repetitions: their samples go.
+        if (failed && kept_in_journal) remove_repetition_samples(reps, out_dir);
+        stop_for_io(e, id, written);
       }
-      journal.append_repetition(record);
       reps.push_back(std::move(record));
       if (reps.size() < repetitions) continue;
-      // The last repetition: one record of all of them, their frames in one samples file.
-      Record combined = combine_repetitions(reps, out_dir, settings.precision);
-      const OutputFolder samples(out_dir, (std::filesystem::path(out_dir) / "samples").string());
-      combined.set("frame_samples_csv", samples.write_text(samples_file_name(id, {}),
-                                                           combined_samples_csv(reps, out_dir)));
-      log << "    " << id << ": " << repetitions << " repetitions, " << status_of(combined)
-          << timed_sums(combined) << "\n";
-      finish(std::move(combined));
-      remove_repetition_samples(reps, out_dir);
+      combine(id, reps, settings);  // the last repetition
     }
   }
   progress.erase();
-  if (records.empty()) write_records(csv_path, json_path, records, run);
+  try {
+    if (records.empty()) write_records(csv_path, json_path, records, run);
+  } catch (const IoError& e) {
+    drop_tables();
+    stop_for_io(e, "", {});
+  }
   if (stepping) return interrupted_by ? kExitInterruptedBase + interrupted_by : kExitOk;
   return finish_run(records, configurations.size(), interrupted_by, out_dir, job.report_hint, log);
 }

@@ -12,6 +12,7 @@
 #include "harness/scene/generators.h"
 #include "harness/scene/scene_loader.h"
 #include "harness/util/error.h"
+#include "harness/util/json_input.h"
 #include "harness/util/hash.h"
 #include "ldm_impls/ldm_structure.h"
 
@@ -138,14 +139,12 @@ SweepVocabulary current_sweep_vocabulary() {
 
 SweepPlan plan_sweep(const std::string& path, const RunSettings& base) {
   const std::string file = fs::path(path).filename().string();
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw UserError(path + ": cannot read the sweep file");
-  std::stringstream text;
-  text << in.rdbuf();
+  // A folder, a missing file or one beyond the input limit is refused before reading it.
+  const std::string text = read_input_file(path, "sweep file");
 
   SweepPlan plan;
   plan.path = path;
-  plan.spec = parse_sweep_spec(text.str(), file, current_sweep_vocabulary());
+  plan.spec = parse_sweep_spec(text, file, current_sweep_vocabulary());
   const SweepSpec& spec = plan.spec;
   plan.sweep_hash = hex64([&] {
     Fnv1a h;

@@ -8,6 +8,7 @@
 
 #include "harness/axes/axis.h"
 #include "harness/util/error.h"
+#include "harness/util/json_input.h"
 
 namespace ldm {
 namespace {
@@ -274,12 +275,9 @@ SweepSpec parse_sweep_spec(const std::string& text, const std::string& name,
                            const SweepVocabulary& vocabulary) {
   SweepSpec spec;
   spec.name = name;
-  json root;
-  try {
-    root = json::parse(text);
-  } catch (const json::exception& e) {  // parse_error, and out_of_range for 1e400 (fuzzer finding)
-    throw UserError(name + ": not valid JSON (" + e.what() + ")");
-  }
+  // Syntax errors and numbers beyond double (1e400, a fuzzer finding) with their line, keys
+  // given twice and nesting beyond kMaxJsonDepth refused (util/json_input.h).
+  const json root = parse_json_strictly(text, name);
   require_object(root, name, "(top level)");
   const std::vector<std::string> order = axis_keys(vocabulary);
   for (const auto& [key, value] : root.items()) {

@@ -67,6 +67,18 @@ std::vector<std::string> axis_choices(const AxisSpec& spec) {
   return spec.dynamic_choices ? spec.dynamic_choices() : spec.choices;
 }
 
+double axis_real_used(const AxisSpec& spec, double value) {
+  return spec.real_is_double ? value : double(float(value));
+}
+
+std::string axis_real_problem(const AxisSpec& spec, double value, const std::string& text) {
+  // Checked as the number the run uses: a float on the GPU reads 1e39 as inf, 1e-50 as 0.
+  const double used = axis_real_used(spec, value);
+  if (std::isfinite(used) && used >= spec.min && used <= spec.max) return "";
+  return (text.empty() ? shortest_text(value, false) : text) + " reads as " + shortest_text(used, false) +
+         (spec.real_is_double ? "" : " in a 32-bit float") + "; it must lie in " + axis_range_text(spec);
+}
+
 std::string canonical_axis_value(const AxisSpec& spec, const std::string& text,
                                  const std::string& where) {
   const std::string name = spec.display_name();
@@ -97,13 +109,9 @@ std::string canonical_axis_value(const AxisSpec& spec, const std::string& text,
       const double value = std::strtod(begin, &end);
       if (text.empty() || *end != '\0' || std::isspace(static_cast<unsigned char>(text[0])))
         refuse(where, name + " '" + text + "' is not a number");
-      // Checked as the number the run uses: a float on the GPU reads 1e39 as inf, 1e-50 as 0.
-      const double used = spec.real_is_double ? value : double(float(value));
-      if (!std::isfinite(used) || used < spec.min || used > spec.max)
-        refuse(where, name + " " + text + " reads as " + shortest_text(used, false) +
-                          (spec.real_is_double ? "" : " in a 32-bit float") + "; it must lie in " +
-                          axis_range_text(spec));
-      return shortest_text(used, !spec.real_is_double);
+      if (const std::string problem = axis_real_problem(spec, value, text); !problem.empty())
+        refuse(where, name + " " + problem);
+      return shortest_text(axis_real_used(spec, value), !spec.real_is_double);
     }
     case AxisKind::Bool: {
       if (text == "true" || text == "1" || text == "on" || text == "yes") return "true";

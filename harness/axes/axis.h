@@ -73,6 +73,13 @@ struct AxisSpec {
 // The names a Choice axis accepts (static or dynamic).
 std::vector<std::string> axis_choices(const AxisSpec& spec);
 
+// A Real axis's value as the run uses it (a 32-bit float unless real_is_double), and why it
+// is refused ("" when it is not): "3e38 reads as 3e+38 in a 32-bit float; it must lie in
+// [1e-30, 1e+30]". `text` is the value as given ("" prints `value`). One check for the
+// command line, sweep files and scene files (scene_loader.cpp reads ao.d_max through it).
+double axis_real_used(const AxisSpec& spec, double value);
+std::string axis_real_problem(const AxisSpec& spec, double value, const std::string& text = "");
+
 // Checks `text` against the axis and returns it in canonical form. Throws UserError
 // "<where>: <what is wrong>" naming the axis, its range or its choices.
 std::string canonical_axis_value(const AxisSpec& spec, const std::string& text,

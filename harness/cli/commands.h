@@ -16,6 +16,9 @@ Runner add_run_command(CLI::App& app, const std::string& command_line,
 // CLI11 silently drops the empty item of "-N 4,,8"; its intended value is unknown, so the
 // comma lists of `run` are checked on the raw arguments first. Throws UserError.
 void reject_empty_list_items(int argc, const char* const* argv);
+// `--out ""` (and --scene, --cache-dir) would be taken as "not given" (a folder under
+// results/runs/): an empty path is refused on the raw arguments. Throws UserError.
+void reject_empty_paths(int argc, const char* const* argv);
 Runner add_sweep_command(CLI::App& app, const std::string& command_line,
                          const std::vector<std::string>& arguments);  // ldmbench sweep FILE
 // ldmbench interleave: two builds alternately on one sweep (harness/app/interleaved_session.h)

@@ -14,10 +14,13 @@
 
 #include <iostream>
 #include <map>
+#include <new>
 
 #include "harness/app/run_command.h"
 #include "harness/cli/commands.h"
+#include "harness/records/run_lock.h"
 #include "harness/util/error.h"
+#include "harness/util/json_input.h"
 
 int main(int argc, char** argv) {
   std::string command_line;
@@ -40,6 +43,7 @@ int main(int argc, char** argv) {
   };
   try {
     ldm::cli::reject_empty_list_items(argc, argv);
+    ldm::cli::reject_empty_paths(argc, argv);
   } catch (const ldm::UserError& e) {
     std::cerr << "ldmbench: error: " << e.what() << "\n";
     return ldm::kExitUsage;
@@ -51,15 +55,26 @@ int main(int argc, char** argv) {
     std::cerr << "ldmbench: error: " << e.what() << "\n";
     return ldm::kExitUsage;
   }
+  // Exit statuses: docs/guide/reliability.md (harness/app/run_command.h kExit*).
   try {
     const std::string name = app.get_subcommands().front()->get_name();
     auto runner = runners.find(name);
     return (runner != runners.end() ? runner->second : runners.at("listing"))();
+  } catch (const ldm::FolderInUse& e) {
+    std::cerr << "ldmbench: error: " << e.what() << "\n";
+    return ldm::kExitBusy;
   } catch (const ldm::UserError& e) {
     std::cerr << "ldmbench: error: " << e.what() << "\n";
     return ldm::kExitUsage;
+  } catch (const ldm::IoError& e) {
+    std::cerr << "ldmbench: I/O error: " << e.what() << "\n";
+    return ldm::kExitIoError;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "ldmbench: failed: out of memory (std::bad_alloc); inputs are limited to "
+              << (ldm::max_input_bytes() >> 20) << " MiB (" << ldm::kMaxInputEnv << ")\n";
+    return ldm::kExitFailure;
   } catch (const std::exception& e) {
     std::cerr << "ldmbench: failed: " << e.what() << "\n";
-    return 1;
+    return ldm::kExitFailure;
   }
 }

@@ -16,6 +16,11 @@
 #include "harness/app/run_command.h"
 #include "harness/cli/commands.h"
 #include "harness/compare/run_comparison.h"
+#include "harness/records/columns.h"
+#include "harness/records/journal.h"
+#include "harness/app/record_schema.h"
+#include "harness/records/record_validation.h"
+#include "harness/records/run_folder.h"
 #include "harness/util/error.h"
 #include "harness/util/process.h"
 
@@ -70,12 +75,45 @@ fs::path records_file_of(const std::string& run) {
   return path;
 }
 
+// A records.csv without its journal: its columns against the schema (those of another
+// build's records are not this build's to judge).
+void check_csv_columns(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  const auto rows = parse_csv(text.str());
+  if (rows.size() < 2) return;
+  const auto& header = rows[0];
+  bool this_build = false;
+  for (size_t r = 1; r < rows.size(); ++r) {
+    Record stamp;
+    for (size_t c = 0; c < header.size() && c < rows[r].size(); ++c)
+      if (header[c] == "git_commit" || header[c] == "ldmbench_version") stamp.set(header[c], rows[r][c]);
+    this_build |= !from_other_build(stamp);
+  }
+  if (!this_build) return;
+  for (const std::string& column : header)
+    if (!find_column(column))
+      throw UserError(path.string() + ": column '" + column +
+                      "' is not in the record schema (`ldmbench columns` lists them)");
+}
+
 void check_run(const std::string& run) {
   const fs::path records = records_file_of(run);
-  if (records.extension() == ".csv")
+  // A run folder's tables are derived from its journal: they must be what it gives (a
+  // tampered records.csv, a truncated records.json are refused), and its records must
+  // follow the schema.
+  const fs::path dir = records.parent_path().empty() ? fs::path(".") : records.parent_path();
+  if (check_tables_match_journal(dir.string())) {
+    const std::string journal = (dir / kJournalFile).string();
+    check_records_schema(latest_per_configuration(read_journal(journal).records), record_columns(), journal);
+  }
+  if (records.extension() == ".csv") {
     check_csv_header(records);
-  else
+    check_csv_columns(records);
+  } else {
     load_run_records(records.string());  // throws UserError naming the file
+  }
 }
 
 // --out: a new or empty folder, or an earlier report (replaced); never a run's own folder.

@@ -26,8 +26,14 @@ void parse_structure_param(const std::string& text, RunSettings& settings) {
       equals == colon + 1)
     throw UserError("--param: expected STRUCTURE:KEY=VALUE (e.g. ppfla:k=4), got '" +
                     text + "'");
-  settings.structure_params[text.substr(0, colon)][text.substr(colon + 1, equals - colon - 1)] =
-      text.substr(equals + 1);
+  const std::string owner = text.substr(0, colon), key = text.substr(colon + 1, equals - colon - 1);
+  auto& params = settings.structure_params[owner];
+  // A second --param of one key used to replace the first without a word.
+  if (params.count(key))
+    throw UserError("--param " + owner + ":" + key + " is given twice (" + params[key] + " and " +
+                    text.substr(equals + 1) + "); give several values as one comma list, " + owner +
+                    ":" + key + "=" + params[key] + "," + text.substr(equals + 1));
+  params[key] = text.substr(equals + 1);
 }
 
 std::string joined(const std::vector<std::string>& names) {
@@ -95,6 +101,20 @@ void reject_empty_list_items(int argc, const char* const* argv) {
           value.find(",,") != std::string::npos)
         throw UserError(name + " '" + value +
                         "': empty item in the comma list (a doubled, leading or trailing comma?)");
+    }
+  }
+}
+
+void reject_empty_paths(int argc, const char* const* argv) {
+  static const char* const kPathOptions[] = {"--out", "--cache-dir", "--scene"};
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    for (const char* option : kPathOptions) {
+      const std::string name = option;
+      const bool separate = arg == name && i + 1 < argc;
+      const bool joined = arg.rfind(name + "=", 0) == 0;
+      if ((separate && std::string(argv[i + 1]).empty()) || (joined && arg.size() == name.size() + 1))
+        throw UserError(name + " \"\": an empty path (leave the option out for its default)");
     }
   }
 }

@@ -80,6 +80,8 @@ Runner add_sweep_command(CLI::App& app, const std::string& command_line,
     base.reference.cache_dir = o->cache_dir;
     const SweepPlan plan = plan_sweep(o->file, base);
     for (const auto& warning : plan.spec.warnings) std::cerr << "ldmbench: warning: " << warning << "\n";
+    for (const auto& [spec, scene] : plan.scenes)
+      for (const auto& warning : scene.warnings) std::cerr << "ldmbench: warning: " << warning << "\n";
     if (o->dry_run) {
       list_configurations(plan, shard, std::cout);
       return kExitOk;

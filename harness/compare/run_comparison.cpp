@@ -15,9 +15,12 @@
 #include <boost/math/distributions/students_t.hpp>
 
 #include "harness/compare/samples.h"
+#include "harness/app/record_schema.h"
+#include "harness/records/record_validation.h"
 #include "harness/stats/intervals.h"
 #include "harness/stats/time_tests.h"
 #include "harness/util/error.h"
+#include "harness/util/json_input.h"
 
 namespace ldm {
 namespace {
@@ -263,12 +266,10 @@ RunRecords load_run_records(const std::string& folder_or_file) {
   RunRecords run;
   run.path = path.string();
   run.dir = path.parent_path().string();
-  json root;
-  try {
-    root = json::parse(in);
-  } catch (const json::exception& e) {
-    throw UserError(path.string() + ": not JSON: " + e.what());
-  }
+  std::stringstream bytes;
+  bytes << in.rdbuf();
+  // Strictly (util/json_input.h): a truncated file is an error naming its line, not an empty run.
+  json root = parse_json_strictly(bytes.str(), path.string());
   if (!root.is_object() || !root.contains("records") || !root["records"].is_array())
     throw UserError(path.string() + ": not an ldmbench records.json (no \"records\" array)");
   run.run = root.value("run", json::object());
@@ -276,8 +277,16 @@ RunRecords load_run_records(const std::string& folder_or_file) {
     const json& r = root["records"][i];
     if (!r.is_object() || text(r, "config_id").empty())
       throw UserError(path.string() + ": record " + std::to_string(i) + " has no config_id");
+    // Against the column schema (records/record_validation.h): a renamed or retyped column
+    // is refused, not compared.
+    const Record record = record_from_json(r, path.string() + ": record " + std::to_string(i + 1));
+    if (const std::string problem = schema_problem(record, record_columns(), from_other_build(record)); !problem.empty())
+      throw UserError(path.string() + ": record " + std::to_string(i + 1) + " (" + text(r, "config_id") +
+                      "): " + problem);
     run.records.push_back(r);
   }
+  // A run folder's tables are derived from its journal: they must agree with it.
+  if (path.filename() == "records.json") check_tables_match_journal(run.dir);
   return run;
 }
 

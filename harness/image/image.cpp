@@ -1,8 +1,10 @@
 #include "harness/image/image.h"
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <filesystem>
 
@@ -22,16 +24,29 @@ Image image_from_gl_rows(const std::vector<float>& gl_rows, int width, int heigh
 
 namespace {
 
+// The image encoded in memory (through an IOProxy, where the format's writer takes one) and
+// written as one block through write_file_atomically (util/files.h): every byte reaches the
+// file through one checked write, so a full disk is an IoError with its errno, and no
+// library's buffered writes can fail unseen (a 0-byte PNG once landed under its name).
 void write_with_oiio(const std::string& path, const OIIO::ImageSpec& spec, OIIO::TypeDesc type,
                      const void* data) {
+  auto out = OIIO::ImageOutput::create(path);  // format from the final name's extension
+  if (!out) throw UserError("cannot write image '" + path + "': " + OIIO::geterror());
+  if (out->supports("ioproxy")) {
+    std::vector<unsigned char> bytes;
+    OIIO::Filesystem::IOVecOutput memory(bytes);
+    if (!out->set_ioproxy(&memory) || !out->open(path, spec) || !out->write_image(type, data) || !out->close())
+      throw UserError("cannot encode image '" + path + "': " + out->geterror());
+    write_bytes_atomically(path, bytes.data(), bytes.size());
+    return;
+  }
+  // A format without IOProxy support: written by the library into the temporary.
   write_file_atomically(path, [&](const std::string& temporary) {
-    auto out = OIIO::ImageOutput::create(path);  // format from the final name's extension
-    if (!out) throw UserError("cannot write image '" + path + "': " + OIIO::geterror());
-    if (!out->open(temporary, spec))
-      throw UserError("cannot open '" + temporary + "' for writing: " + out->geterror());
-    if (!out->write_image(type, data))
-      throw UserError("cannot write image '" + path + "': " + out->geterror());
-    out->close();
+    errno = 0;
+    if (!out->open(temporary, spec) || !out->write_image(type, data) || !out->close() || out->has_error()) {
+      const int error = errno ? errno : EIO;
+      throw IoError("cannot write image '" + path + "': " + out->geterror() + ": " + errno_text(error), error);
+    }
   });
 }
 

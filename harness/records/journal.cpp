@@ -1,6 +1,7 @@
 #include "harness/records/journal.h"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -13,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "harness/util/error.h"
+#include "harness/util/json_input.h"
 
 namespace ldm {
 namespace {
@@ -49,8 +51,6 @@ RecordValue decode_value(const ordered_json& v, const std::string& where) {
   throw UserError(where + ": not a record value");
 }
 
-std::string errno_text() { return std::strerror(errno); }
-
 }  // namespace
 
 std::string journal_line(const char* kind, const Record& fields) {
@@ -63,12 +63,16 @@ std::string journal_line(const char* kind, const Record& fields) {
 }
 
 JournalContents read_journal(const std::string& path) {
-  JournalContents contents;
   std::ifstream in(path, std::ios::binary);
-  if (!in) return contents;
+  if (!in) return {};
   std::stringstream buffer;
   buffer << in.rdbuf();
-  const std::string text = buffer.str();
+  if (in.bad()) throw_io_error("cannot read '" + path + "'", errno);
+  return parse_journal(buffer.str(), path);
+}
+
+JournalContents parse_journal(const std::string& text, const std::string& path) {
+  JournalContents contents;
   size_t begin = 0, line_number = 0;
   while (begin < text.size()) {
     const size_t end = text.find('\n', begin);
@@ -82,9 +86,10 @@ JournalContents read_journal(const std::string& path) {
     begin = end + 1;
     ordered_json entry;
     try {
-      entry = ordered_json::parse(line);
-    } catch (const nlohmann::json::exception& e) {
-      throw UserError(where + ": not a journal line (" + e.what() + ")");
+      // Depth bounded and duplicate keys refused (util/json_input.h): a journal line is flat.
+      entry = parse_ordered_json_strictly(line, where);
+    } catch (const UserError& e) {
+      throw UserError(std::string(e.what()) + " (not a journal line)");
     }
     const bool one = entry.is_object() && entry.size() == 1;
     const std::string kind = one ? entry.begin().key() : "";
@@ -94,6 +99,15 @@ JournalContents read_journal(const std::string& path) {
     Record fields;
     for (const auto& [key, value] : entry.begin().value().items())
       fields.put(key, decode_value(value, where + ": " + key));
+    // Every reader finds a record's configuration by its id (and its outcome by its status).
+    if (kind != "run") {
+      const RecordValue* id = fields.get("config_id");
+      if (!id || !std::holds_alternative<std::string>(*id) || std::get<std::string>(*id).empty())
+        throw UserError(where + ": a " + kind + " without a config_id (text)");
+      const RecordValue* status = fields.get("status");
+      if (status && !std::holds_alternative<std::string>(*status))
+        throw UserError(where + ": " + std::get<std::string>(*id) + ": status is not text");
+    }
     if (kind == "record") contents.record_lines.push_back(line_number);
     if (kind == "repetition") contents.repetition_lines.push_back(line_number);
     (kind == "run" ? contents.runs : kind == "record" ? contents.records : contents.repetitions)
@@ -120,11 +134,15 @@ std::vector<Record> latest_per_configuration(const std::vector<Record>& records)
 RecordJournal::RecordJournal(const std::string& path) : path_(path) {
   const JournalContents existing = read_journal(path);
   fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
-  if (fd_ < 0) throw UserError("cannot open '" + path + "' for appending: " + errno_text());
+  if (fd_ < 0) throw_io_error("cannot open '" + path + "' for appending", errno);
   if (existing.torn_bytes > 0) {
     const off_t size = ::lseek(fd_, 0, SEEK_END);
-    if (size < 0 || ::ftruncate(fd_, size - off_t(existing.torn_bytes)) != 0)
-      throw UserError("cannot cut the torn last line off '" + path + "': " + errno_text());
+    if (size < 0 || ::ftruncate(fd_, size - off_t(existing.torn_bytes)) != 0) {
+      const int error = errno;
+      ::close(fd_);
+      fd_ = -1;
+      throw_io_error("cannot cut the torn last line off '" + path + "'", error);
+    }
   }
 }
 
@@ -132,17 +150,43 @@ RecordJournal::~RecordJournal() {
   if (fd_ >= 0) ::close(fd_);
 }
 
+off_t RecordJournal::size() const {
+  struct stat info {};
+  if (::fstat(fd_, &info) != 0) throw_io_error("cannot examine '" + path_ + "'", errno);
+  return info.st_size;
+}
+
+void RecordJournal::truncate(off_t size) {
+  if (::ftruncate(fd_, size) != 0) throw_io_error("cannot cut '" + path_ + "' back", errno);
+  if (::fsync(fd_) != 0) throw_io_error("cannot flush '" + path_ + "' to disk (fsync)", errno);
+}
+
 void RecordJournal::append(const char* kind, const Record& fields) {
   const std::string line = journal_line(kind, fields);
+  const off_t before = size();
   size_t written = 0;
+  int error = 0;
   while (written < line.size()) {
     const ssize_t n = ::write(fd_, line.data() + written, line.size() - written);
     if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) throw UserError("cannot append to '" + path_ + "': " + errno_text());
+    if (n <= 0) {
+      error = n < 0 ? errno : ENOSPC;
+      break;
+    }
     written += size_t(n);
   }
   // The line is on disk before any table derived from it is replaced.
-  if (::fsync(fd_) != 0) throw UserError("cannot fsync '" + path_ + "': " + errno_text());
+  const bool fsync_failed = !error && ::fsync(fd_) != 0;
+  if (fsync_failed) error = errno;
+  if (!error) return;
+  // Not appended, or not known to be on disk: the line is taken back whole, so that the
+  // journal stays as it was (a torn line would be cut off by the next run anyway).
+  try {
+    truncate(before);
+  } catch (const IoError&) {
+  }
+  throw_io_error(fsync_failed ? "cannot flush '" + path_ + "' to disk (fsync)" : "cannot append to '" + path_ + "'",
+                 error);
 }
 
 }  // namespace ldm

@@ -7,7 +7,11 @@
 //   {"repetition": {...}}  one finished repetition of a configuration measured K >= 2
 //                       times (harness/app/repetitions.h), before its record
 // A kill can at worst leave a torn last line; reading drops it (it was never complete) and
-// opening for append cuts it off, so every complete line survives any number of kills.
+// opening for append cuts it off, so every complete line survives any number of kills. An
+// append that fails (a full disk: write or fsync) takes its partial line back and throws
+// IoError, leaving the journal as it was.
+#include <sys/types.h>
+
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -29,6 +33,8 @@ struct JournalContents {
 // Reads a journal; a missing file is empty. Throws UserError naming the file and line for a
 // complete line that is not a journal entry (the file is not ours, or was edited).
 JournalContents read_journal(const std::string& path);
+// The same from the journal's text; `path` names it in messages (the fuzzer's entry point).
+JournalContents parse_journal(const std::string& text, const std::string& path);
 
 class RecordJournal {
  public:
@@ -41,6 +47,12 @@ class RecordJournal {
   void append_run(const Record& metadata) { append("run", metadata); }
   void append_record(const Record& record) { append("record", record); }
   void append_repetition(const Record& repetition) { append("repetition", repetition); }
+
+  // The journal's length in bytes, and cutting it back to such a length (fsync'd): what a
+  // writer does when what it derives from an appended line (the tables) cannot be written,
+  // so that the folder is left as it was before the line. Both throw IoError.
+  off_t size() const;
+  void truncate(off_t size);
 
  private:
   void append(const char* kind, const Record& fields);

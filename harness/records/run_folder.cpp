@@ -3,7 +3,9 @@
 #include <filesystem>
 #include <regex>
 
+#include "harness/records/run_lock.h"
 #include "harness/util/error.h"
+#include "harness/util/files.h"
 
 namespace ldm {
 namespace {
@@ -38,7 +40,7 @@ RunFolderPlan plan_run_folder(const std::string& out_dir, const std::string& swe
   if (!fs::exists(dir, error)) return plan;
   if (!fs::is_directory(dir, error))
     throw UserError("--out: '" + out_dir + "' exists and is not a folder");
-  if (fs::is_empty(dir, error)) return plan;
+  if (folder_is_empty_but_lock(out_dir)) return plan;  // (the lock of this very command)
   if (overwrite) {
     plan.state = RunFolderState::Replace;
     return plan;
@@ -49,6 +51,9 @@ RunFolderPlan plan_run_folder(const std::string& out_dir, const std::string& swe
                     " of a run to resume; choose another folder, or --overwrite to replace its "
                     "records and images");
   plan.previous = read_journal(journal.string());
+  // A journal that holds nothing (its first append failed: a full disk) is an empty folder's.
+  if (plan.previous.runs.empty() && plan.previous.records.empty() && plan.previous.repetitions.empty())
+    return plan;
   const RecordValue* key = last_sweep_key(plan.previous);
   if (!key || *key != RecordValue(sweep_key))
     throw UserError("--out: '" + out_dir + "' holds the records of a different sweep (another "
@@ -67,7 +72,7 @@ void prepare_run_folder(const std::string& out_dir, const RunFolderPlan& plan) {
     fs::remove_all(dir / "samples", error);
   }
   fs::create_directories(dir / "images", error);
-  if (error) throw UserError("--out: cannot create '" + (dir / "images").string() + "': " + error.message());
+  if (error) throw_file_error("--out: cannot create '" + (dir / "images").string() + "'", error.value());
   remove_temporaries(dir);
   remove_temporaries(dir / "images");
   remove_temporaries(dir / "samples");

@@ -1,12 +1,17 @@
 #include "harness/records/run_merge.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <set>
+#include <sstream>
 
 #include "harness/records/journal.h"
+#include "harness/app/record_schema.h"
+#include "harness/records/record_validation.h"
 #include "harness/records/run_folder.h"
+#include "harness/records/run_lock.h"
 #include "harness/util/error.h"
 
 namespace ldm {
@@ -27,6 +32,16 @@ std::string text(const Record& r, const std::string& key) {
   return s ? *s : "";
 }
 
+// "i/n" of a run entry's shard; throws UserError naming the journal for anything else.
+std::pair<size_t, size_t> shard_of(const std::string& shard, const std::string& journal) {
+  unsigned long index = 0, count = 0;
+  char tail = 0;
+  if (std::sscanf(shard.c_str(), "%lu/%lu%c", &index, &count, &tail) != 2 || count == 0 || index >= count ||
+      shard.find_first_not_of("0123456789/") != std::string::npos)
+    throw UserError("merge: " + journal + ": the run's shard '" + shard + "' is not INDEX/COUNT");
+  return {index, count};
+}
+
 Slice read_slice(const std::string& dir) {
   const fs::path journal = fs::path(dir) / kJournalFile;
   std::error_code error;
@@ -38,8 +53,11 @@ Slice read_slice(const std::string& dir) {
   slice.dir = dir;
   slice.run = contents.runs.back();
   slice.records = latest_per_configuration(contents.records);
+  // Records merged are records trusted: every column one of the schema's (a renamed key
+  // would grow a column of its own in the merged tables).
+  check_records_schema(slice.records, record_columns(), "merge: " + journal.string());
   const std::string shard = text(slice.run, "shard");
-  if (!shard.empty()) slice.shard_index = std::stoul(shard.substr(0, shard.find('/')));
+  if (!shard.empty()) slice.shard_index = shard_of(shard, journal.string()).first;
   return slice;
 }
 
@@ -115,7 +133,7 @@ MergeResult merge_runs(const std::string& out_dir, const std::vector<std::string
     const std::string shard = text(s.run, "shard");
     if (shard.empty()) continue;
     seen.insert(s.shard_index);
-    count = std::max<size_t>(count, std::stoul(shard.substr(shard.find('/') + 1)));
+    count = std::max<size_t>(count, shard_of(shard, s.dir).second);
   }
   for (size_t i = 0; i < count; ++i)
     if (!seen.count(i))
@@ -129,7 +147,10 @@ MergeResult merge_runs(const std::string& out_dir, const std::vector<std::string
                                                   ? text(first.run, "sweep_key")
                                                   : text(first.run, "sweep_hash"));
   std::error_code error;
-  if (fs::is_directory(out_dir, error) && !fs::is_empty(out_dir, error) && !options.overwrite)
+  // One writer per folder (run_lock.h): OUT is locked before it is looked at.
+  std::ostringstream lock_log;
+  const RunFolderLock lock(out_dir, options.command, lock_log);
+  if (fs::is_directory(out_dir, error) && !folder_is_empty_but_lock(out_dir) && !options.overwrite)
     throw UserError("merge: OUT '" + out_dir + "' is not empty; choose another folder, or "
                     "--overwrite to replace its records and images");
   const RunFolderPlan plan = plan_run_folder(out_dir, "", options.overwrite);

@@ -7,6 +7,7 @@
 #include "harness/util/error.h"
 #include "harness/util/files.h"
 #include "harness/util/hash.h"
+#include "harness/util/json_input.h"
 
 namespace ldm {
 namespace {
@@ -44,13 +45,28 @@ std::optional<Image> read_verified(const std::string& path, const nlohmann::json
   return image;
 }
 
+// The checksum of a sidecar's content without its "checksum" field: the metadata (noise,
+// spp, time) is covered like the pixels, so an edited noise_mse is a miss, not a result.
+std::string metadata_checksum(nlohmann::json sidecar) {
+  sidecar.erase("checksum");
+  Fnv1a h;
+  h.add_string(sidecar.dump());  // std::map-ordered keys: the text is canonical
+  return hex64(h.value());
+}
+
 std::optional<ReferenceResult> try_load(const std::string& cache_dir,
                                         const nlohmann::json& inputs) {
   const std::string key = reference_cache_key(inputs);
   const EntryPaths paths = entry_paths(cache_dir, key);
   std::ifstream in(paths.sidecar, std::ios::binary);
   if (!in) return std::nullopt;
-  const nlohmann::json sidecar = nlohmann::json::parse(in);  // throws on corrupt text
+  std::stringstream text;
+  text << in.rdbuf();
+  const nlohmann::json sidecar = parse_json_strictly(text.str(), paths.sidecar);  // throws on corrupt text
+  // An entry of a build before the checksum, or one whose metadata was edited: a miss.
+  if (!sidecar.is_object() || !sidecar.contains("checksum") ||
+      sidecar.at("checksum") != metadata_checksum(sidecar))
+    return std::nullopt;
   if (sidecar.at("key").get<std::string>() != key || sidecar.at("inputs") != inputs)
     return std::nullopt;
   const nlohmann::json& images = sidecar.at("images");
@@ -108,7 +124,7 @@ void store_cached_reference(const std::string& cache_dir, const nlohmann::json& 
   write_exr(paths.image, result.image);
   write_exr(paths.half_a, result.half_a);
   write_exr(paths.half_b, result.half_b);
-  const nlohmann::json sidecar = {
+  nlohmann::json sidecar = {
       {"key", key},
       {"inputs", inputs},
       {"spp_per_half", result.spp_per_half},
@@ -120,6 +136,7 @@ void store_cached_reference(const std::string& cache_dir, const nlohmann::json& 
        {{"reference", image_record(result.image)},
         {"half_a", image_record(result.half_a)},
         {"half_b", image_record(result.half_b)}}}};
+  sidecar["checksum"] = metadata_checksum(sidecar);
   write_text_atomically(paths.sidecar, sidecar.dump(2) + "\n");
 }
 

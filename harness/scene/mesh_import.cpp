@@ -14,7 +14,10 @@
 #include "harness/scene/mesh_builder.h"
 #include "harness/scene/obj_syntax.h"
 #include "harness/util/error.h"
+#include "harness/util/files.h"
+#include "harness/util/hash.h"
 #include "harness/util/isolated_call.h"
+#include "harness/util/json_input.h"
 
 namespace ldm {
 namespace {
@@ -181,17 +184,34 @@ std::string trimmed(const std::string& text) {
 
 // The materials the .mtl files an OBJ names (`mtllib`, beside it) define (`newmtl`), the
 // name being the rest of the line, as Assimp reads it. A missing .mtl defines none.
-std::set<std::string> obj_defined_materials(const std::string& obj_text, const std::string& obj_path) {
+// A .mtl that is not there is a warning on the scene (its materials become the default
+// grey); each .mtl read adds its bytes to the scene's source hash.
+std::set<std::string> obj_defined_materials(const std::string& obj_text, const std::string& obj_path,
+                                            Scene& scene) {
   std::set<std::string> names;
   const std::filesystem::path dir = std::filesystem::path(obj_path).parent_path();
   std::istringstream lines(obj_text);
+  size_t line_number = 0;
   for (std::string line; std::getline(lines, line);) {
+    ++line_number;
     std::istringstream words(line);
     std::string keyword;
     if (!(words >> keyword) || keyword != "mtllib") continue;
     for (std::string file; words >> file;) {
-      std::ifstream mtl(dir / file);
-      for (std::string entry; std::getline(mtl, entry);) {
+      std::ifstream mtl(dir / file, std::ios::binary);
+      if (!mtl) {
+        scene.warnings.push_back(obj_path + ":" + std::to_string(line_number) + ": mtllib '" + file +
+                                 "' cannot be read (" + (dir / file).string() +
+                                 "); the materials it should define are the default grey");
+        continue;
+      }
+      std::stringstream bytes;
+      bytes << mtl.rdbuf();
+      Fnv1a h;
+      h.add(scene.source_hash);
+      h.add_string(bytes.str());
+      scene.source_hash = h.value();
+      for (std::string entry; std::getline(bytes, entry);) {
         const std::string t = trimmed(entry);
         if (t.rfind("newmtl", 0) == 0 && t.size() > 6 && (t[6] == ' ' || t[6] == '\t'))
           names.insert(trimmed(t.substr(7)));
@@ -251,6 +271,11 @@ void append_imported_model(Scene& scene, const ImportedModel& model, const std::
   // Node i's frame in the file's world: parents come first, so one pass suffices.
   std::vector<glm::mat4> world(model.nodes.size());
   uint64_t triangles = 0, degenerate = 0, instanced = 0;
+  // Triangles with an area in the file whose area the scene file's placement rounds away
+  // (a translate far from the origin, where 32-bit floats are farther apart than the
+  // mesh is large), and the largest coordinate placed.
+  uint64_t collapsed_by_placement = 0;
+  float largest_placed = 0.0f;
   const glm::mat4 placement =
       glm::translate(glm::mat4(1.0f), options.translate) * glm::scale(glm::mat4(1.0f), options.scale);
   for (size_t n = 0; n < model.nodes.size(); ++n) {
@@ -289,6 +314,7 @@ void append_imported_model(Scene& scene, const ImportedModel& model, const std::
                           format_point(local));
         const glm::vec3 p = glm::vec3(to_scene * glm::vec4(local, 1.0f));
         const float largest = std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+        largest_placed = std::max(largest_placed, largest);
         if (!(largest <= kMaxSceneCoordinate))  // also catches inf and NaN
           throw UserError(where + ": " + place + ": vertex " + std::to_string(i) + " lies at " +
                           format_point(p) + " after the node transforms and " + context +
@@ -313,6 +339,9 @@ void append_imported_model(Scene& scene, const ImportedModel& model, const std::
         const glm::vec3 face = glm::cross(b - a, c - a);
         if (!(glm::length(face) > 0.0f)) {  // zero area: no surface to rasterise or hit
           ++degenerate;
+          auto unplaced = [&](uint32_t i) { return glm::vec3(world[n] * glm::vec4(mesh.positions[i], 1.0f)); };
+          const glm::vec3 ua = unplaced(idx[0]);
+          if (glm::length(glm::cross(unplaced(idx[1]) - ua, unplaced(idx[2]) - ua)) > 0.0f) ++collapsed_by_placement;
           continue;
         }
         if (++triangles > kMaxImportedTriangles)
@@ -339,9 +368,17 @@ void append_imported_model(Scene& scene, const ImportedModel& model, const std::
         throw UserError(where + ": " + place + ": the mesh's index list is longer than its faces");
     }
   }
+  if (triangles == 0 && collapsed_by_placement > 0) {
+    const float spacing = std::nextafter(largest_placed, INFINITY) - largest_placed;
+    throw UserError(where + ": " + std::to_string(collapsed_by_placement) + " of its " +
+                    std::to_string(degenerate) + " triangles have an area in the file but none after " +
+                    context + "'s scale and translate: they place the mesh at coordinates up to " +
+                    format_float(largest_placed) + ", where 32-bit floats are " + format_float(spacing) +
+                    " apart, more than the mesh's own size; move it nearer the origin or scale it up");
+  }
   if (triangles == 0 && degenerate > 0)
     throw UserError(where + ": all " + std::to_string(degenerate) +
-                    " triangles have zero area (after the node transforms and the scale)");
+                    " triangles have zero area (in the file, after its node transforms)");
   if (triangles == 0)
     throw UserError(where + ": has no triangles (" + std::to_string(model.meshes.size()) +
                     " meshes placed " + std::to_string(instanced) + " times by " +
@@ -363,15 +400,28 @@ void import_mesh_into(Scene& scene, const std::string& path, const MeshImportOpt
     throw UserError(context + ": mesh file '" + path + "': no importer reads '" + ext +
                     "' files (Assimp " + assimp_version() +
                     " reads glTF/GLB, PLY, FBX, Collada, 3DS, STL, OFF, OBJ, IFC and more)");
+  // Refused by its size before anything reads it (a 1 GB OBJ took 3 GB and 17 s to refuse).
+  check_input_size(path, context + ": mesh file");
   MeshImportOptions placed = options;
+  uint64_t bytes_hash = 0;
   if (ext == ".obj") {
     std::ifstream in(path, std::ios::binary);
     std::stringstream text;
     text << in.rdbuf();
     if (!in) throw UserError(context + ": mesh file '" + path + "' cannot be read");
     check_obj_placement(text.str(), path, options, context);
-    placed.defined_materials = obj_defined_materials(text.str(), path);
+    placed.defined_materials = obj_defined_materials(text.str(), path, scene);
+    Fnv1a h;
+    h.add_string(text.str());
+    bytes_hash = h.value();
+  } else {
+    bytes_hash = hash_file(path);
   }
+  // Every byte of every mesh identifies the sweep (scene.h source_hash).
+  Fnv1a h;
+  h.add(scene.source_hash);
+  h.add(bytes_hash);
+  scene.source_hash = h.value();
   const ImportedModel model =
       read_isolated([&] { return read_model_with_assimp(path); }, context + ": '" + path + "'", kImportSeconds);
   append_imported_model(scene, model, path, placed, context);

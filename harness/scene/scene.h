@@ -113,8 +113,14 @@ struct Scene {
   glm::vec3 frame_origin{0.0f};
   // What the scene was made from: a generator's name and parameters, or a scene file's JSON
   // (canonical: formatting and key order do not count) and the bytes of every mesh file it
-  // names, or a mesh file's bytes. Set by the loader (harness/scene/scene_loader.h).
+  // names (and an OBJ's .mtl files), or a mesh file's bytes. Set by the loader
+  // (harness/scene/scene_loader.h).
   uint64_t source_hash = 0;
+  // What the loader could not honour and replaced by a default (an OBJ's mtllib that is not
+  // there: its materials get the default grey), one sentence each naming the file: printed
+  // on stderr by the commands that load the scene and appended to every record's
+  // status_detail. Not part of the hashes (the source bytes are).
+  std::vector<std::string> warnings;
 
   Bounds bounds() const;
   // Centre of the bounds and the largest vertex distance from it: every vertex lies inside.

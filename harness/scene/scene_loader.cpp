@@ -9,11 +9,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include "harness/axes/axis.h"
+#include "harness/passes/ao_parameters.h"
 #include "harness/scene/generators.h"
 #include "harness/scene/mesh_import.h"
 #include "harness/scene/scene_defaults.h"
 #include "harness/util/error.h"
 #include "harness/util/hash.h"
+#include "harness/util/json_input.h"
 
 namespace ldm {
 namespace {
@@ -28,7 +31,8 @@ class Fields {
     if (!object_.is_object()) fail("", "must be a JSON object");
   }
   [[noreturn]] void fail(const std::string& key, const std::string& what) const {
-    throw UserError(file_ + ": " + path_ + (key.empty() ? "" : "/" + key) + " " + what);
+    const std::string at = path_ + (key.empty() ? "" : "/" + key);
+    throw UserError(file_ + ": " + (at.empty() ? "the top level" : at) + " " + what);
   }
   bool has(const std::string& key) const { return object_.contains(key); }
   void only(std::initializer_list<const char*> keys) const {
@@ -120,13 +124,17 @@ void read_light(const Fields& f, SpotLight& light) {
 void read_ao(const Fields& f, AoSettings& ao) {
   f.only({"attenuated", "d_max", "falloff_exponent", "normal_offset"});
   ao.attenuated = f.boolean("attenuated", ao.attenuated);
+  // Checked by the axes' own declarations (harness/passes/ao_parameters.cpp), as --d-max and
+  // --normal-offset are: a value the command line refuses is refused from a file too.
   ao.d_max = f.number("d_max", ao.d_max);
-  if (!(ao.d_max > 0))
-    f.fail("d_max", "must be positive (as a 32-bit float: values below 1.4e-45 round to 0)");
+  if (const std::string problem = axis_real_problem(ao_axis(AoAxis::DMax), ao.d_max); !problem.empty())
+    f.fail("d_max", "must be a positive distance in scene units: " + problem);
   ao.falloff_exponent = f.number("falloff_exponent", ao.falloff_exponent);
   if (!(ao.falloff_exponent > 0)) f.fail("falloff_exponent", "must be positive");
   ao.normal_offset_pixels = f.number("normal_offset", ao.normal_offset_pixels);
-  if (!(ao.normal_offset_pixels >= 0)) f.fail("normal_offset", "must be >= 0");
+  if (const std::string problem = axis_real_problem(ao_axis(AoAxis::NormalOffset), ao.normal_offset_pixels);
+      !problem.empty())
+    f.fail("normal_offset", "must be a number of LDM pixels: " + problem);
 }
 
 // The bytes of a file, hashed (0 when it cannot be read: the importer then says why).
@@ -159,61 +167,10 @@ void append_mesh(Scene& scene, const Fields& f, const std::filesystem::path& bas
   source.add(file_bytes_hash(path.string()));
 }
 
-// The 1-based line and column of a byte offset into `text`.
-std::string line_and_column(const std::string& text, size_t offset) {
-  offset = std::min(offset, text.size());
-  size_t line = 1, column = 1;
-  for (size_t i = 0; i < offset; ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      column = 1;
-    } else {
-      ++column;
-    }
-  }
-  return "line " + std::to_string(line) + ", column " + std::to_string(column);
-}
-
-// nlohmann's DOM builder, remembering where the parser stopped. Every parse failure, including
-// a number out of double range (1e400, reported as out_of_range without a position), then
-// names its line and column.
-class LocatingDomParser : public nlohmann::detail::json_sax_dom_parser<json> {
- public:
-  explicit LocatingDomParser(json& root) : json_sax_dom_parser(root, false) {}
-  template <class Exception>
-  bool parse_error(std::size_t position, const std::string& token, const Exception& e) {
-    error_position = position;
-    error_token = token;
-    error_message = e.what();
-    return false;
-  }
-  std::size_t error_position = 0;
-  std::string error_token, error_message;
-};
-
-json parse_json_with_location(const std::string& text, const std::string& path) {
-  json root;
-  LocatingDomParser sax(root);
-  if (json::sax_parse(text, &sax, nlohmann::detail::input_format_t::json, true, false)) return root;
-  // nlohmann's message reads "[json.exception.parse_error.101] parse error at line 3, column 9:
-  // syntax error ..."; keep its description, and say where from our own count.
-  std::string what = sax.error_message;
-  const auto colon = what.find(": ", what.find(']'));
-  if (colon != std::string::npos && what.find("parse error") != std::string::npos)
-    what = what.substr(colon + 2);
-  else if (const auto bracket = what.find("] "); bracket != std::string::npos)
-    what = what.substr(bracket + 2);
-  // The parser reports the offset just past the offending token.
-  const size_t start = sax.error_position >= sax.error_token.size()
-                           ? sax.error_position - sax.error_token.size()
-                           : 0;
-  throw UserError(path + ": malformed JSON at " + line_and_column(text, start) + ": " + what);
-}
-
 }  // namespace
 
 Scene parse_scene_file(const std::string& text, const std::string& path) {
-  const json root = parse_json_with_location(text, path);
+  const json root = parse_json_strictly(text, path);
   Fields top(root, path, "");
   top.only({"name", "generator", "meshes", "materials", "camera", "light", "ao"});
   if (!top.has("generator") && !top.has("meshes"))
@@ -276,11 +233,14 @@ std::string scene_id_name(const std::string& spec) {
   const std::string stem = std::filesystem::path(spec).stem().string();
   if (find_scene_generator(spec)) return spec;
   if (std::filesystem::path(spec).extension() != ".json") return stem;
-  std::ifstream in(spec, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  // A file that does not parse keeps its stem here; loading it reports what is wrong.
-  const json root = json::parse(text.str(), nullptr, false);
+  // A file that cannot be read or does not parse keeps its stem here; loading it reports
+  // what is wrong.
+  json root;
+  try {
+    root = parse_json_strictly(read_input_file(spec, "--scene: scene file"), spec);
+  } catch (const std::exception&) {
+    return stem;
+  }
   if (root.is_object() && root.contains("name") && root.at("name").is_string() &&
       !root.at("name").get<std::string>().empty())
     return root.at("name").get<std::string>();
@@ -302,6 +262,8 @@ Scene load_scene(const std::string& spec) {
   if (find_scene_generator(spec)) return generate_scene(spec, nlohmann::json(), "--scene " + spec);
   std::error_code error;
   if (std::filesystem::is_regular_file(spec, error) && is_mesh_file(spec)) return load_mesh_scene(spec);
+  if (std::filesystem::is_directory(spec, error))
+    throw UserError("--scene: '" + spec + "' is a folder, not a scene file (.json) or mesh file");
   std::ifstream in(spec, std::ios::binary);
   if (!in) {
     std::string known;
@@ -310,9 +272,16 @@ Scene load_scene(const std::string& spec) {
                     ") nor a readable scene file (.json) or mesh file (glTF/GLB, PLY, FBX, "
                     "Collada, 3DS, STL, OFF, OBJ, IFC, ...)");
   }
-  std::stringstream text;
-  text << in.rdbuf();
-  return parse_scene_file(text.str(), spec);
+  in.close();
+  const std::string text = read_input_file(spec, "--scene: scene file");
+  Scene scene = parse_scene_file(text, spec);
+  // Every byte of the file (and, added by the mesh importer, of its meshes) identifies the
+  // sweep: an edit of any setting is another sweep (run_command.h sweep_key).
+  Fnv1a h;
+  h.add_string(text);
+  h.add(scene.source_hash);
+  scene.source_hash = h.value();
+  return scene;
 }
 
 }  // namespace ldm

@@ -123,7 +123,10 @@ TEST(SweepSpec, ErrorsNameTheFileAndTheJsonPath) {
             std::string::npos);
   EXPECT_NE(error_of(R"({"axes": {"views": 4}, "include": [{}]})").find("s.json: include[0]: names no axis"),
             std::string::npos);
-  EXPECT_NE(error_of("{\"axes\": {\"views\": 4},}").find("s.json: not valid JSON"), std::string::npos);
+  // Syntax errors name their line and column (util/json_input.h), like scene files'.
+  EXPECT_NE(error_of("{\"axes\": {\"views\": 4},}").find("s.json: malformed JSON at line 1, column 23"),
+            std::string::npos)
+      << error_of("{\"axes\": {\"views\": 4},}");
   EXPECT_NE(error_of("[1]").find("s.json: (top level): expected an object"), std::string::npos);
 }
 
