@@ -110,6 +110,8 @@ std::vector<ColumnSpec> IndirectLighting::columns() {
       {"pass", "photons_degenerate", "photons", "indirect: secondary photons with a degenerate differential (grazing transfer, opposite rotation, zero area, non-finite), culled"},
       {"pass", "photons_stored", "photons", "indirect: photons in the photon buffer (splatted)"},
       {"pass", "photons_overflow", "photons", "indirect: photons that did not fit the photon buffer (counted; makes the record lossy)"},
+      {"pass", "photon_rebuilds", "frames", "indirect, previous_frame: traces repeated after the photon buffer overflowed (warm-up included)"},
+      {"pass", "photon_reallocations", "frames", "indirect, census: photon buffer reallocations"},
       {"pass", "m_lists_allocated", "bytes", "indirect: the thesis's M_lists, the structure's storage (= bytes_allocated without the sizing policy's buffers)"},
       {"pass", "m_lists_used", "bytes", "indirect: M_lists used by the last build"},
       {"pass", "m_photons_allocated", "bytes", "indirect: the thesis's M_photons, the photon buffer (80 bytes a photon)"},
