@@ -75,6 +75,25 @@ void add_accuracy(Record& record, const ReferenceResult& reference, const Image&
   // MSE against the converged image is about mse - ref_noise_mse; below a few times the
   // floor, differences between configurations are noise of the reference.
   r.set("mse_over_noise", reference.noise_mse > 0 ? metrics.mse / reference.noise_mse : INFINITY);
+  // The error's systematic part (issue 20): the mean difference over every pixel and
+  // channel, whose square is the part of the MSE no amount of averaging removes, and the
+  // image's mean over the reference's.
+  double difference = 0, reference_sum = 0, image_sum = 0;
+  for (size_t i = 0; i < image.pixels.size(); ++i) {
+    difference += double(image.pixels[i]) - reference.image.pixels[i];
+    reference_sum += reference.image.pixels[i];
+    image_sum += image.pixels[i];
+  }
+  const double bias = image.pixels.empty() ? 0.0 : difference / double(image.pixels.size());
+  r.set("bias", bias);
+  r.set("bias_share", metrics.mse > 0 ? bias * bias / metrics.mse : 0.0);
+  r.set("mean_ratio", reference_sum > 0 ? image_sum / reference_sum : (image_sum > 0 ? INFINITY : 1.0));
+  // The ratio's standard error from the reference's noise alone (the image is deterministic):
+  // the reference's mean has variance noise_mse / n with independent pixels and channels.
+  if (reference_sum > 0 && !image.pixels.empty())
+    r.set("mean_ratio_se", image_sum / reference_sum *
+                               std::sqrt(reference.noise_mse / double(image.pixels.size())) /
+                               (reference_sum / double(image.pixels.size())));
 
   if (images) {
     // One file per reference (a sweep shares it), named by its cache key.

@@ -1,4 +1,6 @@
 // `ldmbench reference`: a path-traced reference image on its own.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -10,6 +12,7 @@
 #include "harness/metrics/image_metrics.h"
 #include "harness/passes/pass.h"
 #include "harness/metrics/image_metrics.h"
+#include "harness/reference/convex_single_bounce.h"
 #include "harness/reference/lighting_reference.h"
 #include "harness/reference/reference_cache.h"
 #include "harness/reference/reference_settings.h"
@@ -53,10 +56,13 @@ Runner add_reference_command(CLI::App& app) {
       ->capture_default_str();
   std::vector<std::string> kinds = {"pass"};
   for (const auto& name : lighting_component_names()) kinds.push_back(name);
+  kinds.push_back("closed_form");
   cmd->add_option("--kind", o->kind,
-                  "What to render: `pass` (the reference --pass is scored against) or a "
+                  "What to render: `pass` (the reference --pass is scored against), a "
                   "lighting component of the scene's spot light (direct, single_bounce, "
-                  "multi_bounce: outgoing radiance, RGB; see docs/reference/accuracy.md)")
+                  "multi_bounce: outgoing radiance, RGB; see docs/reference/accuracy.md), or "
+                  "closed_form: single_bounce without noise by quadrature, for a closed convex "
+                  "mesh around the light (closed-sphere as tessellated; docs/measured/indirect.md)")
       ->check(CLI::IsMember(kinds))
       ->capture_default_str();
   cmd->add_option("--width", o->width, "Image width")->check(CLI::Range(1, 16384))->capture_default_str();
@@ -92,6 +98,38 @@ Runner add_reference_command(CLI::App& app) {
       throw UserError("--d-max and --visibility set AO's reference; --kind " + o->kind +
                       " renders the spot light's, which has neither");
     const Scene scene = load_scene(o->scene);
+    if (o->kind == "closed_form") {
+      const Image image = convex_single_bounce_image(scene, o->width, o->height);
+      write_exr(o->out, image);
+      const auto png = std::filesystem::path(o->out).replace_extension(".png").string();
+      const double exposure = lighting_ssim_exposure(image);
+      write_png(png, image, float(exposure));
+      const ConvexSingleBounce closed(centred_on_bounding_sphere(scene));
+      double sum = 0, sum_sq = 0, lowest = INFINITY, highest = 0;
+      size_t covered = 0;
+      for (size_t i = 0; i < image.pixel_count(); ++i) {
+        const double v = (double(image.pixels[3 * i]) + image.pixels[3 * i + 1] + image.pixels[3 * i + 2]) / 3.0;
+        if (v == 0.0) continue;
+        ++covered;
+        sum += v;
+        sum_sq += v * v;
+        lowest = std::min(lowest, v);
+        highest = std::max(highest, v);
+      }
+      std::cout << "closed form (tessellated geometry, single bounce): " << o->out << " and " << png << "\n"
+                << "covered pixels: " << covered << "\n";
+      if (covered) {
+        const double mean = sum / double(covered);
+        std::cout << "mean " << mean << ", min " << lowest << ", max " << highest << "\n";
+        if (const double ideal = closed.ideal_sphere_radiance(); ideal > 0) {
+          // rms of (v - ideal) / ideal over the covered pixels
+          const double rms = std::sqrt(std::max(0.0, sum_sq / covered - 2 * ideal * mean + ideal * ideal)) / ideal;
+          std::cout << "ideal sphere rho^2 Phi / (4 pi^2 R^2): " << ideal << "; mean / ideal - 1: "
+                    << mean / ideal - 1.0 << "; rms relative deviation: " << rms << "\n";
+        }
+      }
+      return kExitOk;
+    }
     ReferenceResult result;
     double exposure = 1.0;  // of the PNG; radiance has no fixed scale
     if (o->kind == "pass") {

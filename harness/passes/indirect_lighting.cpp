@@ -17,6 +17,7 @@ IndirectLighting::IndirectLighting(StructureParams& params) {
   s.light_resolution = uint32_t(params.get_uint("r_light"));
   if (params.has("photon_capacity")) s.photon_capacity = params.get_uint("photon_capacity");
   if (params.has("photon_budget_mib")) s.photon_budget_mib = params.get_double("photon_budget_mib");
+  s.emission = parse_photon_emission(params.get_choice("emission"));
   // The run's AO axes: the trace variant and normal offset apply to the photons' trace; the
   // AO estimator, d_max and visibility do not apply to light.
   s.trace = parse_ao_trace(params.get_choice("trace"));
@@ -63,6 +64,14 @@ std::vector<AxisSpec> IndirectLighting::parameters() {
   capacity.default_note = "sized by the sizing policy";
   capacity.unit = "photons";
   capacity.description = "fixes the photon buffer, overriding the sizing policy (overflow counted, lossy)";
+  AxisSpec emission;
+  emission.key = emission.column = "emission";
+  emission.kind = AxisKind::Choice;
+  emission.choices = photon_emission_names();
+  emission.default_value = photon_emission_name(PhotonEmission::Thesis);
+  emission.description =
+      "how a primary photon's reflected flux is split among its secondaries: thesis (|cos| 2/N each, "
+      "a quadrature, as AO's Eq. 13) or normalized (|cos| / their sum: exactly rho Phi1)";
   AxisSpec budget = real("photon_budget_mib", 0, 1e6, "", "the structure's budget", "MiB", "",
                          "budget policy: the photon buffer's own budget");
   budget.real_is_double = true;
@@ -73,7 +82,7 @@ std::vector<AxisSpec> IndirectLighting::parameters() {
                "T_foot: photons whose footprint s |D x| exceeds it are culled"),
           real("depth_threshold", 0, largest, "", "3 LDM pixels", "scene units", "",
                "a photon's hit must lie within this distance of the camera G-buffer's depth to splat"),
-          r_light, capacity, budget,
+          emission, r_light, capacity, budget,
           ao_pass_parameter(AoAxis::Trace), ao_pass_parameter(AoAxis::NormalOffset),
           ao_pass_parameter(AoAxis::Estimator), ao_pass_parameter(AoAxis::DMax),
           ao_pass_parameter(AoAxis::Visibility)};
@@ -86,6 +95,7 @@ std::vector<ColumnSpec> IndirectLighting::columns() {
       {"pass", "r_light", "pixels", "indirect: R_light, the side of the light's G-buffer (one primary photon per texel in the cone; --param indirect:r_light=)"},
       {"pass", "splat_scale", "", "indirect: s, the footprint scale (1: a splat covers one light texel's beam; --param indirect:s=)"},
       {"pass", "topological_bias", "", "indirect: a, the kernel's cut off the photon's tangent plane (a = s unless --param indirect:a=)"},
+      {"pass", "emission", "", "indirect: how a primary photon's reflected flux is split among its N secondaries: thesis (|cos| 2/N each, a quadrature) or normalized (|cos| / their sum: exactly rho Phi1; --param indirect:emission=)"},
       {"pass", "footprint_threshold", "scene units", "indirect: T_foot, photons whose s * D x exceeds it (max norm) are culled; inf: off (--param indirect:t_foot=)"},
       {"pass", "depth_threshold", "scene units", "indirect: tolerance of the photons' depth test against the camera G-buffer (default 3 LDM pixels; --param indirect:depth_threshold=)"},
       {"pass", "photons_primary", "photons", "indirect: light texels inside the cone that hit a surface (primary photons)"},
@@ -93,6 +103,9 @@ std::vector<ColumnSpec> IndirectLighting::columns() {
       {"pass", "photons_emitted", "photons", "indirect: secondary photons emitted (of the 2N view directions, those in the hit's hemisphere)"},
       {"pass", "photons_escaped", "photons", "indirect: secondary photons whose LDM trace found no surface"},
       {"pass", "photons_culled_depth", "photons", "indirect: secondary photons whose hit the camera does not see (outside the image, behind the G-buffer's surface by more than depth_threshold, or its unlit side)"},
+      {"pass", "photons_culled_outside", "photons", "indirect: of photons_culled_depth, those whose hit lies outside the image or over background"},
+      {"pass", "photons_culled_hidden", "photons", "indirect: of photons_culled_depth, those whose hit lies behind the surface the camera sees there by more than depth_threshold"},
+      {"pass", "photons_culled_backside", "photons", "indirect: of photons_culled_depth, those arriving on the side of the seen surface the camera does not see"},
       {"pass", "photons_culled_footprint", "photons", "indirect: secondary photons culled by T_foot"},
       {"pass", "photons_degenerate", "photons", "indirect: secondary photons with a degenerate differential (grazing transfer, opposite rotation, zero area, non-finite), culled"},
       {"pass", "photons_stored", "photons", "indirect: photons in the photon buffer (splatted)"},
@@ -103,9 +116,23 @@ std::vector<ColumnSpec> IndirectLighting::columns() {
       {"pass", "m_lists_used", "bytes", "indirect: M_lists used by the last build"},
       {"pass", "m_photons_allocated", "bytes", "indirect: the thesis's M_photons, the photon buffer (80 bytes a photon)"},
       {"pass", "m_photons_used", "bytes", "indirect: M_photons holding the last trace's photons"},
-      {"pass", "flux_primary", "W", "indirect: flux of the primary photons (mean of RGB)"},
-      {"pass", "flux_emitted", "W", "indirect: flux emitted into secondary photons (rho times the primary flux, up to the N-direction quadrature)"},
-      {"pass", "flux_stored", "W", "indirect: flux of the stored photons"},
+      {"pass", "flux_primary", "W", "indirect: flux of the primary photons (mean of RGB; the flux audit, docs/measured/indirect.md#flux-audit)"},
+      {"pass", "flux_reflected", "W", "indirect: rho times the primary flux, over the primary photons that were split (what a perfect split emits)"},
+      {"pass", "flux_emitted", "W", "indirect: flux emitted into secondary photons (flux_reflected exactly with emission normalized, up to the N-direction quadrature with thesis); = escaped + culled_* + degenerate + overflow + stored"},
+      {"pass", "flux_escaped", "W", "indirect: flux of the secondary photons whose LDM trace found no surface"},
+      {"pass", "flux_culled_outside", "W", "indirect: flux of the photons_culled_outside"},
+      {"pass", "flux_culled_hidden", "W", "indirect: flux of the photons_culled_hidden"},
+      {"pass", "flux_culled_backside", "W", "indirect: flux of the photons_culled_backside"},
+      {"pass", "flux_culled_footprint", "W", "indirect: flux of the photons culled by T_foot"},
+      {"pass", "flux_degenerate", "W", "indirect: flux of the secondary photons with a degenerate differential"},
+      {"pass", "flux_overflow", "W", "indirect: flux of the photons that did not fit the photon buffer"},
+      {"pass", "flux_stored", "W", "indirect: flux of the stored photons; = flux_splat_unseen + flux_splat_outside_quad - flux_splat_surface_area + flux_splat_clipped + flux_deposited"},
+      {"pass", "flux_splat_unseen", "W", "indirect: of flux_stored, the splat kernels' mass over no surface the camera sees (off the image, background, hidden; on the photons' tangent planes), with the pixel quadrature's error"},
+      {"pass", "flux_splat_outside_quad", "W", "indirect: of flux_stored, the kernels' mass over seen surface that the splat's quad does not cover (the surface curving away from the photon's plane)"},
+      {"pass", "flux_splat_surface_area", "W", "indirect: flux gained where the surface under a splat has more area than its projection onto the photon's tangent plane"},
+      {"pass", "flux_splat_clipped", "W", "indirect: of flux_stored, the kernels' mass cut by the topological bias a (points off the photon's tangent plane)"},
+      {"pass", "flux_deposited", "W", "indirect: flux the splats deposit on the surfaces the image shows: the integral of pi L / rho over them (an untimed audit splat)"},
+      {"pass", "visible_area", "scene units^2", "indirect: area of the surfaces the image shows (flux_deposited / visible_area is their mean indirect irradiance)"},
   };
   return columns;
 }
@@ -147,6 +174,7 @@ std::vector<std::pair<std::string, RecordValue>> IndirectLighting::describe(
           {"splat_scale", double(s.splat_scale)},
           {"topological_bias", double(s.a())},
           {"footprint_threshold", double(s.footprint_threshold)},
+          {"emission", std::string(photon_emission_name(s.emission))},
           {"trace", ao_trace_name(s.trace)},
           {"normal_offset_pixels", double(s.normal_offset_pixels)}};
 }
@@ -180,6 +208,9 @@ std::vector<std::pair<std::string, RecordValue>> IndirectLighting::results() con
       {"photons_emitted", int64_t(c.emitted)},
       {"photons_escaped", int64_t(c.escaped)},
       {"photons_culled_depth", int64_t(c.culled_depth)},
+      {"photons_culled_outside", int64_t(c.culled_outside)},
+      {"photons_culled_hidden", int64_t(c.culled_hidden())},
+      {"photons_culled_backside", int64_t(c.culled_backside)},
       {"photons_culled_footprint", int64_t(c.culled_footprint)},
       {"photons_degenerate", int64_t(c.degenerate)},
       {"photons_stored", int64_t(c.stored)},
@@ -203,18 +234,31 @@ std::vector<std::pair<std::string, RecordValue>> IndirectLighting::results() con
       out.emplace_back("m_photons_allocated", int64_t(b.allocated));
       out.emplace_back("m_photons_used", int64_t(b.used));
     }
-  // Where the light's flux went (W, mean of the RGB channels): into primary photons, into
-  // the secondaries emitted, and into those stored.
-  double primary = 0, emitted = 0, stored = 0;
-  const auto tally = lighting_->read_tally();
-  for (size_t i = 0; i + 1 < tally.size(); i += 2) {
-    primary += (tally[i].x + tally[i].y + tally[i].z) / 3.0;
-    emitted += (tally[i + 1].x + tally[i + 1].y + tally[i + 1].z) / 3.0;
-  }
+  // The flux audit (W, mean of the RGB channels; docs/measured/indirect.md#flux-audit): where the light's
+  // flux went in the trace (into primary photons, reflected, split into secondaries, and the
+  // secondaries' fates), then the stored photons' flux followed into the image by an untimed
+  // audit splat.
+  const PhotonFluxTally t = lighting_->flux_tally();
+  double stored = 0;
   for (const auto& p : lighting_->read_photons()) stored += (p.flux.x + p.flux.y + p.flux.z) / 3.0;
-  out.emplace_back("flux_primary", primary);
-  out.emplace_back("flux_emitted", emitted);
+  out.emplace_back("flux_primary", t.primary);
+  out.emplace_back("flux_reflected", t.reflected);
+  out.emplace_back("flux_emitted", t.emitted);
+  out.emplace_back("flux_escaped", t.escaped);
+  out.emplace_back("flux_culled_outside", t.culled_outside);
+  out.emplace_back("flux_culled_hidden", t.culled_hidden);
+  out.emplace_back("flux_culled_backside", t.culled_backside);
+  out.emplace_back("flux_culled_footprint", t.culled_footprint);
+  out.emplace_back("flux_degenerate", t.degenerate);
+  out.emplace_back("flux_overflow", t.overflow);
   out.emplace_back("flux_stored", stored);
+  const SplatAudit a = lighting_->audit_splat(*gbuffer_);
+  out.emplace_back("flux_splat_unseen", stored - a.tangent_all);
+  out.emplace_back("flux_splat_outside_quad", a.tangent_all - a.tangent_in_quad);
+  out.emplace_back("flux_splat_surface_area", a.uncut - a.tangent_in_quad);
+  out.emplace_back("flux_splat_clipped", a.uncut - a.deposited);
+  out.emplace_back("flux_deposited", a.deposited);
+  out.emplace_back("visible_area", a.visible_area);
   return out;
 }
 

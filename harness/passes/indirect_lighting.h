@@ -11,6 +11,8 @@
 //   a                 topological bias (>= 0), default a = s
 //   t_foot            footprint threshold, scene units (max norm of s * D x), default inf (off)
 //   depth_threshold   camera depth test tolerance, scene units, default 3 LDM pixels
+//   emission          thesis (secondaries weighted |cos| 2/N, default) or normalized
+//                     (|cos| / their sum: exactly rho Phi1; docs/measured/indirect.md)
 //   r_light           R_light, the light G-buffer's side, default 64
 //   photon_capacity   fixes the photon buffer (photons) under every sizing policy
 //   photon_budget_mib the photon buffer's budget under --sizing budget (default: the run's)

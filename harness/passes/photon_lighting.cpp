@@ -4,6 +4,8 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <stdexcept>
 
 #include "harness/gl/bindings.h"
 #include "harness/scene/camera.h"
@@ -17,7 +19,7 @@ constexpr uint32_t kPhotonsBinding = kPassBinding0;
 constexpr uint32_t kCountersBinding = kPassBinding0 + 1;
 constexpr uint32_t kTallyBinding = kPassBinding0 + 2;
 constexpr uint32_t kDrawBinding = kPassBinding0 + 3;
-constexpr uint32_t kCounterCount = 8;  // PHOTON_COUNTERS
+constexpr uint32_t kCounterCount = 10;  // PHOTON_COUNTERS
 constexpr uint64_t kPhotonBytes = sizeof(StoredPhoton);
 constexpr float kMaxOuterAngleDeg = 89.0f;
 
@@ -67,6 +69,21 @@ void draw_fullscreen(const GlFramebuffer& fb, int width, int height, const GlVer
 
 }  // namespace
 
+const std::vector<std::string>& photon_emission_names() {
+  static const std::vector<std::string> names = {"thesis", "normalized"};
+  return names;
+}
+
+const char* photon_emission_name(PhotonEmission emission) {
+  return emission == PhotonEmission::Normalized ? "normalized" : "thesis";
+}
+
+PhotonEmission parse_photon_emission(const std::string& name) {
+  if (name == "thesis") return PhotonEmission::Thesis;
+  if (name == "normalized") return PhotonEmission::Normalized;
+  throw UserError("indirect pass: unknown emission '" + name + "' (expected thesis or normalized)");
+}
+
 Camera light_camera(const SpotLight& light) {
   if (!(light.outer_angle_deg > 0.0f && light.outer_angle_deg < kMaxOuterAngleDeg))
     throw UserError("indirect pass: the spot light's outer angle must lie in (0, 89) degrees "
@@ -99,9 +116,13 @@ PhotonLighting::PhotonLighting(const LdmStructure& structure, const BuildInputs&
       indirect_(GL_RGBA32F, width, height),
       direct_(GL_RGBA32F, width, height),
       sum_(GL_RGBA32F, width, height),
-      // The trace's other loops: the counters zeroed and flushed, PHOTON_COUNTERS each.
+      // The trace's other loops: the counters zeroed and flushed, PHOTON_COUNTERS each, the
+      // tally's fates zeroed and written, and the normalized emission's sum over the views.
       steps_(uint32_t(in.views.views().size()), trace_walk_sites(settings.trace == AoTrace::Plane),
-             2 * kCounterCount) {
+             2 * kCounterCount + 2 * kTallyEntries +
+                 (settings.emission == PhotonEmission::Normalized
+                      ? uint32_t(in.views.views().size())
+                      : 0u)) {
   if (!in.scene.attributes().materials || !in.scene.attributes().normals)
     throw GpuError("indirect pass: the scene must be uploaded with normals and materials");
   const int r = int(settings.light_resolution);
@@ -114,7 +135,7 @@ PhotonLighting::PhotonLighting(const LdmStructure& structure, const BuildInputs&
   sum_fb_.attach_color(0, sum_);
   sum_fb_.check_complete("sum target");
   counters_ = GlBuffer("photon_counters", kCounterCount * sizeof(uint32_t));
-  tally_ = GlBuffer("photon_tally", uint64_t(r) * r * 2 * sizeof(glm::vec4));
+  tally_ = GlBuffer("photon_tally", uint64_t(r) * r * kTallyEntries * sizeof(glm::vec4));
   draw_command_ = GlBuffer("photon_draw_command", 4 * sizeof(uint32_t));
 
   // The photon buffer's first size, by policy (an explicit capacity wins).
@@ -174,6 +195,7 @@ void PhotonLighting::compile() {
   trace_program_.set("footprint_threshold", settings_.footprint_threshold);
   trace_program_.set("splat_scale", settings_.splat_scale);
   trace_program_.set("normal_offset_pixels", settings_.normal_offset_pixels);
+  trace_program_.set("emission_normalized", settings_.emission == PhotonEmission::Normalized ? 1 : 0);
 
   if (draw_count_program_) return;  // the rest does not read the structure
   const ShaderDefines plain = indirect_defines();
@@ -197,6 +219,18 @@ void PhotonLighting::compile() {
   composite_program_ = build_program({{GL_VERTEX_SHADER, "passes/fullscreen.vert", {}},
                                       {GL_FRAGMENT_SHADER, "passes/indirect/composite.frag", {}}},
                                      plain);
+  ShaderDefines audit = indirect_defines();
+  audit.set("PHOTON_SPLAT_AUDIT", 1);
+  audit.set("PHOTON_SPLAT_QUAD_SCALE", glsl_float(kAuditQuadScale));
+  audit_program_ = build_program({{GL_VERTEX_SHADER, "passes/indirect/photon_splat.vert", {}},
+                                  {GL_GEOMETRY_SHADER, "passes/indirect/photon_splat.geom", {}},
+                                  {GL_FRAGMENT_SHADER, "passes/indirect/photon_splat_audit.frag", {}}},
+                                 audit);
+  audit_program_.use();
+  audit_program_.set("splat_scale", settings_.splat_scale);
+  audit_program_.set("topological_bias", settings_.a());
+  audit_program_.set_mat4("camera_view_projection", &camera_vp_[0][0]);
+  audit_program_.set("camera_eye", eye.x, eye.y, eye.z);
 }
 
 void PhotonLighting::trace(const GBufferPass& camera, uint64_t capacity) {
@@ -233,6 +267,8 @@ void PhotonLighting::read_counts() {
   k.culled_depth = c[5];
   k.culled_footprint = c[6];
   k.degenerate = c[7];
+  k.culled_outside = c[8];
+  k.culled_backside = c[9];
   k.capacity = capacity_;
   k.stored = std::min<uint64_t>(k.appended, capacity_);
   k.overflow = k.appended - k.stored;
@@ -372,11 +408,132 @@ std::vector<StoredPhoton> PhotonLighting::read_photons() const {
 
 std::vector<glm::vec4> PhotonLighting::read_tally() const { return tally_.download_all<glm::vec4>(); }
 
+PhotonFluxTally PhotonLighting::flux_tally() const {
+  const std::vector<glm::vec4> tally = read_tally();
+  double sums[kTallyEntries] = {};
+  for (size_t i = 0; i + kTallyEntries <= tally.size(); i += kTallyEntries)
+    for (uint32_t k = 0; k < kTallyEntries; ++k)
+      sums[k] += (double(tally[i + k].x) + tally[i + k].y + tally[i + k].z) / 3.0;
+  PhotonFluxTally t;
+  t.primary = sums[0];
+  t.emitted = sums[1];
+  t.escaped = sums[2];
+  t.culled_outside = sums[3];
+  t.culled_hidden = sums[4];
+  t.culled_backside = sums[5];
+  t.culled_footprint = sums[6];
+  t.degenerate = sums[7];
+  t.stored = sums[8];
+  t.overflow = sums[9];
+  t.reflected = sums[10];
+  return t;
+}
+
+std::vector<uint32_t> PhotonLighting::probe_visibility(const GBufferPass& camera,
+                                                       const std::vector<glm::vec3>& x2,
+                                                       const std::vector<glm::vec3>& w_o) const {
+  if (x2.size() != w_o.size()) throw std::invalid_argument("probe_visibility: sizes differ");
+  if (x2.empty()) return {};
+  if (!probe_program_) {
+    probe_program_ = build_program(
+        {{GL_COMPUTE_SHADER, "passes/indirect/photon_visibility_probe.comp", {}}}, indirect_defines());
+    probe_program_.use();
+    probe_program_.set_mat4("camera_view_projection", &camera_vp_[0][0]);
+    const glm::vec3 eye = scene_.camera.eye;
+    probe_program_.set("camera_eye", eye.x, eye.y, eye.z);
+    probe_program_.set("depth_threshold", depth_threshold_);
+  }
+  std::vector<glm::vec4> data;
+  for (size_t i = 0; i < x2.size(); ++i) {
+    data.emplace_back(x2[i], 0.0f);
+    data.emplace_back(w_o[i], 0.0f);
+  }
+  GlBuffer buffer("visibility_probe", data.size() * sizeof(glm::vec4));
+  buffer.upload(data.data(), data.size() * sizeof(glm::vec4));
+  buffer.bind_storage(kPhotonsBinding);
+  glBindTextureUnit(3, camera.positions().id());
+  glBindTextureUnit(4, camera.normals().id());
+  probe_program_.use();
+  glDispatchCompute(GLuint(x2.size()), 1, 1);
+  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  check_gl("visibility probe");
+  const auto out = buffer.download_all<glm::vec4>();
+  std::vector<uint32_t> verdicts;
+  for (size_t i = 0; i < x2.size(); ++i) {
+    uint32_t v;
+    std::memcpy(&v, &out[2 * i].w, sizeof v);
+    verdicts.push_back(v);
+  }
+  return verdicts;
+}
+
+SplatAudit PhotonLighting::audit_splat(const GBufferPass& camera, Image* pixel_areas) const {
+  // Each pixel's surface patch: its solid angle (pixel on the image plane at distance 1 times
+  // cos^3 of its angle off the axis) times distance^2 over |cos| of the surface's tilt.
+  const CameraFrame frame = camera_frame(scene_.camera, width_, height_);
+  const std::vector<float> positions = camera.positions().read_floats(4);
+  const std::vector<float> normals = camera.normals().read_floats(4);
+  const double pixel_side_x = 2.0 * frame.tan_half_fov_y * frame.aspect / width_;
+  const double pixel_side_y = 2.0 * frame.tan_half_fov_y / height_;
+  std::vector<float> area(size_t(width_) * height_, 0.0f);
+  SplatAudit audit;
+  for (size_t i = 0; i < area.size(); ++i) {
+    if (positions[4 * i + 3] == 0.0f) continue;
+    const glm::dvec3 x(positions[4 * i], positions[4 * i + 1], positions[4 * i + 2]);
+    const glm::dvec3 n(normals[4 * i], normals[4 * i + 1], normals[4 * i + 2]);
+    const glm::dvec3 to = x - glm::dvec3(frame.eye);
+    const double d = glm::length(to);
+    if (!(d > 0.0)) continue;
+    const double cos_axis = glm::dot(to, glm::dvec3(frame.forward)) / d;
+    const double cos_surface = std::abs(glm::dot(to, n)) / d;
+    if (!(cos_axis > 0.0) || !(cos_surface > 0.0)) continue;
+    const double a = pixel_side_x * pixel_side_y * cos_axis * cos_axis * cos_axis * d * d / cos_surface;
+    area[i] = float(a);
+    audit.visible_area += a;
+  }
+  if (pixel_areas) *pixel_areas = image_from_gl_rows(area, width_, height_, 1);
+  if (!audit_target_.id()) {
+    audit_target_ = GlTexture2D(GL_RGBA32F, width_, height_);  // lazily, once
+    audit_area_ = GlTexture2D(GL_R32F, width_, height_);
+    audit_fb_.attach_color(0, audit_target_);
+    audit_fb_.check_complete("flux audit target");
+  }
+  glTextureSubImage2D(audit_area_.id(), 0, 0, 0, width_, height_, GL_RED, GL_FLOAT, area.data());
+  const float zero[4] = {0, 0, 0, 0};
+  glClearNamedFramebufferfv(audit_fb_.id(), GL_COLOR, 0, zero);
+  glBindFramebuffer(GL_FRAMEBUFFER, audit_fb_.id());
+  glViewport(0, 0, width_, height_);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  glEnable(GL_BLEND);
+  glBlendEquation(GL_FUNC_ADD);
+  glBlendFunc(GL_ONE, GL_ONE);
+  photons_.bind_storage(kPhotonsBinding);
+  glBindTextureUnit(0, camera.positions().id());
+  glBindTextureUnit(2, camera.normals().id());
+  glBindTextureUnit(3, audit_area_.id());
+  audit_program_.use();
+  glBindVertexArray(empty_vao_.id());
+  glDrawArrays(GL_POINTS, 0, GLsizei(counts_.stored));
+  glDisable(GL_BLEND);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  check_gl("flux audit splat");
+  const std::vector<float> sums = audit_target_.read_floats(4);
+  for (size_t i = 0; i + 3 < sums.size(); i += 4) {
+    audit.deposited += sums[i];
+    audit.uncut += sums[i + 1];
+    audit.tangent_in_quad += sums[i + 2];
+    audit.tangent_all += sums[i + 3];
+  }
+  return audit;
+}
+
 std::vector<BufferMemory> PhotonLighting::memory() const {
-  return {{"photons", photons_.bytes(), counts_.stored * kPhotonBytes},
-          {"photon_counters", counters_.bytes(), counters_.bytes()},
-          {"photon_tally", tally_.bytes(), tally_.bytes()},
-          {"photon_draw_command", draw_command_.bytes(), draw_command_.bytes()}};
+  std::vector<BufferMemory> out = {{"photons", photons_.bytes(), counts_.stored * kPhotonBytes},
+                                   {"photon_counters", counters_.bytes(), counters_.bytes()},
+                                   {"photon_tally", tally_.bytes(), tally_.bytes()},
+                                   {"photon_draw_command", draw_command_.bytes(), draw_command_.bytes()}};
+  return out;
 }
 
 std::vector<std::pair<std::string, std::string>> PhotonLighting::sizing() const {

@@ -12,6 +12,7 @@
 // overflow). A `photon_capacity` parameter fixes it under every policy.
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -29,6 +30,17 @@
 
 namespace ldm {
 
+// How a primary photon's reflected flux rho * Phi1 is split among its N secondaries
+// (shaders/passes/indirect/photon_trace.comp): `thesis` weighs each by |cos| * 2 / N, the
+// thesis's rho/pi * cos times the 2 pi / N steradians each direction stands for, a quadrature
+// that sums to rho * Phi1 only on average (as AO's Eq. 13); `normalized` by
+// |cos| / (sum of |cos| over the N directions), exactly rho * Phi1 (as --ao-estimator
+// normalized).
+enum class PhotonEmission { Thesis, Normalized };
+const char* photon_emission_name(PhotonEmission emission);
+const std::vector<std::string>& photon_emission_names();
+PhotonEmission parse_photon_emission(const std::string& name);  // throws UserError
+
 struct IndirectSettings {
   uint32_t light_resolution = 64;       // R_light: the light's G-buffer is R_light^2
   float splat_scale = 4.0f;             // s: footprints scaled by s (1: one light texel's beam)
@@ -41,6 +53,7 @@ struct IndirectSettings {
   float normal_offset_pixels = 0.5f;     // the §4.4.2 offset at the traced point x1
   std::optional<uint64_t> photon_capacity;  // fixes the photon buffer (photons)
   std::optional<double> photon_budget_mib;  // budget policy: the photon buffer's own budget
+  PhotonEmission emission = PhotonEmission::Thesis;
 
   float a() const { return topological_bias.value_or(splat_scale); }
   float depth_threshold_for(const ViewSet& views) const {
@@ -54,8 +67,50 @@ struct IndirectSettings {
 struct PhotonCounts {
   uint64_t primary = 0, primary_degenerate = 0, emitted = 0, escaped = 0, culled_depth = 0,
            culled_footprint = 0, degenerate = 0, appended = 0, stored = 0, overflow = 0;
+  // Of culled_depth: off the image (or over background), and arriving on the side of the
+  // surface the camera does not see; the rest were hidden behind the surface the camera sees.
+  uint64_t culled_outside = 0, culled_backside = 0;
   uint64_t capacity = 0;
+  uint64_t culled_hidden() const { return culled_depth - culled_outside - culled_backside; }
 };
+
+// The flux audit, first half: where the light's flux went in the last trace, summed over the
+// light texels (W, mean of the RGB channels). emitted = escaped + culled_outside +
+// culled_hidden + culled_backside + culled_footprint + degenerate + stored + overflow (up to
+// float rounding); primary * rho is what a perfect split would emit.
+struct PhotonFluxTally {
+  double primary = 0, emitted = 0, escaped = 0, culled_outside = 0, culled_hidden = 0,
+         culled_backside = 0, culled_footprint = 0, degenerate = 0, stored = 0, overflow = 0;
+  double reflected = 0;  // rho * Phi1 summed over the primary photons that were split
+};
+
+// The flux audit, second half: the stored photons' flux followed into the image (W, mean of
+// RGB), from an untimed audit splat of the last trace's photons over the camera G-buffer.
+// With the splat's kernel K (unit integral over its footprint's ellipse on the photon's
+// tangent plane) each photon's flux Phi is E * A_ellipse; summed over the photons:
+//   tangent_all       Phi * K over the tangent plane, where that plane lies over a surface the
+//                     camera sees (the orthogonal projection along the photon's normal of
+//                     every image pixel's surface patch, within a quad enlarged by
+//                     kAuditQuadScale). stored - tangent_all: the kernel's mass over no
+//                     visible surface (off the image, over background, hidden), plus the
+//                     pixel quadrature's error.
+//   tangent_in_quad   the same, over the pixels the splat's quad covers: tangent_all minus
+//                     what the quad leaves out where the surface curves away from the plane
+//                     (the pixel ray meets the plane outside the quad).
+//   uncut             Phi * K(in-plane distance) over those pixels' surface areas (not
+//                     projected): uncut - tangent_in_quad is the surface's area beyond its
+//                     projection (a gain where it curves).
+//   deposited         what the splats put into the image: K including the topological
+//                     bias, over the surface areas: the integral of pi L / rho over the image's
+//                     surfaces. uncut - deposited: the kernel's mass cut by the topological bias.
+// visible_area: the area of the surfaces the image shows (the sum of its pixels' areas).
+struct SplatAudit {
+  double tangent_all = 0, tangent_in_quad = 0, uncut = 0, deposited = 0;
+  double visible_area = 0;
+};
+// The audit splat's quad, relative to the splat's: large enough to hold the kernel's support
+// on a surface curving away from the photon's plane.
+constexpr float kAuditQuadScale = 2.0f;
 
 // One stored photon as the tests read it back (std430 layout of `Photon`).
 struct StoredPhoton {
@@ -97,11 +152,26 @@ class PhotonLighting {
   PhotonCounts counts() const { return counts_; }
   // Every photon the last trace stored (tests; a read-back).
   std::vector<StoredPhoton> read_photons() const;
-  // Per light texel of the last trace: the primary flux (rgb, w = 1 where a primary photon
-  // was emitted) and the flux emitted into secondaries (rgb).
+  // Per light texel of the last trace, kTallyEntries entries (photon.glsl's PHOTON_TALLY_*):
+  // the primary flux (rgb, w = 1 where a primary photon was emitted), the flux emitted into
+  // secondaries (rgb), and that flux by its fate (escaped, culled outside, hidden, backside,
+  // by footprint, degenerate, stored, overflow), and rho * Phi1 where the primary was split.
   std::vector<glm::vec4> read_tally() const;
+  static constexpr uint32_t kTallyEntries = 11;
+  // The tally summed over the texels (mean of RGB).
+  PhotonFluxTally flux_tally() const;
+  // The audit splat of the last trace's photons (untimed; see SplatAudit). Also the area of
+  // every image pixel's surface patch, top row first (0 on background), for tests.
+  SplatAudit audit_splat(const GBufferPass& camera, Image* pixel_areas = nullptr) const;
   const GBufferPass& light_gbuffer() const { return light_gbuffer_; }
   glm::mat4 light_view_projection() const { return light_vp_; }
+
+  // Test hook: the trace's camera depth test (shaders/passes/indirect/photon_visibility.glsl)
+  // on hits `x2` of photons travelling along `w_o`, with the trace's uniforms (the effective
+  // depth_threshold()): per point 0 where the camera sees it, else the culled fate's tally
+  // index (3 outside, 4 hidden, 5 backside).
+  std::vector<uint32_t> probe_visibility(const GBufferPass& camera, const std::vector<glm::vec3>& x2,
+                                         const std::vector<glm::vec3>& w_o) const;
 
   // The photon buffer and its bookkeeping buffers (allocated; used by the last trace).
   std::vector<BufferMemory> memory() const;
@@ -150,7 +220,10 @@ class PhotonLighting {
   PhotonCounts counts_;
   TraceStepCounter steps_;
   GlProgram trace_program_, draw_count_program_, splat_program_, direct_program_,
-      composite_program_;
+      composite_program_, audit_program_;
+  mutable GlProgram probe_program_;                 // made by the first probe
+  mutable GlTexture2D audit_target_, audit_area_;  // made by the first audit
+  mutable GlFramebuffer audit_fb_;
   uint64_t generation_ = 0;
 };
 

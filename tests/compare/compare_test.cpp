@@ -150,6 +150,24 @@ TEST(CompareRuns, ThresholdsHoldAtTheirBoundaries) {
   EXPECT_GT(at_strict.minimum_detectable, at_loose.minimum_detectable);  // a stricter test sees less
 }
 
+// A change the test cannot test (a repetition's median is 0 ms) is judged by the change of
+// interest alone: UNSURE from --min-time-change on, SAME below it, at the boundary.
+TEST(CompareRuns, AnUntestedChangeIsJudgedByTheChangeOfInterestAtItsBoundary) {
+  const json base = record("c", {{0, 0, 0}, {10, 10, 10}, {10, 10, 10}});
+  const json up55 = record("c", {{0, 0, 0}, {10.55, 10.55, 10.55}, {10.55, 10.55, 10.55}});
+  const json up45 = record("c", {{0, 0, 0}, {10.45, 10.45, 10.45}, {10.45, 10.45, 10.45}});
+  const TimeChange above = compare_one(base, up55).times[0];
+  EXPECT_LT(above.p_value, 0.0);  // not tested
+  EXPECT_NE(above.warning.find("not tested"), std::string::npos) << above.warning;
+  EXPECT_EQ(above.verdict, "UNSURE");  // +5.5 % against the default 5 %
+  EXPECT_EQ(compare_one(base, up45).times[0].verdict, "SAME");
+  CompareThresholds t;
+  t.min_time_change = 0.056;
+  EXPECT_EQ(compare_one(base, up55, t).times[0].verdict, "SAME");
+  t.min_time_change = 0.044;
+  EXPECT_EQ(compare_one(base, up45, t).times[0].verdict, "UNSURE");
+}
+
 TEST(CompareRuns, OneRepetitionAssumesIndependentFramesAndTheProcessSpread) {
   std::mt19937 rng(4);
   // 200 frames with 1 % noise: the frames alone would call +15 % certain.
@@ -359,6 +377,38 @@ TEST(CompareCommand, ExitCodeFollowsFailOn) {
   o = ldmbench("compare " + a.string() + " " + (tmp / "bad.json").string());
   EXPECT_EQ(o.status, 2);
   EXPECT_NE(o.output.find("config_id"), std::string::npos);
+}
+
+// --min-time-change through the command, at its boundary: the default is 5 % (a 5.5 %
+// slowdown is SLOW, 4.5 % SAME), and the value given is the one judged by (0.06 turns the
+// 5.5 % SAME, 0.04 the 4.5 % SLOW), in the verdicts, the JSON thresholds and the exit code of
+// --fail-on time. Nearly noiseless repetitions, so that the MDE (~0.1 %) never decides.
+TEST(CompareCommand, MinTimeChangeHoldsAtItsBoundary) {
+  const fs::path tmp = test::make_temp_dir("ldm-compare");
+  std::mt19937 rng(9);
+  const fs::path a = write_run(tmp / "a", {record("c", timed(rng, 10, 6, 0.0005, 6, 0.0001))});
+  const fs::path up55 = write_run(tmp / "up55", {record("c", timed(rng, 10.55, 6, 0.0005, 6, 0.0001))});
+  const fs::path up45 = write_run(tmp / "up45", {record("c", timed(rng, 10.45, 6, 0.0005, 6, 0.0001))});
+  const fs::path down55 = write_run(tmp / "down55", {record("c", timed(rng, 10.0 / 1.055, 6, 0.0005, 6, 0.0001))});
+  auto judged = [&](const fs::path& next, const std::string& extra) {
+    const Outcome o = ldmbench("compare " + a.string() + " " + next.string() + " --time-subpasses frame --json " + extra);
+    EXPECT_EQ(o.status, 0) << o.output;
+    const json j = json::parse(o.output);
+    const json& time = j["configurations"][0]["time"][0];
+    EXPECT_LT(time["minimum_detectable_change"].get<double>(), 0.005) << time;
+    return std::make_pair(time["verdict"].get<std::string>(), j["thresholds"]["min_time_change"].get<double>());
+  };
+  EXPECT_EQ(judged(up55, ""), std::make_pair(std::string("SLOW"), 0.05));
+  EXPECT_EQ(judged(up45, "").first, "SAME");
+  EXPECT_EQ(judged(down55, "").first, "FAST");
+  EXPECT_EQ(judged(up55, "--min-time-change 0.06"), std::make_pair(std::string("SAME"), 0.06));
+  EXPECT_EQ(judged(up45, "--min-time-change 0.04"), std::make_pair(std::string("SLOW"), 0.04));
+  EXPECT_EQ(judged(down55, "--min-time-change 0.06").first, "SAME");
+  const std::string up = "compare " + a.string() + " " + up55.string() + " --time-subpasses frame --fail-on time";
+  EXPECT_EQ(ldmbench(up).status, 1);
+  EXPECT_EQ(ldmbench(up + " --min-time-change 0.06").status, 0);
+  // The help states the default it applies.
+  EXPECT_NE(ldmbench("compare --help").output.find("--min-time-change"), std::string::npos);
 }
 
 }  // namespace

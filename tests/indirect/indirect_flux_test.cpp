@@ -78,19 +78,20 @@ TEST(IndirectFlux, ClosedSphereBookkeeping) {
       const LightTexel t = light_texel(g, pos, nrm, alb, x, y);
       const float u = (x + 0.5f) / r_light * 2 - 1, v = (y + 0.5f) / r_light * 2 - 1;
       const bool emits = u * u + v * v <= 1.0f && t.position.w != 0.0f;
-      ASSERT_EQ(tally[2 * i].w, emits ? 1.0f : 0.0f) << "texel " << x << "," << y;
+      constexpr size_t K = PhotonLighting::kTallyEntries;
+      ASSERT_EQ(tally[K * i].w, emits ? 1.0f : 0.0f) << "texel " << x << "," << y;
       if (!emits) continue;
       ++primaries;
       phi1[i] = texel_flux(scene.light, frame, x, y, r_light, nullptr);
       for (int ch = 0; ch < 3; ++ch)
-        ASSERT_NEAR(tally[2 * i][ch], phi1[i][ch], 1e-3 * phi1[i][ch] + 1e-12) << x << "," << y;
+        ASSERT_NEAR(tally[K * i][ch], phi1[i][ch], 1e-3 * phi1[i][ch] + 1e-12) << x << "," << y;
       primary_total += mean3(phi1[i]);
       // Flux into the secondaries: rho * Phi1 * 2/N * sum over the views of |cos|.
       double cos_sum = 0;
       for (const auto& view : views) cos_sum += std::abs(glm::dot(view.forward, glm::vec3(t.normal)));
       const glm::vec3 emitted = glm::vec3(t.albedo) * phi1[i] * float(2.0 * cos_sum / n);
       for (int ch = 0; ch < 3; ++ch)
-        ASSERT_NEAR(tally[2 * i + 1][ch], emitted[ch], 1e-3 * emitted[ch] + 1e-12);
+        ASSERT_NEAR(tally[K * i + 1][ch], emitted[ch], 1e-3 * emitted[ch] + 1e-12);
     }
   EXPECT_EQ(primaries, c.primary);
   // The texels' flux is a midpoint quadrature of the spot's closed-form flux.

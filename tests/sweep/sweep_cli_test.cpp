@@ -165,6 +165,36 @@ TEST(SweepCli, FailedConfigurationsAreKeptUnlessRedone) {
   EXPECT_EQ(json["records"].size(), 2u);
 }
 
+// A lossy configuration is finished (measured, its loss counted; issue 20): a rerun keeps it,
+// with or without --redo-failed, which redoes failed ones only. Fails if resuming treats
+// lossy records as unfinished (they would be measured again, appended to the journal).
+TEST(SweepCli, LossyConfigurationsAreFinishedOnResume) {
+  const Folder f = folder();
+  // A fixed array of one layer on the Cornell box loses fragments: lossy, not failed.
+  const std::string sweep = f.sweep("lossy.json", R"({"axes": {"structures": ["psppsll", "ppfla"],
+      "views": 2, "r_ldm": 32, "image_size": "32x32", "frames": 1, "warmup": 0, "ppfla:k": 1},
+      "settings": {"reference": {"enabled": false}, "images": false}})");
+  const fs::path out = f.dir / "run";
+  const Outcome first = ldmbench("sweep " + sweep + " --out " + out.string());
+  ASSERT_EQ(first.status, 0) << first.output;  // lossy is measured: not a failure
+  auto records = journal_records(out);
+  ASSERT_EQ(records.size(), 2u);
+  EXPECT_EQ(records[0]["status"], "ok");
+  ASSERT_EQ(records[1]["status"], "lossy") << records[1]["status_detail"];
+  const std::string samples = read_text(out / records[1]["frame_samples_csv"].get<std::string>());
+  for (const std::string extra : {"", " --redo-failed"}) {
+    const Outcome again = ldmbench("sweep " + sweep + extra + " --out " + out.string());
+    EXPECT_EQ(again.status, 0) << again.output;
+    EXPECT_NE(again.output.find("resuming: 2"), std::string::npos) << again.output;
+    EXPECT_EQ(again.output.find("[1/"), std::string::npos) << again.output;  // nothing measured
+    EXPECT_EQ(again.output.find("to redo"), std::string::npos) << again.output;
+    EXPECT_EQ(journal_records(out).size(), 2u) << extra;
+    EXPECT_TRUE(read_text(out / records[1]["frame_samples_csv"].get<std::string>()) == samples)
+        << "the lossy configuration's frame samples were rewritten" << extra;
+  }
+  EXPECT_EQ(csv_ids(out), dry_run_ids(sweep));
+}
+
 // Starts the 24-configuration sweep below, sends `signal` once at least two records are
 // durable, resumes, and checks every configuration is recorded exactly once, complete.
 void interrupt_and_resume(const std::string& signal, const std::string& exit_status) {

@@ -14,6 +14,9 @@ out PhotonSplat {
   vec3 du, dv;
   vec3 irradiance;
   mat3 to_filter;  // M
+#ifdef PHOTON_SPLAT_AUDIT
+  vec3 normal;
+#endif
 } photon;
 
 void main() {
@@ -35,5 +38,8 @@ void main() {
   const vec3 row1 = cross(n, du) * (2.0 / det);
   const vec3 row2 = n * (topological_bias / (0.5 * sqrt(area)));
   photon.to_filter = transpose(mat3(row0, row1, row2));
+#ifdef PHOTON_SPLAT_AUDIT
+  photon.normal = n;
+#endif
   gl_Position = vec4(0.0, 0.0, 0.0, 1.0);
 }
