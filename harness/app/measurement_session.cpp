@@ -240,6 +240,10 @@ Measurement MeasurementSession::result() const {
   }
   for (const auto& warning : s.pass->warnings())  // measured, but known to be off: say so
     m.status_detail += (m.status_detail.empty() ? "" : "; ") + warning;
+  // What loading the scene replaced by a default (an OBJ's missing .mtl: grey albedo, on
+  // which the indirect light depends): in the record, not only on stderr.
+  for (const auto& warning : scene().warnings)
+    m.status_detail += (m.status_detail.empty() ? "" : "; ") + warning;
   return m;
 }
 

@@ -274,14 +274,9 @@ Scene load_scene(const std::string& spec) {
   }
   in.close();
   const std::string text = read_input_file(spec, "--scene: scene file");
-  Scene scene = parse_scene_file(text, spec);
-  // Every byte of the file (and, added by the mesh importer, of its meshes) identifies the
-  // sweep: an edit of any setting is another sweep (run_command.h sweep_key).
-  Fnv1a h;
-  h.add_string(text);
-  h.add(scene.source_hash);
-  scene.source_hash = h.value();
-  return scene;
+  // Its canonical JSON and its meshes' bytes are the scene's source_hash (parse_scene_file):
+  // any edited setting is another sweep, a reformatting is not.
+  return parse_scene_file(text, spec);
 }
 
 }  // namespace ldm

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <regex>
 #include <sstream>
 #include <vector>
 
@@ -197,6 +198,11 @@ Json parse_strictly(std::string_view text, const std::string& name, const JsonLi
   // 9: syntax error ..."; keep its description, and say where from our own count (a number
   // beyond double, 1e400, is reported as out_of_range without a position).
   std::string what = handler.error_message();
+  // Where: nlohmann's own line and column (of the offending character) when it gives them.
+  static const std::regex where_pattern(R"(at line ([0-9]+), column ([0-9]+))");
+  std::smatch where;
+  const std::string message = what;
+  const bool located = std::regex_search(message, where, where_pattern);
   const auto colon = what.find(": ", what.find(']'));
   if (colon != std::string::npos && what.find("parse error") != std::string::npos)
     what = what.substr(colon + 2);
@@ -206,8 +212,8 @@ Json parse_strictly(std::string_view text, const std::string& name, const JsonLi
   const size_t position = handler.error_position();
   const size_t start = position >= handler.error_token().size() ? position - handler.error_token().size() : 0;
   const auto [line, column] = line_and_column(text, start);
-  throw UserError(name + ": malformed JSON at line " + std::to_string(line) + ", column " +
-                  std::to_string(column) + ": " + what);
+  throw UserError(name + ": malformed JSON at line " + (located ? where[1].str() : std::to_string(line)) +
+                  ", column " + (located ? where[2].str() : std::to_string(column)) + ": " + what);
 }
 
 std::string mib_text(uint64_t bytes) {

@@ -140,6 +140,12 @@ TEST(ReliabilityInput, MessagesSayWhatIsWrong) {
   o = test::ldmbench("run --scene " + mtl + " -N 2" + kTiny + "--dry-run");
   EXPECT_EQ(o.status, 0) << o.output;
   EXPECT_NE(o.output.find("warning: " + mtl + ":1: mtllib 'missing.mtl' cannot be read"), std::string::npos) << o.output;
+  // ... and in the record's status_detail (the indirect light depends on the albedo).
+  const fs::path out = dir / "mtl-out";
+  o = test::ldmbench("run --scene " + mtl + " -N 2" + kTiny + "--out " + out.string());
+  EXPECT_TRUE(o.status == 0 || o.status == 3) << o.output;  // one triangle: edge-on to the views
+  EXPECT_NE(test::read_text((out / "records.csv").string()).find("mtllib 'missing.mtl' cannot be read"),
+            std::string::npos);
 }
 
 }  // namespace

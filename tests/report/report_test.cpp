@@ -279,7 +279,7 @@ TEST(Report, RejectsBadArgumentsBeforeWritingAnything) {
   expect_rejected((dir / "missing").string(), (dir / "missing").string() + ": no such file", out);
   expect_rejected((dir / "empty").string(), "without records.csv or records.json", out);
   expect_rejected((dir / "garbage.json").string(), "garbage.json: not an ldmbench records.json", out);
-  expect_rejected((dir / "torn.json").string(), "torn.json: not JSON", out);
+  expect_rejected((dir / "torn.json").string(), "torn.json: malformed JSON", out);
   expect_rejected((dir / "other.csv").string(), "other.csv: not ldmbench records (no column config_id)", out);
   expect_rejected((dir / "notes.txt").string(), "notes.txt: expected a run folder", out);
   // a bad run among good ones is found before anything happens
