@@ -3,9 +3,12 @@
 namespace ldm {
 namespace {
 
-// A static scene needs one rebuild at most; more would mean needs that keep growing between
-// two identical runs, so the loop stops and the run stays lossy (and is recorded so).
-constexpr int kMaxRebuildsPerFrame = 4;
+// One rebuild at most per frame: every work counts exactly what its overflowing run needed
+// (attempts past the end, not just what it stored), so the rebuild is sized from the need
+// itself and does not overflow again on a static scene. If it did (needs that grow between
+// two identical runs), the frame stays lossy, is recorded so, and the next frame grows from
+// the rebuild's own counts ("reallocate"); the first frame never repeats its build twice.
+constexpr int kMaxRebuildsPerFrame = 1;
 
 void grow(SizedWork& work, const SizingNeeds& needs, GpuTimer* timer, const std::string& subpass,
           SizingCounts& counts) {

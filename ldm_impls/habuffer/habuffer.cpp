@@ -18,6 +18,8 @@ constexpr double kQuantisedDepthMax = 16777215.0;
 // The offsets o_a are fixed for reproducible builds (the same |H| gives the same table).
 constexpr uint64_t kOffsetSeed = 0x4861427566666572ull;  // "HaBuffer"
 constexpr uint32_t kCounterWords = 2;                    // dropped at max age, aborted insertions
+// While the table is previous_frame's guess, a third word: fragments attempted.
+constexpr uint32_t kGuessCounterWords = 3;
 
 bool gl_extension_present(const char* name) {
   GLint count = 0;
@@ -155,7 +157,10 @@ void HaBuffer::prepare(const BuildInputs& in) {
   pixels_ = in.views.views().total_pixels();
   depth_step_log2_ = quantisation_step_log2(in.views.views());
   age_counts_ = GlBuffer("age_table", pixels_ * sizeof(uint32_t));
-  counters_ = GlBuffer("counters", kCounterWords * sizeof(uint32_t));
+  // A table sized from a guess, which an overflow makes the driver rebuild from its counts.
+  guessing_ = plan_.strategy().grows_from_counters() && !plan_.strategy().fixed_by_budget() &&
+              load_factor_ <= 1.0;
+  make_counters();
   age_summary_ = GlBuffer("age_summary", sizeof(uint32_t));
   fragments_ = &in.fragments;
   base_defines_ = common_structure_defines(in);
@@ -172,10 +177,15 @@ void HaBuffer::prepare(const BuildInputs& in) {
 }
 
 SizingNeeds HaBuffer::needed() {
-  // Every fragment ends stored in one entry, dropped at max age or aborted; the entries are
-  // counted on the GPU, so this is what the table had to hold even when it overflowed.
-  const uint64_t lost = lost_in_last_build();
-  return {stored_entries() + lost, 0, lost > 0};
+  // Every fragment ends stored in one entry, dropped at max age, aborted or (while guessing)
+  // stopped beyond what the table is sized for; the entries are counted on the GPU, so this is what the table
+  // had to hold even when it overflowed.
+  const uint64_t lost = read_counters().lost();
+  const SizingNeeds needs{stored_entries() + lost, 0, lost > 0};
+  // The guess has had its one build: a rebuild (resize()) or the next build leaves it (not
+  // here: this frame's stats() still reads the counters the guessed build wrote).
+  if (guessing_) guess_tried_ = true;
+  return needs;
 }
 
 bool HaBuffer::fits(const SizingNeeds& needs) const {
@@ -183,17 +193,42 @@ bool HaBuffer::fits(const SizingNeeds& needs) const {
 }
 
 void HaBuffer::resize(const SizingNeeds& needs) {
-  if (!fits(needs)) allocate_table(table_size_for(needs));
+  if (fits(needs)) return;
+  if (guessing_) leave_guess();  // sized from counts from now on
+  allocate_table(table_size_for(needs));
+}
+
+uint64_t HaBuffer::stop_ticket() const {
+  // More fragments than |H| * load_factor need a table larger than |H| (table_size_for()), so
+  // with load_factor <= 1 a build that reaches this many is rebuilt whatever it stores.
+  return std::max<uint64_t>(1, uint64_t(std::floor(double(table_size_) * load_factor_)));
+}
+
+void HaBuffer::make_counters() {
+  const std::vector<uint32_t> zero(guessing_ ? kGuessCounterWords : kCounterWords, 0u);
+  counters_ = GlBuffer("counters", zero.size() * sizeof(uint32_t), zero.data());
+}
+
+void HaBuffer::leave_guess() {
+  guessing_ = false;
+  guess_program_ = GlProgram();
+  make_counters();
 }
 
 uint64_t HaBuffer::stored_entries() const {
   return reduction_->run(table_, table_size_, key_bits_ / 32).nonempty;
 }
 
-uint64_t HaBuffer::lost_in_last_build() const {
-  uint32_t counters[kCounterWords] = {0, 0};
-  counters_.download(counters, sizeof counters);
-  return uint64_t(counters[0]) + counters[1];
+HaBuffer::Counters HaBuffer::read_counters() const {
+  uint32_t words[kGuessCounterWords] = {0, 0, 0};
+  counters_.download(words, guessing_ ? kGuessCounterWords * sizeof(uint32_t)
+                                      : kCounterWords * sizeof(uint32_t));
+  Counters c;
+  c.dropped = words[0];
+  c.aborted = words[1];
+  // Tickets from stop_ticket() on stored nothing: exactly attempted - stop_ticket() fragments.
+  if (guessing_ && words[2] > stop_ticket()) c.stopped = words[2] - stop_ticket();
+  return c;
 }
 
 void HaBuffer::allocate_table(uint64_t table_size) {
@@ -212,7 +247,15 @@ void HaBuffer::allocate_table(uint64_t table_size) {
   // mean a faulty device (see ha_build.frag).
   defines_.set("HA_MAX_INSERT_STEPS", std::to_string(64ull * (max_age_ + 1)) + "u");
 
-  build_program_ = fragments_->build_program("ldm/habuffer/ha_build.frag", defines_);
+  ShaderDefines build_defines = defines_;
+  build_defines.set("HA_STOP_WHEN_FULL", 0);
+  build_program_ = fragments_->build_program("ldm/habuffer/ha_build.frag", build_defines);
+  if (guessing_) {
+    ShaderDefines guess_defines = defines_;
+    guess_defines.set("HA_STOP_WHEN_FULL", 1);
+    guess_defines.set("HA_STOP_TICKET", std::to_string(stop_ticket()) + "u");
+    guess_program_ = fragments_->build_program("ldm/habuffer/ha_build.frag", guess_defines);
+  }
   ShaderDefines reduce_defines = binding_defines();
   reduce_defines.values.insert(reduce_defines.values.end(), defines_.values.begin(),
                                defines_.values.end());
@@ -222,6 +265,7 @@ void HaBuffer::allocate_table(uint64_t table_size) {
 }
 
 void HaBuffer::build(const BuildInputs& in, GpuTimer* timer) {
+  if (guessing_ && guess_tried_) leave_guess();  // the guess held (or held enough): plain program
   {
     ScopedSubpass timed(timer, "clear");
     table_.clear_to_zero();  // key 0: empty, below every key with an age
@@ -233,7 +277,7 @@ void HaBuffer::build(const BuildInputs& in, GpuTimer* timer) {
     bind_for_query();
     age_counts_.bind_storage(kStructureBinding0 + 2);
     counters_.bind_atomic_counter(kStructureCounterBinding);
-    in.fragments.run(build_program_);
+    in.fragments.run(guessing_ ? guess_program_ : build_program_);
   }
 }
 
@@ -254,19 +298,20 @@ uint32_t HaBuffer::read_highest_age_count() const {
 }
 
 BuildStats HaBuffer::stats() const {
-  uint32_t counters[kCounterWords] = {0, 0};
-  counters_.download(counters, sizeof counters);
-  const uint64_t dropped = counters[0], aborted = counters[1];
+  const Counters counters = read_counters();
+  const uint64_t dropped = counters.dropped, aborted = counters.aborted;
   const uint32_t highest_age_count = read_highest_age_count();
   BuildStats s;
   // Entries found in the table (a GPU count, untimed) plus the fragments counted as lost.
   s.fragments_stored = stored_entries();
-  s.fragments_lost = dropped + aborted;
+  s.fragments_lost = counters.lost();
   s.fragments_rasterized = s.fragments_stored + s.fragments_lost;
   s.overflow = s.fragments_lost > 0;
   s.counters = {{"max_age_used", highest_age_count ? double(highest_age_count - 1) : 0.0},
                 {"dropped_max_age", double(dropped)},
                 {"aborted_insertions", double(aborted)}};
+  // Only a build from previous_frame's guess can stop early (a measured build never does).
+  if (guessing_) s.counters.emplace_back("stopped_table_too_small", double(counters.stopped));
   return s;
 }
 

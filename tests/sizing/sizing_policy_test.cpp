@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "harness/util/error.h"
@@ -115,6 +116,78 @@ TEST(SizingPolicy, PreviousFrameFromATooSmallGuessRebuildsOnceAndEndsExact) {
     test::expect_bit_identical_lists(test::read_all_views(*oracle.build(name), oracle),
                                      test::read_all_views(*s, f), name + " after its rebuild");
   }
+}
+
+bool has_counter(const BuildStats& stats, const std::string& name) {
+  return std::any_of(stats.counters.begin(), stats.counters.end(),
+                     [&](const auto& c) { return c.first == name; });
+}
+
+// Issue 21: from previous_frame's guess of one fragment per pixel the atrium's table is far
+// too small. The first build stops once more fragments arrive than the table is sized for
+// (instead of probing a full table up to max_age + 1 slots per fragment), still counts every
+// fragment exactly (stored + lost = rasterised: the build is flagged, never silently short),
+// and the one rebuild, sized from that count, is exact and runs the unchanged program.
+TEST(SizingPolicy, HaBufferFirstBuildFromAFarTooSmallGuessStopsOnceTheTableIsKnownTooSmall) {
+  const LdmFixture f("atrium", 8, 32, policy(SizingPolicy::PreviousFrame));
+  const uint64_t total = f.census.total_fragments;
+  {
+    auto s = f.prepare("habuffer");
+    const uint64_t table = std::stoull(test::sizing_value(*s, "table_entries"));
+    ASSERT_LT(table, total) << "the guessed table must be too small for this test";
+    s->build(*f.inputs, nullptr);
+    const BuildStats first = s->stats();
+    EXPECT_TRUE(first.overflow);
+    // Those beyond what the table is sized for (|H| * load_factor 0.75) stop at once.
+    const uint64_t sized_for = uint64_t(std::floor(double(table) * 0.75));
+    EXPECT_EQ(test::stats_counter(first, "stopped_table_too_small"), double(total - sized_for));
+    EXPECT_LE(first.fragments_stored, table);
+    EXPECT_EQ(first.fragments_stored + first.fragments_lost, total) << "the loss is counted exactly";
+    EXPECT_EQ(first.fragments_rasterized, total);
+    const SizingNeeds needs = s->needed();
+    EXPECT_TRUE(needs.lost);
+    EXPECT_EQ(needs.fragments, total) << "the rebuild is sized from the exact count";
+    EXPECT_FALSE(s->fits(needs));
+  }
+  const LdmFixture oracle("atrium", 8, 32);
+  auto s = f.prepare("habuffer");
+  SizingDriver driver(*s, *f.inputs);
+  const FrameTimes first = driven_frame(driver);
+  EXPECT_TRUE(timed(first, "rebuild"));
+  EXPECT_EQ(driver.rebuilds(), 1u);
+  driven_frame(driver);
+  EXPECT_EQ(driver.rebuilds(), 1u);
+  const BuildStats stats = s->stats();
+  EXPECT_FALSE(has_counter(stats, "stopped_table_too_small")) << "later builds run the plain program";
+  EXPECT_EQ(stats.fragments_lost, 0u);
+  EXPECT_EQ(stats.fragments_stored, total);
+  test::expect_bit_identical_lists(test::read_all_views(*oracle.build("habuffer"), oracle),
+                                   test::read_all_views(*s, f), "habuffer after its rebuild");
+}
+
+// A guess that holds, and a table under-sized on purpose (load_factor > 1), never stop early:
+// what they store is what the plain program stores.
+TEST(SizingPolicy, HaBufferStopsEarlyOnlyFromAGuessThatMustBeRebuilt) {
+  SizingSettings ample = policy(SizingPolicy::PreviousFrame);
+  ample.initial_per_pixel = 64;
+  const LdmFixture f("atrium", 8, 32, ample);
+  {
+    auto s = f.prepare("habuffer");
+    SizingDriver driver(*s, *f.inputs);
+    driven_frame(driver);
+    EXPECT_EQ(test::stats_counter(s->stats(), "stopped_table_too_small"), 0.0) << "the guess held";
+    driven_frame(driver);
+    EXPECT_EQ(driver.rebuilds(), 0u);
+    const BuildStats stats = s->stats();
+    EXPECT_FALSE(has_counter(stats, "stopped_table_too_small")) << "plain program after the first frame";
+    EXPECT_EQ(stats.fragments_stored, f.census.total_fragments);
+  }
+  const LdmFixture small("atrium", 8, 32, policy(SizingPolicy::PreviousFrame));
+  auto packed = small.prepare("habuffer", {{"load_factor", "4"}});
+  packed->build(*small.inputs, nullptr);
+  const BuildStats stats = packed->stats();
+  EXPECT_FALSE(has_counter(stats, "stopped_table_too_small"));
+  EXPECT_EQ(stats.fragments_stored + stats.fragments_lost, small.census.total_fragments);
 }
 
 TEST(SizingPolicy, BudgetOverflowIsCountedExactly) {

@@ -11,6 +11,14 @@
 // age past HA_MAX_AGE cannot be stored (its age no longer fits) and is dropped and counted.
 // ha_age_counts[p] (atomicMax of age + 1 over p's placements) lets queries stop at the
 // highest age pixel p reached instead of walking every age.
+//
+// HA_STOP_WHEN_FULL (previous_frame's first build, from a guessed table; habuffer.h): every
+// fragment first takes a ticket from `attempted`; a fragment whose ticket is >= HA_STOP_TICKET
+// (|H| * load_factor, what the table is sized for) proves that the table this scene needs
+// is larger, so the driver will rebuild it from the counts. It then stores nothing and
+// returns (counted on the host as attempted - HA_STOP_TICKET, lost), instead of probing a
+// table past its load factor: near full, every insertion walks (and evicts along) up to
+// HA_MAX_AGE + 1 slots before an entry is dropped.
 #if HA_KEY_BITS == 64
 #extension GL_ARB_gpu_shader_int64 : require
 #extension GL_NV_shader_atomic_int64 : require
@@ -24,9 +32,15 @@ layout(std430, binding = LDM_STRUCTURE_BINDING2) restrict buffer HaAgeCounts {
 };
 layout(binding = LDM_COUNTER_BINDING, offset = 0) uniform atomic_uint dropped_max_age;
 layout(binding = LDM_COUNTER_BINDING, offset = 4) uniform atomic_uint aborted_insertions;
+#if HA_STOP_WHEN_FULL
+layout(binding = LDM_COUNTER_BINDING, offset = 8) uniform atomic_uint attempted;
+#endif
 
 void main() {
   LDM_SKIP_HELPER_INVOCATIONS;
+#if HA_STOP_WHEN_FULL
+  if (atomicCounterIncrement(attempted) >= HA_STOP_TICKET) return;
+#endif
   uint pixel = ldm_fragment_pixel();
   uint age = 0u;
   HaKey key = ha_key(0u, ha_depth_bits(v_depth));
