@@ -57,6 +57,18 @@ void set_spot(const GlProgram& program, const SpotLight& light) {
   program.set("spot_cos_outer", float(std::cos(glm::radians(double(light.outer_angle_deg)))));
 }
 
+// Splats add up: the timed splat and the untimed flux audit draw into their targets with
+// the same state (no depth test, no culling, additive blending).
+void bind_additive_target(const GlFramebuffer& fb, int width, int height) {
+  glBindFramebuffer(GL_FRAMEBUFFER, fb.id());
+  glViewport(0, 0, width, height);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  glEnable(GL_BLEND);
+  glBlendEquation(GL_FUNC_ADD);
+  glBlendFunc(GL_ONE, GL_ONE);
+}
+
 void draw_fullscreen(const GlFramebuffer& fb, int width, int height, const GlVertexArray& vao) {
   glBindFramebuffer(GL_FRAMEBUFFER, fb.id());
   glViewport(0, 0, width, height);
@@ -283,13 +295,7 @@ void PhotonLighting::splat(const GBufferPass& camera) {
   draw_command_.bind_storage(kDrawBinding);
   glDispatchCompute(1, 1, 1);
   glMemoryBarrier(GL_COMMAND_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-  glBindFramebuffer(GL_FRAMEBUFFER, indirect_fb_.id());
-  glViewport(0, 0, width_, height_);
-  glDisable(GL_DEPTH_TEST);
-  glDisable(GL_CULL_FACE);
-  glEnable(GL_BLEND);
-  glBlendEquation(GL_FUNC_ADD);
-  glBlendFunc(GL_ONE, GL_ONE);
+  bind_additive_target(indirect_fb_, width_, height_);
   photons_.bind_storage(kPhotonsBinding);
   glBindTextureUnit(0, camera.positions().id());
   glBindTextureUnit(1, camera.albedo().id());
@@ -501,13 +507,7 @@ SplatAudit PhotonLighting::audit_splat(const GBufferPass& camera, Image* pixel_a
   glTextureSubImage2D(audit_area_.id(), 0, 0, 0, width_, height_, GL_RED, GL_FLOAT, area.data());
   const float zero[4] = {0, 0, 0, 0};
   glClearNamedFramebufferfv(audit_fb_.id(), GL_COLOR, 0, zero);
-  glBindFramebuffer(GL_FRAMEBUFFER, audit_fb_.id());
-  glViewport(0, 0, width_, height_);
-  glDisable(GL_DEPTH_TEST);
-  glDisable(GL_CULL_FACE);
-  glEnable(GL_BLEND);
-  glBlendEquation(GL_FUNC_ADD);
-  glBlendFunc(GL_ONE, GL_ONE);
+  bind_additive_target(audit_fb_, width_, height_);
   photons_.bind_storage(kPhotonsBinding);
   glBindTextureUnit(0, camera.positions().id());
   glBindTextureUnit(2, camera.normals().id());

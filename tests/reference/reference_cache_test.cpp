@@ -3,6 +3,7 @@
 #include <fstream>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "harness/reference/ao_reference.h"
 #include "harness/scene/generators.h"
@@ -154,6 +155,38 @@ TEST_F(ReferenceCache, RendererVersionIsPartOfTheKey) {
   nlohmann::json older = inputs;
   older["renderer_version"] = kAoReferenceVersion - 1;
   EXPECT_NE(reference_cache_key(older), reference_cache_key(inputs));
+}
+
+// Issue 19, item 6: pixel corruption was detected and re-rendered, but an edited noise_mse
+// in an entry's sidecar was used as it stood (mse_over_noise 4.7e9 instead of 156.7).
+TEST_F(ReferenceCache, EditedMetadataIsAMissNotAResult) {
+  const Scene planes = scene();
+  const ReferenceResult first = cached(planes, request());
+  ASSERT_FALSE(first.from_cache);
+  ASSERT_TRUE(cached(planes, request()).from_cache);
+  const std::string sidecar = path_of(first, ".json");
+  const nlohmann::json original = nlohmann::json::parse(test::read_text(sidecar));
+  ASSERT_TRUE(original.contains("checksum"));
+  for (const char* key : {"noise_mse", "spp_total", "noise_target_met", "render_seconds"}) {
+    nlohmann::json edited = original;
+    if (std::string(key) == "noise_mse") edited[key] = original[key].get<double>() * 1e-7;
+    else if (std::string(key) == "noise_target_met") edited[key] = !original[key].get<bool>();
+    else edited[key] = original[key].get<double>() + 1;
+    std::ofstream(sidecar) << edited.dump(2);
+    const ReferenceResult again = cached(planes, request());
+    EXPECT_FALSE(again.from_cache) << key << ": an edited entry was used";
+    EXPECT_DOUBLE_EQ(again.noise_mse, first.noise_mse) << key;
+    EXPECT_EQ(again.spp_total, first.spp_total) << key;
+    // Rendered again and stored whole: the next request is a hit with the true metadata.
+    const ReferenceResult hit = cached(planes, request());
+    EXPECT_TRUE(hit.from_cache) << key;
+    EXPECT_DOUBLE_EQ(hit.noise_mse, first.noise_mse) << key;
+  }
+  // An entry without a checksum (an older build's) is rendered again too.
+  nlohmann::json old = original;
+  old.erase("checksum");
+  std::ofstream(sidecar) << old.dump(2);
+  EXPECT_FALSE(cached(planes, request()).from_cache);
 }
 
 }  // namespace
