@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "harness/app/harness_axes.h"
+#include "harness/app/shard_assignment.h"
 #include "harness/passes/pass.h"
 #include "harness/scene/generators.h"
 #include "harness/scene/scene_loader.h"
@@ -127,6 +128,16 @@ Shard parse_shard(const std::string& text) {
   if (shard.count == 0 || shard.index >= shard.count)
     throw UserError("--shard '" + text + "': expected INDEX/COUNT with 0 <= INDEX < COUNT (e.g. 0/8)");
   return shard;
+}
+
+std::vector<size_t> shard_members(const SweepPlan& plan, const Shard& shard) {
+  std::vector<std::map<std::string, std::string>> values;
+  for (const auto& planned : plan.configurations) values.push_back(planned.config.values);
+  const std::vector<size_t> shard_of = assign_shards(values, shard.count);
+  std::vector<size_t> members;
+  for (size_t k = 0; k < shard_of.size(); ++k)
+    if (shard_of[k] == shard.index) members.push_back(k);
+  return members;
 }
 
 SweepVocabulary current_sweep_vocabulary() {

@@ -15,11 +15,11 @@
 
 namespace ldm {
 
-// --shard i/n: configuration k belongs to shard k mod n (docs/guide/sweeps.md).
+// --shard i/n: slice i of n, interleaved and balanced along every axis
+// (harness/app/shard_assignment.h, docs/guide/sweeps.md).
 struct Shard {
   size_t index = 0, count = 1;
   std::string text() const { return std::to_string(index) + "/" + std::to_string(count); }
-  bool contains(size_t k) const { return k % count == index; }
 };
 Shard parse_shard(const std::string& text);  // "i/n", 0 <= i < n; throws UserError
 
@@ -38,5 +38,10 @@ SweepVocabulary current_sweep_vocabulary();
 // Reads, checks and expands the sweep file. `base` supplies what the file does not set
 // (cache folder, EGL options). Throws UserError "<file>: <where>: <what>".
 SweepPlan plan_sweep(const std::string& path, const RunSettings& base);
+
+// The indices (into plan.configurations, ascending) of the configurations `shard` measures:
+// assign_shards() over their axis values. Every shard of a plan gets a disjoint part, and
+// together they are the whole plan.
+std::vector<size_t> shard_members(const SweepPlan& plan, const Shard& shard);
 
 }  // namespace ldm

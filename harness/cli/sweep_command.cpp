@@ -18,17 +18,15 @@ struct SweepOptions {
 };
 
 void list_configurations(const SweepPlan& plan, const Shard& shard, std::ostream& out) {
-  size_t listed = 0;
-  for (size_t k = 0; k < plan.configurations.size(); ++k) {
-    if (!shard.contains(k)) continue;
+  const std::vector<size_t> members = shard_members(plan, shard);
+  for (size_t k : members) {
     const auto& [config, settings] = plan.configurations[k];
     out << k << "\t" << config.id() << "\t" << settings.width << "x" << settings.height << "\t"
         << settings.frames << "+" << settings.warmup << " frames\n";
-    ++listed;
   }
   out << plan.path << ": " << plan.configurations.size() << " configurations ("
       << plan.combinations << " combinations of the axes)";
-  if (shard.count > 1) out << "; shard " << shard.text() << ": " << listed;
+  if (shard.count > 1) out << "; shard " << shard.text() << ": " << members.size();
   out << "\n";
 }
 
@@ -45,8 +43,9 @@ Runner add_sweep_command(CLI::App& app, const std::string& command_line,
                     "Output folder (default: results/runs/<timestamp>). A folder holding the same "
                     "sweep (and shard) is resumed: finished configurations are skipped");
   sweep->add_option("--shard", o->shard,
-                    "Run only slice INDEX of COUNT: configuration k when k mod COUNT = INDEX "
-                    "(0-based, e.g. $SLURM_ARRAY_TASK_ID/8); join slices with `ldmbench merge`")
+                    "Run only slice INDEX of COUNT (0-based, e.g. $SLURM_ARRAY_TASK_ID/8): "
+                    "interleaved, balanced along every axis (docs/guide/sweeps.md); join slices "
+                    "with `ldmbench merge`")
       ->capture_default_str();
   sweep->add_flag("--redo-failed", o->redo_failed,
                   "Measure again the configurations the folder holds as failed (else kept)");
@@ -91,8 +90,7 @@ Runner add_sweep_command(CLI::App& app, const std::string& command_line,
     if (references) check_cache_dir(o->cache_dir);
 
     ConfigurationRun run;
-    for (size_t k = 0; k < plan.configurations.size(); ++k)
-      if (shard.contains(k)) run.configurations.push_back(plan.configurations[k]);
+    for (size_t k : shard_members(plan, shard)) run.configurations.push_back(plan.configurations[k]);
     run.scenes = &plan.scenes;
     run.out_dir = o->out_dir;
     run.overwrite = o->overwrite;
