@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "harness/app/accuracy.h"
+#include "harness/app/measured_where.h"
 #include "harness/app/scene_profile.h"
 #include "harness/app/timing_columns.h"
 #include "harness/passes/raster_baseline.h"
@@ -47,6 +48,7 @@ void describe_configuration(Record& r, const Configuration& config, const RunSet
   r.set("gl_version", device.gl_version);
   r.set("egl_platform", device.egl_platform);
   r.set("int64_atomics", device.has_int64_atomics);
+  describe_host(r);
   r.set("ldmbench_version", ldmbench_version());
   r.set("git_commit", git_commit());
 }

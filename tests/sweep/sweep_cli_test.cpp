@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -78,8 +79,9 @@ TEST(SweepCli, DryRunListsAndBadFilesWriteNothing) {
   const Folder f = folder();
   const std::string sweep = f.sweep("small.json", kSmall);
   EXPECT_EQ(dry_run_ids(sweep).size(), 6u);
+  // A shard mixes the axes' values (harness/app/shard_assignment.h), in sweep order.
   const std::vector<std::string> shard = dry_run_ids(sweep, "--shard 1/4");
-  EXPECT_EQ(shard, (std::vector<std::string>{"cornell-psppsll-ao-n4-r32-plane-prevframe",
+  EXPECT_EQ(shard, (std::vector<std::string>{"cornell-psppsll-ao-n2-r32-plane-prevframe",
                                              "cornell-psppfla-ao-n4-r32-plane-prevframe"}));
   const fs::path out = f.dir / "out";
   const Outcome dry = ldmbench("sweep " + sweep + " --dry-run --out " + out.string());
@@ -318,9 +320,13 @@ TEST(SweepCli, SlurmScriptRunsItsShardsAndMerges) {
   const std::string out = (f.dir / "slurm").string();
   const std::string env = "LDMBENCH=" + std::string(LDM_BINARY_PATH) + " ";
   std::string output;
+  // The variables Slurm sets in an array task (job 101 of array 100, task i, on node n7
+  // with GPU 3), and no others: the records name them.
   for (int i = 0; i < 2; ++i)
-    ASSERT_EQ(test::run_command(env + "SLURM_ARRAY_TASK_ID=" + std::to_string(i) + " " + script + " " +
-                                    sweep + " 2 " + out, &output), 0) << output;
+    ASSERT_EQ(test::run_command(env + "SLURM_ARRAY_TASK_ID=" + std::to_string(i) + " SLURM_ARRAY_JOB_ID=100 " +
+                                    "SLURM_JOB_ID=" + std::to_string(101 + i) + " SLURMD_NODENAME=n7 " +
+                                    "SLURM_JOB_GPUS=3 " + script + " " + sweep + " 2 " + out, &output), 0)
+        << output;
   ASSERT_EQ(test::run_command(env + "LDM_SLURM_MERGE=1 " + script + " " + sweep + " 2 " + out, &output), 0)
       << output;
   EXPECT_EQ(csv_ids(fs::path(out) / "shard-1").size(), 3u);
@@ -328,6 +334,25 @@ TEST(SweepCli, SlurmScriptRunsItsShardsAndMerges) {
   std::sort(ids.begin(), ids.end());
   std::sort(expected.begin(), expected.end());
   EXPECT_EQ(ids, expected);
+  const auto merged = nlohmann::json::parse(read_text(fs::path(out) / "merged" / "records.json"));
+  std::set<std::string> tasks;
+  for (const auto& r : merged["records"]) {
+    EXPECT_FALSE(r["host"].get<std::string>().empty());
+    EXPECT_EQ(r["slurm_array_job_id"], "100");
+    EXPECT_EQ(r["slurm_node"], "n7");
+    EXPECT_EQ(r["slurm_gpus"], "3");
+    const std::string task = r["slurm_array_task_id"];
+    EXPECT_EQ(r["slurm_job_id"], task == "0" ? "101" : "102");
+    tasks.insert(task);
+  }
+  EXPECT_EQ(tasks, (std::set<std::string>{"0", "1"}));
+  // Outside Slurm a record names its host only.
+  const auto single = nlohmann::json::parse(read_text(fs::path(out) / "shard-0" / "records.json"));
+  const Outcome plain = ldmbench("sweep " + sweep + " --out " + (f.dir / "plain").string());
+  ASSERT_EQ(plain.status, 0) << plain.output;
+  const auto plain_records = nlohmann::json::parse(read_text(f.dir / "plain" / "records.json"))["records"];
+  EXPECT_EQ(plain_records[0]["host"], single["records"][0]["host"]);
+  if (!std::getenv("SLURM_JOB_ID")) EXPECT_FALSE(plain_records[0].contains("slurm_job_id"));  // ctest not in a job
 }
 
 }  // namespace
