@@ -1,42 +1,77 @@
 #!/usr/bin/env bash
 # A sweep spread over a Slurm cluster (Debian: slurm-wlm) as a job array: array task i runs
-# shard i of n (`ldmbench sweep FILE --shard i/n`, configurations k with k mod n = i) into
-# OUT/shard-i, and a job that starts after the whole array joins them (`ldmbench merge`).
+# shard i of n (`ldmbench sweep FILE --shard i/n`, an interleaved slice: docs/guide/sweeps.md)
+# into OUT/shard-i, and a job that starts after the whole array joins them (`ldmbench merge`)
+# into OUT/merged. The jobs' logs go to OUT/slurm-logs/, named after shard and job:
+# ldmbench-shard-<i>-of-<n>-job-<array>_<i>.out and ldmbench-merge-job-<id>.out.
 #
 #   scripts/slurm-sweep.sh SWEEP_FILE [SHARDS=8] [OUT=results/runs/<sweep name>]
 #
 # On the login node this submits both jobs (sbatch); Slurm then runs this same script with
 # SLURM_ARRAY_TASK_ID set (one shard) and with LDM_SLURM_MERGE=1 (the merge). A task that
 # is requeued or resubmitted resumes its shard: finished configurations are skipped. Run it
-# from the repository root on a shared file system; LDMBENCH names the binary (default
-# build/ldmbench), SBATCH_ARGS adds options to both sbatch calls (partition, account, ...).
+# from the repository root on a shared file system. Environment:
+#   LDMBENCH          the binary (default build/ldmbench)
+#   LDM_SLURM_GPUS    1 (default): every task gets a GPU of its own and its node to itself,
+#                     LDM_SLURM_GPU_ARGS (default "--gres=gpu:1 --exclusive"); 0: no GPU
+#                     options (a node without GPUs, such as the CI's)
+#   LDM_SLURM_TASKS   which array tasks to submit (sbatch --array syntax, e.g. "3" or "1,5");
+#                     default all: resubmit the failed ones after a failure (the merge reruns)
+#   LDM_SWEEP_ARGS    more `ldmbench sweep` options for every task (--cache-dir, ...)
+#   SBATCH_ARGS       more sbatch options for both jobs (partition, account, time, ...)
 #SBATCH --job-name=ldmbench-sweep
 #SBATCH --cpus-per-task=2
 #SBATCH --time=04:00:00
-#SBATCH --output=slurm-ldmbench-%A_%a.out
+#SBATCH --output=slurm-ldmbench-shard-%a-job-%A_%a.out
 set -euo pipefail
 sweep="${1:?usage: scripts/slurm-sweep.sh SWEEP_FILE [SHARDS] [OUT]}"
 shards="${2:-8}"
 out="${3:-results/runs/$(basename "$sweep" .json)}"
 ldmbench="${LDMBENCH:-build/ldmbench}"
 
-if [ -n "${SLURM_ARRAY_TASK_ID:-}" ]; then
-  # One array task: its shard. Exit 3 (some configurations failed, recorded) is a result.
-  status=0
-  "$ldmbench" sweep "$sweep" --shard "$SLURM_ARRAY_TASK_ID/$shards" --out "$out/shard-$SLURM_ARRAY_TASK_ID" || status=$?
-  [ "$status" -eq 0 ] || [ "$status" -eq 3 ] || exit "$status"
-  exit 0
-fi
 if [ "${LDM_SLURM_MERGE:-0}" = 1 ]; then
   shard_dirs=()
   for ((i = 0; i < shards; i++)); do shard_dirs+=("$out/shard-$i"); done
   exec "$ldmbench" merge --overwrite "$out/merged" "${shard_dirs[@]}"
 fi
+if [ -n "${SLURM_ARRAY_TASK_ID:-}" ]; then
+  # One array task: its shard. Exit 3 (some configurations failed, recorded) is a result.
+  # The records name the node, job, array task and GPUs (ldmbench reads SLURM_* itself).
+  echo "slurm-sweep: shard $SLURM_ARRAY_TASK_ID/$shards of $sweep on ${SLURMD_NODENAME:-$(hostname)}," \
+    "job ${SLURM_ARRAY_JOB_ID:-?}_$SLURM_ARRAY_TASK_ID, GPUs: ${SLURM_JOB_GPUS:-${CUDA_VISIBLE_DEVICES:-none allocated}}"
+  status=0
+  # shellcheck disable=SC2086  # LDM_SWEEP_ARGS is split on purpose
+  "$ldmbench" sweep "$sweep" --shard "$SLURM_ARRAY_TASK_ID/$shards" --out "$out/shard-$SLURM_ARRAY_TASK_ID" \
+    ${LDM_SWEEP_ARGS:-} || status=$?
+  [ "$status" -eq 0 ] || [ "$status" -eq 3 ] || exit "$status"
+  exit 0
+fi
 
-# The login node: the array, then the merge once every task has ended.
-# shellcheck disable=SC2086  # SBATCH_ARGS is split on purpose
-array=$(sbatch --parsable ${SBATCH_ARGS:-} --array=0-$((shards - 1)) "$0" "$sweep" "$shards" "$out")
+# The login node: the array, then the merge once every task has ended (afterany: a failed
+# shard leaves a partial merge, with a warning naming it; resubmit it, and the merge reruns).
+[[ "$shards" =~ ^[1-9][0-9]*$ ]] || { echo "slurm-sweep: SHARDS '$shards' is not a positive count" >&2; exit 2; }
+[ -f "$sweep" ] || { echo "slurm-sweep: sweep file '$sweep' not found" >&2; exit 2; }
+# ldmbench checks the sweep (and the shard count) here, before anything is queued.
+"$ldmbench" sweep "$sweep" --dry-run --shard "0/$shards" >/dev/null
+# ldmbench renders on the first NVIDIA EGL device it finds, whatever CUDA_VISIBLE_DEVICES
+# says: --gres=gpu:1 alone would let two shards on one node time on the same GPU unless the
+# site's cgroups hide the others (ConstrainDevices=yes). --exclusive keeps a node to one
+# shard; LDM_SLURM_GPU_ARGS="--gres=gpu:1" drops it where devices are constrained.
+gpu_args=""
+case "${LDM_SLURM_GPUS:-1}" in
+  1) gpu_args="${LDM_SLURM_GPU_ARGS:---gres=gpu:1 --exclusive}" ;;
+  0) ;;
+  *) echo "slurm-sweep: LDM_SLURM_GPUS must be 1 or 0, not '${LDM_SLURM_GPUS}'" >&2; exit 2 ;;
+esac
+logs="$out/slurm-logs"
+mkdir -p "$logs"  # Slurm opens the logs but makes no folder
+# shellcheck disable=SC2086  # SBATCH_ARGS and gpu_args are split on purpose
+array=$(sbatch --parsable $gpu_args ${SBATCH_ARGS:-} --array="${LDM_SLURM_TASKS:-0-$((shards - 1))}" \
+  --output="$logs/ldmbench-shard-%a-of-$shards-job-%A_%a.out" "$0" "$sweep" "$shards" "$out")
+array=${array%%;*}  # --parsable: "id" or "id;cluster"
 # shellcheck disable=SC2086
-sbatch ${SBATCH_ARGS:-} --dependency=afterany:"$array" --export=ALL,LDM_SLURM_MERGE=1 \
-  --job-name=ldmbench-merge "$0" "$sweep" "$shards" "$out"
-echo "slurm-sweep: array job $array ($shards shards of $sweep into $out/shard-*), merge into $out/merged after it"
+merge=$(sbatch --parsable ${SBATCH_ARGS:-} --dependency=afterany:"$array" --export=ALL,LDM_SLURM_MERGE=1 \
+  --job-name=ldmbench-merge --output="$logs/ldmbench-merge-job-%j.out" "$0" "$sweep" "$shards" "$out")
+merge=${merge%%;*}
+echo "slurm-sweep: array job $array (tasks ${LDM_SLURM_TASKS:-0-$((shards - 1))} of $shards shards of $sweep" \
+  "into $out/shard-*), merge job $merge into $out/merged after it; logs in $logs"

@@ -403,3 +403,74 @@ TEST(SweepCli, RunRedoesFailedConfigurationsWhenAsked) {
 
 }  // namespace
 }  // namespace ldm
+
+namespace ldm {
+namespace {
+
+TEST(SweepCli, SlurmScriptSubmitsGpuOptionsAndNamedLogs) {
+  // The login node's branch of scripts/slurm-sweep.sh with a stand-in sbatch on PATH that
+  // logs its arguments (one line per call) and answers job ids 41, 42, ... (the real
+  // cluster: scripts/slurm-ci.sh in CI).
+  const Folder f = folder();
+  const std::string sweep = f.sweep("small.json", kSmall);
+  const fs::path bin = f.dir / "bin";
+  fs::create_directories(bin);
+  const fs::path calls = f.dir / "sbatch-calls";
+  std::ofstream(bin / "sbatch") << "#!/bin/sh\necho \"$*\" >> '" << calls.string() << "'\n"
+                                << "echo $((41 + $(wc -l < '" << calls.string() << "') - 1))\n";
+  fs::permissions(bin / "sbatch", fs::perms::owner_all);
+  const std::string script = std::string(LDM_TEST_SOURCE_DIR) + "/../scripts/slurm-sweep.sh";
+  const std::string out = (f.dir / "slurm").string();
+  const std::string env = "PATH=" + bin.string() + ":$PATH LDMBENCH=" + std::string(LDM_BINARY_PATH) + " ";
+  auto submit = [&](const std::string& vars, std::string* output) {
+    fs::remove(calls);
+    return test::run_command(env + vars + " " + script + " " + sweep + " 3 " + out, output);
+  };
+  auto lines = [&] {
+    std::istringstream in(read_text(calls));
+    std::vector<std::string> out;
+    for (std::string line; std::getline(in, line);) out.push_back(line);
+    return out;
+  };
+
+  std::string output;
+  ASSERT_EQ(submit("", &output), 0) << output;
+  std::vector<std::string> call = lines();
+  ASSERT_EQ(call.size(), 2u) << output;
+  // The array: a GPU of its own and the node to itself; every task's log names shard and job.
+  EXPECT_NE(call[0].find("--gres=gpu:1 --exclusive"), std::string::npos) << call[0];
+  EXPECT_NE(call[0].find("--array=0-2"), std::string::npos) << call[0];
+  EXPECT_NE(call[0].find("--output=" + out + "/slurm-logs/ldmbench-shard-%a-of-3-job-%A_%a.out"), std::string::npos)
+      << call[0];
+  // The merge: after the array, no GPU, its own log.
+  EXPECT_NE(call[1].find("--dependency=afterany:41"), std::string::npos) << call[1];
+  EXPECT_EQ(call[1].find("--gres"), std::string::npos) << call[1];
+  EXPECT_NE(call[1].find("--output=" + out + "/slurm-logs/ldmbench-merge-job-%j.out"), std::string::npos) << call[1];
+  EXPECT_TRUE(fs::is_directory(fs::path(out) / "slurm-logs"));
+  EXPECT_NE(output.find("array job 41"), std::string::npos) << output;
+  EXPECT_NE(output.find("merge job 42"), std::string::npos) << output;
+
+  // No GPU (the CI's node); one task resubmitted; the site's own GPU options.
+  ASSERT_EQ(submit("LDM_SLURM_GPUS=0 LDM_SLURM_TASKS=1", &output), 0) << output;
+  call = lines();
+  ASSERT_EQ(call.size(), 2u);
+  EXPECT_EQ(call[0].find("--gres"), std::string::npos) << call[0];
+  EXPECT_EQ(call[0].find("--exclusive"), std::string::npos) << call[0];
+  EXPECT_NE(call[0].find("--array=1 "), std::string::npos) << call[0];
+  ASSERT_EQ(submit("LDM_SLURM_GPU_ARGS=--gres=gpu:a100:1", &output), 0) << output;
+  EXPECT_NE(lines()[0].find("--gres=gpu:a100:1 "), std::string::npos);
+
+  // Refused before anything is queued: a bad switch, a bad sweep.
+  EXPECT_EQ(submit("LDM_SLURM_GPUS=yes", &output), 2) << output;
+  EXPECT_NE(output.find("LDM_SLURM_GPUS must be 1 or 0"), std::string::npos) << output;
+  EXPECT_FALSE(fs::exists(calls));
+  std::string broken = kSmall;
+  broken.replace(broken.find("\"psppfla\""), 9, "\"foo\"");
+  const std::string bad = f.sweep("bad.json", broken);
+  EXPECT_NE(test::run_command(env + script + " " + bad + " 3 " + out, &output), 0);
+  EXPECT_NE(output.find("unknown structure \"foo\""), std::string::npos) << output;
+  EXPECT_FALSE(fs::exists(calls));
+}
+
+}  // namespace
+}  // namespace ldm
