@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 
-from . import ties
+from . import style, ties
 
 
 MIB = float(1 << 20)
@@ -206,7 +206,7 @@ def write_markdown(path, title, runs_info, table, figures, notes):
     for section, figs in sections(figures):
         parts += [f"## {section}", ""]
         for f in figs:
-            parts += [f"### {f['title']}", "", f"![{f['title']}]({f['files'][0]})", "",
+            parts += [f"### {f['title']}", "", f"![{f['title']}]({style.page_file(f['files'])})", "",
                       f["caption"], ""]
     parts += ["## All configurations", "", markdown_table(header, config_rows), ""]
     with open(path, "w") as out:
@@ -244,7 +244,7 @@ def write_html(path, title, runs_info, table, figures, notes):
         parts.append(f"<h2>{e(section)}</h2>")
         for f in figs:
             links = " ".join(f'<a href="{e(p)}">{e(p.rsplit(".", 1)[1])}</a>' for p in f["files"])
-            parts.append(f'<figure><img src="{e(f["files"][0])}" alt="{e(f["title"])}">'
+            parts.append(f'<figure><img src="{e(style.page_file(f["files"]))}" alt="{e(f["title"])}">'
                          f'<figcaption><b>{e(f["title"])}</b>: {e(f["caption"])} {links}'
                          "</figcaption></figure>")
     parts += ["<h2>All configurations</h2>", html_table(header, config_rows, flag_column=2),
