@@ -118,10 +118,11 @@ def plain_log_ticks(ax, axis_values=None):
 def place_legend(ax, inside=4):
     """A legend inside the axes when short, below them when long (never beside: the figure
     keeps its paper width), so that it never hides the data."""
-    entries = len(ax.get_legend_handles_labels()[1])
+    labels = ax.get_legend_handles_labels()[1]
+    entries = len(labels)
     if not entries:
         return
-    if entries <= inside:
+    if entries <= inside and max(len(t) for t in labels) <= 32:
         ax.legend(loc="best", framealpha=0.8)
     else:
         ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.3), ncol=1, frameon=False)
@@ -351,7 +352,20 @@ def merge_coinciding(curves):
                 break
         else:
             merged.append(([label], data))
-    return [(" = ".join(labels), data) for labels, data in merged]
+    return [(merged_label(labels), data) for labels, data in merged]
+
+
+def merged_label(labels):
+    """"a (x) = b (x) = a (y)" written once per method and qualifier: "a = b (x; y)"."""
+    if len(labels) == 1:
+        return labels[0]
+    methods, qualifiers = [], []
+    for label in labels:
+        method, _, qualifier = label.partition(" (")
+        methods += [method] if method not in methods else []
+        qualifier = qualifier.rstrip(")")
+        qualifiers += [qualifier] if qualifier and qualifier not in qualifiers else []
+    return " = ".join(methods) + (f" ({'; '.join(qualifiers)})" if qualifiers else "")
 
 
 def draw_memory(table, canvas):
@@ -381,9 +395,11 @@ def draw_memory(table, canvas):
             for (colour, marker, _), (label, (xs, ys_allocated, ys_used, ok)) in zip(
                     series_styles(len(curves)), curves):
                 ok = ok.astype(bool)
-                for ys, line in ((ys_allocated, "-"), (ys_used, "--")):
+                # used = allocated (a structure sized exactly): one line, said in the legend
+                same = np.allclose(ys_allocated, ys_used, rtol=1e-9, atol=0, equal_nan=True)
+                for ys, line in ((ys_allocated, "-"),) + ((() if same else ((ys_used, "--"),))):
                     ax.plot(xs, ys, line, color=colour, linewidth=1.0,
-                            label=label if line == "-" else None)
+                            label=(label + (" (used = allocated)" if same else "")) if line == "-" else None)
                     scatter(ax, xs, ys, colour, marker, ok)
             if wide_span(table.num(x_column)[in_scene].to_numpy()):
                 ax.set_xscale("log", base=2)
