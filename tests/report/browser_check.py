@@ -72,7 +72,7 @@ class Browser:
         self.from_browser, from_browser_w = os.pipe()
         chromium = find_chromium()
         args = ["--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
-                "--disable-extensions", "--hide-scrollbars", "--remote-debugging-pipe",
+                "--disable-extensions", "--hide-scrollbars", "--disable-dev-shm-usage", "--remote-debugging-pipe",
                 f"--user-data-dir={self.profile}", "about:blank"]
         # the pipe ends as the protocol wants them: 3 read by the browser, 4 written by it
         self.process = subprocess.Popen(

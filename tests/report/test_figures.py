@@ -119,6 +119,17 @@ class Scaling(unittest.TestCase):
         x = np.array([4.0, 8.0])
         merged = figures.merge_coinciding([("a", (x, x * 2)), ("b", (x, x * 2)), ("c", (x, x * 3))])
         self.assertEqual([label for label, _ in merged], ["a = b", "c"])
+        self.assertEqual(figures.merged_label(["ppfla/ao (run=1)", "ppfla/indirect (run=1)", "ppfla/ao (run=2)"]),
+                         "ppfla/ao = ppfla/indirect (run=1; run=2)")
+
+    def test_memory_lines_that_coincide_are_merged_and_said(self):
+        # psppsll and ppsll: the same bytes, used = allocated; dfbuffer: twice, half used
+        rows = [record(structure=s, n_views=n, bytes_allocated=(n << 21) if s == "dfbuffer" else n << 20,
+                       bytes_used=n << 20) for s in ("psppsll", "ppsll", "dfbuffer") for n in (4, 8)]
+        canvas = Inspecting()
+        figures.draw_memory(table(rows), canvas)
+        legend = canvas.seen["memory-vs-n_views"]["legend"]
+        self.assertEqual(sorted(legend), ["dfbuffer", "ppsll = psppsll (used = allocated)"])
 
 
 class Grids(unittest.TestCase):
