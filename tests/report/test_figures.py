@@ -155,6 +155,16 @@ class Grids(unittest.TestCase):
         self.assertEqual(source, "8-bit PNG")
         self.assertAlmostEqual(float(grids.srgb_decode(pixels[0, 0, 0])), 0.4, delta=0.01)
 
+    def test_error_maps_are_read_back_on_their_scale(self):
+        # a heat map as the harness writes it (viridis at v / top): its values come back
+        # within two of viridis's 256 steps, so that maps of one group share one colour bar
+        values = np.random.default_rng(1).random((40, 60))
+        png = os.path.join(tempfile.mkdtemp(), "diff.png")
+        plt.imsave(png, values, cmap="viridis", vmin=0, vmax=1)
+        recovered = grids.heat_map_values(png, 0.5)
+        self.assertEqual(recovered.shape, values.shape)
+        self.assertLess(float(np.abs(recovered - 0.5 * values).max()), 0.5 * 2.5 / 255)
+
     def test_each_pass_has_its_reference_column(self):
         rows = [record(structure="psppsll", n_views=n, config_id=f"ao{n}", reference_exr="ao.exr")
                 for n in (4, 8)]

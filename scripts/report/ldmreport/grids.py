@@ -141,10 +141,14 @@ def heat_map_values(png_path, top):
     global VIRIDIS
     if VIRIDIS is None:
         VIRIDIS = plt.get_cmap("viridis")(np.linspace(0, 1, 256))[:, :3]
-    rgb = mpimg.imread(png_path)[..., :3].reshape(-1, 3)
-    nearest = np.argmin(((rgb[:, None, :] - VIRIDIS[None, :, :]) ** 2).sum(axis=2), axis=1)
-    shape = mpimg.imread(png_path).shape[:2]
-    return (nearest / 255.0 * top).reshape(shape)
+    pixels = mpimg.imread(png_path)
+    # A heat map has at most 256 colours: match those, not every pixel (a 1280x720 map
+    # against 256 colours pixel by pixel would take gigabytes)
+    rgb = np.rint(pixels[..., :3].reshape(-1, 3) * 255).astype(np.int32)
+    codes, inverse = np.unique((rgb[:, 0] << 16) | (rgb[:, 1] << 8) | rgb[:, 2], return_inverse=True)
+    colours = np.stack([(codes >> 16) & 255, (codes >> 8) & 255, codes & 255], axis=1) / 255.0
+    nearest = np.argmin(((colours[:, None, :] - VIRIDIS[None, :, :]) ** 2).sum(axis=2), axis=1)
+    return (nearest[inverse.reshape(-1)] / 255.0 * top).reshape(pixels.shape[:2])
 
 
 def blank_cell(ax):
