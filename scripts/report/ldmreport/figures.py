@@ -61,9 +61,9 @@ class Canvas:
 
 def method_styles(table):
     """One colour and marker per method, the same in every figure."""
-    cmap = plt.get_cmap("tab10")
     methods = sorted(set(table.methods()))
-    return {m: (cmap(i % 10), MARKERS[i % len(MARKERS)]) for i, m in enumerate(methods)}
+    colours = series_colours(len(methods))  # tab20 past ten: no two methods share a colour
+    return {m: (colours[i], MARKERS[i % len(MARKERS)]) for i, m in enumerate(methods)}
 
 
 def run_markers(table):
@@ -181,14 +181,17 @@ def label_axes(table, rows):
     return [a for a in set_varying(table, rows, table.axes()) if a not in NOT_IN_POINT_LABELS]
 
 
-def point_label(table, i, varying=()):
-    """What tells a point from its neighbours: N and R_LDM (for a structure), the values of
-    the `varying` axes, and the run when several are drawn."""
+def point_label(table, i, varying=(), several_runs=None):
+    """What tells a point from its neighbours: N and R_LDM for a structure (the pass for a
+    pass without one), the values of the `varying` axes, and the run when the panel draws
+    several (`several_runs`; default: whether the table holds several)."""
     parts = []
     if table.has_structure()[i]:
         parts += [f"N{table.text('n_views')[i]}", f"R{table.text('r_ldm')[i]}"]
+    else:
+        parts.append(table.text("pass")[i])
     parts += [describe({a: table.axis_values(a)[i]}) for a in varying if table.axis_values(a)[i]]
-    if table.text("run").nunique() > 1:
+    if several_runs if several_runs is not None else table.text("run").nunique() > 1:
         parts.append(table.text("run")[i])
     return " ".join(p for p in parts if p)
 
@@ -276,7 +279,8 @@ def draw_tradeoffs(table, canvas):
             for r in labelled:
                 # each run's labels on its own side of the point, so that two runs' don't overlap
                 offset = LABEL_OFFSETS[run_index[runs[r]] % len(LABEL_OFFSETS)]
-                ax.annotate(point_label(table, r, varying), (time[r], table.num(column)[r]),
+                ax.annotate(point_label(table, r, varying, len(set(rn)) > 1),
+                            (time[r], table.num(column)[r]),
                             fontsize=style.POINT_LABEL_SIZE, xytext=offset,
                             ha="left" if offset[0] >= 0 else "right",
                             va="bottom" if offset[1] >= 0 else "top",
