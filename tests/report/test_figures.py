@@ -115,6 +115,15 @@ class Scaling(unittest.TestCase):
         self.assertTrue(any(t.startswith("psppsll: slope") for t in legend), legend)
         self.assertIn("ppsll: no slope (2 ok points, a fit needs 3)", legend)
 
+    def test_series_at_one_x_share_one_entry(self):
+        rows = [record(n_views=n, structure="psppsll", build_ms_median=n / 4) for n in (4, 8, 16)]
+        rows += [record(n_views=8, structure=s, build_ms_median=b) for s, b in (("ppsll", 2.0), ("dfbuffer", 3.0))]
+        canvas = Inspecting()
+        figures.draw_scaling(table(rows), canvas)
+        legend = canvas.seen["cost-vs-n_views"]["legend"]
+        self.assertIn("2 series at one N value (points only, no slope)", legend)
+        self.assertFalse(any(t.startswith(("ppsll", "dfbuffer")) for t in legend), legend)
+
     def test_coinciding_series_share_one_line_and_entry(self):
         x = np.array([4.0, 8.0])
         merged = figures.merge_coinciding([("a", (x, x * 2)), ("b", (x, x * 2)), ("c", (x, x * 3))])

@@ -85,12 +85,12 @@ def series_styles(n):
             for i, c in enumerate(series_colours(n))]
 
 
-def subplot_grid(count, max_columns=2, height=style.PANEL_HEIGHT):
+def subplot_grid(count, max_columns=2, height=style.PANEL_HEIGHT, width=None):
     """Panels at a paper's sizes (style.py): one column wide for one panel, the text width
-    for two side by side, more rows below."""
+    for two side by side (or `width`), more rows below."""
     columns = min(count, max_columns)
     rows = math.ceil(count / columns)
-    fig, axes = plt.subplots(rows, columns, figsize=(style.figure_width(columns), height * rows),
+    fig, axes = plt.subplots(rows, columns, figsize=(width or style.figure_width(columns), height * rows),
                              squeeze=False)
     for extra in axes.flat[count:]:
         extra.set_visible(False)
@@ -115,7 +115,7 @@ def plain_log_ticks(ax, axis_values=None):
             ax.xaxis.set_minor_locator(matplotlib.ticker.NullLocator())
 
 
-def place_legend(ax, inside=4):
+def place_legend(ax, inside=4, columns=1):
     """A legend inside the axes when short, below them when long (never beside: the figure
     keeps its paper width), so that it never hides the data."""
     labels = ax.get_legend_handles_labels()[1]
@@ -125,7 +125,8 @@ def place_legend(ax, inside=4):
     if entries <= inside and max(len(t) for t in labels) <= 32:
         ax.legend(loc="best", framealpha=0.8)
     else:
-        ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.3), ncol=1, frameon=False)
+        ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.3 if columns == 1 else -0.18),
+                  ncol=columns, frameon=False)
 
 
 def figure_legend(fig, handles):
@@ -480,6 +481,8 @@ def draw_depth_histograms(table, canvas):
                 "the total). Panels: " + "; ".join(panels) + ".", "Depth complexity")
 
 
+LONE_COLOUR = "0.6"
+MANY_SERIES = 10  # past this, a cost figure stacks its panels (legends need the width)
 MIN_FIT_POINTS = 3  # two points always fit a line exactly: a slope from them is no finding
 
 
@@ -530,8 +533,15 @@ def draw_scaling(table, canvas):
         rows = (x_all > 0) & table.has_structure()
         if not x_is_a_range(table, canvas, rows, x_column, what):
             continue
-        entries = len(series_masks(table, rows, series_axes + table.extra_axes))
-        fig, axes = subplot_grid(len(costs), height=style.PANEL_HEIGHT + 0.12 * entries)
+        # the legend's entries: series over two or more x values, and one for the lone points
+        entries = 1 + sum(table.num(x_column)[m].nunique() > 1
+                          for _, m in series_masks(table, rows, series_axes + table.extra_axes))
+        # Many series: the panels one above the other at the text width, each legend in two
+        # columns below it (side by side, long legends would run into each other).
+        many = entries > MANY_SERIES
+        fig, axes = subplot_grid(len(costs), max_columns=1 if many else 2,
+                                 width=style.DOUBLE_COLUMN if many else None,
+                                 height=style.PANEL_HEIGHT + 0.12 * (entries / 2 if many else entries))
         for ax, (cost_name, cost, ylabel, subpass) in zip(axes, costs):
             in_plot = rows & (cost > 0)
             curves = []
@@ -542,6 +552,16 @@ def draw_scaling(table, canvas):
                                        measured[mask].to_numpy()[order].astype(float),
                                        time_errors(table, subpass, mask, y)[:, order])))
             curves = merge_coinciding(curves)
+            # A series at one x value is a point, not a scaling: drawn small and grey, one
+            # legend entry for them all, so that the legend names what has a slope.
+            lone = [c for c in curves if len(set(c[1][0])) < 2]
+            curves = [c for c in curves if len(set(c[1][0])) >= 2]
+            for _, (x, y, ok, errors) in lone:
+                scatter(ax, x, y, LONE_COLOUR, "o", ok.astype(bool))
+            if lone:
+                ax.scatter([], [], color=LONE_COLOUR, marker="o", s=16,
+                           label=f"{len(lone)} series at one {axis_label(x_column)} value "
+                                 "(points only, no slope)")
             for (colour, marker, line), (label, (x, y, ok, errors)) in zip(
                     series_styles(len(curves)), curves):
                 ok = ok.astype(bool)
@@ -563,13 +583,14 @@ def draw_scaling(table, canvas):
             ax.set_title(style.panel_title(scenes[0] if len(scenes) == 1 else None,
                                            quantity=cost_name))
             ax.grid(alpha=0.3, which="both")
-            place_legend(ax, inside=0)
+            place_legend(ax, inside=0, columns=2 if many else 1)
         canvas.save(fig, f"cost-vs-{x_column}", f"Cost vs {axis_label(x_column)} (log-log)",
                     "Medians per configuration with their 95 % intervals; each series has its own "
                     "colour, marker and line style, and series with the same values share one "
                     "line (\"a = b\"); dotted: least-squares fit in log space over the ok records, "
                     f"its slope in the legend, only for series with at least {MIN_FIT_POINTS} x "
-                    f"values (the legend says so otherwise); {HOLLOW_NOTE}.", "Scaling")
+                    f"values (the legend says so otherwise); grey points: series measured at "
+                    f"one x value only; {HOLLOW_NOTE}.", "Scaling")
 
 
 def draw_subpass_bars(table, canvas, per_figure=60):
