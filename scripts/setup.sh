@@ -27,6 +27,9 @@ packages=(
   libbenchmark-tools
   # independent metric oracle (skimage) and report plots
   python3 python3-numpy python3-scipy python3-skimage python3-matplotlib python3-pandas
+  # the report: HDR images tone-mapped from their EXR (python3-openimageio), and its HTML
+  # tested in a real browser (tests/report/browser_check.py: headless chromium, with fonts)
+  python3-openimageio chromium fonts-dejavu-core
 )
 
 missing=()

@@ -3,6 +3,7 @@
 // pandas); this command checks every argument first, so that bad input exits 2 with
 // nothing written and no Python started, then finds the script and a Python that has the
 // plotting packages, and runs it.
+#include <algorithm>
 #include <cstdlib>
 #include <unistd.h>
 #include <filesystem>
@@ -41,10 +42,20 @@ constexpr const char* kPythonProbe =
     "sys.exit('No module named ' + ', '.join(missing) if missing else 0)\n";
 
 struct ReportOptions {
-  std::vector<std::string> runs, axes;
+  std::vector<std::string> runs, axes, formats;
   std::string out, title;
   bool svg = false;
 };
+
+// The figures' formats (the script's style.FORMATS): checked here, so that a typo exits 2
+// before anything is written or Python starts.
+constexpr const char* kFigureFormats[] = {"png", "svg", "pdf"};
+
+void check_formats(const std::vector<std::string>& formats) {
+  for (const std::string& format : formats)
+    if (std::find(std::begin(kFigureFormats), std::end(kFigureFormats), format) == std::end(kFigureFormats))
+      throw UserError("--format: '" + format + "' is not one of png, svg, pdf");
+}
 
 // A records.csv must at least name its configurations and their status.
 void check_csv_header(const fs::path& path) {
@@ -204,12 +215,17 @@ Runner add_report_command(CLI::App& app) {
   cmd->add_option("--out", o->out,
                   "Report folder: new, empty, or an earlier report (replaced). Default: "
                   "RUN/report for one run");
-  cmd->add_flag("--svg", o->svg, "Also write every figure as SVG");
+  cmd->add_option("--format", o->formats,
+                  "Figure formats: png, svg, pdf; repeatable or a comma list (default png; "
+                  "figures are sized for a two-column paper)")
+      ->delimiter(',');
+  cmd->add_flag("--svg", o->svg, "The same as --format png,svg (kept for earlier scripts)");
   cmd->add_option("--title", o->title, "Title of the pages");
   cmd->add_option("--axis", o->axes,
                   "A further record column that tells configurations apart (a new pass's "
                   "setting), repeatable");
   return [o]() {
+    check_formats(o->formats);
     for (const std::string& run : o->runs) check_run(run);
     const std::string out = o->out.empty() ? default_out(o->runs) : o->out;
     check_out_folder(out, o->runs);
@@ -228,6 +244,7 @@ Runner add_report_command(CLI::App& app) {
     argv.insert(argv.end(), o->runs.begin(), o->runs.end());
     argv.insert(argv.end(), {"--out", out, "--axes", axes.string()});
     if (o->svg) argv.push_back("--svg");
+    for (const std::string& format : o->formats) argv.insert(argv.end(), {"--format", format});
     if (!o->title.empty()) argv.insert(argv.end(), {"--title", o->title});
     for (const std::string& axis : o->axes) argv.insert(argv.end(), {"--axis", axis});
     const ProcessResult result = run_process(argv, /*capture=*/false);

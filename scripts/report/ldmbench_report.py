@@ -2,12 +2,13 @@
 """ldmbench report: a folder of tables, plots and pages from one or more ldmbench runs.
 
 Usage:
-  ldmbench_report.py RUN... --out DIR [--svg] [--title TEXT] [--axis COLUMN]...
-  ldmbench_report.py --from-csv tidy.csv --out DIR [--svg] [--title TEXT] [--axis COLUMN]...
+  ldmbench_report.py RUN... --out DIR [--format png|svg|pdf]... [--title TEXT] [--axis COLUMN]...
+  ldmbench_report.py --from-csv tidy.csv --out DIR [--format ...] [--title TEXT] [--axis COLUMN]...
 
 RUN is a run folder (records.csv or records.json inside) or a records.csv / records.json.
 DIR receives tidy.csv (every run's records, one row per configuration and run, the run a
-column), figures/ (PNG, and SVG with --svg), summary.md and index.html. `--from-csv` redraws
+column), figures/ (each in every --format: PNG by default; SVG and PDF for a paper, sized
+for a two-column layout), summary.md and index.html. `--from-csv` redraws
 everything from a tidy.csv alone; the image grids then need the run folders it names and
 are skipped with a note without them. `ldmbench report` runs this script.
 
@@ -47,8 +48,11 @@ def parse_arguments(argv):
     parser.add_argument("runs", nargs="*", metavar="RUN", help="run folder, records.csv or records.json")
     parser.add_argument("--from-csv", metavar="TIDY_CSV", help="redraw from a report's tidy.csv")
     parser.add_argument("--out", required=True, metavar="DIR", help="the report folder")
-    parser.add_argument("--svg", action="store_true", help="also write every figure as SVG")
-    parser.add_argument("--dpi", type=int, default=100,
+    parser.add_argument("--format", action="append", default=[], metavar="FORMATS",
+                        help="png, svg or pdf, repeatable or a comma list (default png); the "
+                             "pages show the SVG, else the PNG, which is added when neither is asked for")
+    parser.add_argument("--svg", action="store_true", help="the same as --format png,svg")
+    parser.add_argument("--dpi", type=int, default=200,
                         help="resolution of the PNG figures (e.g. 50 for a report to commit)")
     parser.add_argument("--title", default="ldmbench report", help="title of the pages")
     parser.add_argument("--axes", metavar="AXES_JSON",
@@ -61,6 +65,13 @@ def parse_arguments(argv):
     if bool(args.runs) == bool(args.from_csv):
         parser.print_usage(sys.stderr)
         fail("give either RUN... or --from-csv TIDY_CSV")
+    from ldmreport import style  # matplotlib's name only: no plotting is imported
+    try:
+        args.formats = style.parse_formats(args.format + (["png,svg"] if args.svg else []))
+    except ValueError as e:
+        fail(str(e))
+    if args.dpi <= 0:
+        fail(f"--dpi: {args.dpi} is not a positive number of dots per inch")
     return args
 
 
@@ -169,9 +180,10 @@ def main(argv):
     axes = read_axes(args)
     earlier = check_out_folder(args.out, inputs)
     import_plotting()
-    from ldmreport import figures, grids, pages
+    from ldmreport import figures, grids, pages, style
     from ldmreport.table import Table, declare_axes
     declare_axes(axes)
+    style.apply()
 
     os.makedirs(args.out, exist_ok=True)
     remove_earlier_report(args.out, earlier)
@@ -181,7 +193,7 @@ def main(argv):
         json.dump(axes, f, indent=1)
 
     table = Table(columns, rows, extra_axes=args.axis)
-    canvas = figures.Canvas(args.out, svg=args.svg, dpi=args.dpi)
+    canvas = figures.Canvas(args.out, formats=args.formats, dpi=args.dpi)
     note = collision_note(table)
     if note:
         canvas.note(note)

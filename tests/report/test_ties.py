@@ -59,6 +59,18 @@ class Ties(unittest.TestCase):
         self.assertEqual(ties.pareto_front([M(1, 0.9, 1.1), M(1.02, 0.95, 1.1)],
                                            [M(3, band=0.1), M(3.05, band=0.1)], False), [0, 1])
 
+    def test_the_front_over_three_criteria_keeps_ties(self):
+        E = ties.exact_measure
+        points = [[M(1, 0.9, 1.1), E(100), M(5, band=0.1)],    # fastest
+                  [M(1, 0.95, 1.05), E(100), M(5, band=0.1)],  # tied with 0 in all
+                  [M(3, 2.9, 3.1), E(50), M(5, band=0.1)],     # least memory
+                  [M(3, 2.9, 3.1), E(100), M(5, band=0.1)],    # dominated by 2
+                  [M(9, 8.9, 9.1), E(400), M(1, band=0.1)]]    # least error
+        front = ties.pareto_front_all(points, [False, False, False])
+        self.assertEqual(sorted(front), [0, 1, 2, 4])
+        self.assertTrue(ties.tied_in_all(points[0], points[1]))
+        self.assertFalse(ties.tied_in_all(points[0], points[2]))
+
 
 class BestTable(unittest.TestCase):
     def table(self, rows):

@@ -13,34 +13,47 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import matplotlib.ticker  # noqa: E402
+from matplotlib.lines import Line2D  # noqa: E402
 import numpy as np  # noqa: E402
 
-from . import ties  # noqa: E402
+from . import style, ties  # noqa: E402
 from .table import axis_label, describe, sort_key  # noqa: E402
 
 MIB = float(1 << 20)
 MARKERS = "osD^vP*Xph<>"
+RUN_MARKERS = "o^sDvP"  # one per run when several are drawn
+LINE_STYLES = ["-", "--", "-.", (0, (1, 1))]
+LABEL_OFFSETS = [(2, 2), (2, -2), (-2, 2), (-2, -2)]  # points; one per run
 HOLLOW_NOTE = "hollow markers: lossy / invalid / failed / degenerate (not ranked, off the front and fits)"
 
 
 class Canvas:
-    """Where figures go: <out>/figures/<name>.png (and .svg), listed for the pages."""
+    """Where figures go: <out>/figures/<name>.<format> for each output format (style.py:
+    PNG, SVG, PDF), listed for the pages."""
 
-    def __init__(self, out_dir, svg=False, dpi=100):
-        self.out_dir, self.svg, self.dpi = out_dir, svg, dpi
+    def __init__(self, out_dir, formats=("png",), dpi=200):
+        self.out_dir, self.formats, self.dpi = out_dir, style.written_formats(formats), dpi
         self.figures, self.notes = [], []
         os.makedirs(os.path.join(out_dir, "figures"), exist_ok=True)
 
-    def save(self, fig, name, title, caption, section):
-        fig.tight_layout()  # titles and labels of stacked panels must not overlap
+    def save(self, fig, name, title, caption, section, tight=True):
+        if tight:  # titles and labels of stacked panels must not overlap
+            fig.tight_layout()
         files = []
-        for ext in ("png", "svg") if self.svg else ("png",):
+        for ext in self.formats:
             rel = f"figures/{name}.{ext}"
-            fig.savefig(os.path.join(self.out_dir, rel), dpi=self.dpi, bbox_inches="tight")
+            # PDF and SVG without a creation date: the same data gives the same file
+            metadata = {"CreationDate": None} if ext == "pdf" else {"Date": None} if ext == "svg" else None
+            fig.savefig(os.path.join(self.out_dir, rel), dpi=self.dpi, bbox_inches="tight",
+                        metadata=metadata)
             files.append(rel)
+        self.inspect(fig, name)
         plt.close(fig)
         self.figures.append({"section": section, "name": name, "title": title,
                              "caption": caption, "files": files})
+
+    def inspect(self, fig, name):
+        """Called with every figure before it is closed (tests look at its artists)."""
 
     def note(self, text):
         self.notes.append(text)
@@ -48,9 +61,16 @@ class Canvas:
 
 def method_styles(table):
     """One colour and marker per method, the same in every figure."""
-    cmap = plt.get_cmap("tab10")
     methods = sorted(set(table.methods()))
-    return {m: (cmap(i % 10), MARKERS[i % len(MARKERS)]) for i, m in enumerate(methods)}
+    colours = series_colours(len(methods))  # tab20 past ten: no two methods share a colour
+    return {m: (colours[i], MARKERS[i % len(MARKERS)]) for i, m in enumerate(methods)}
+
+
+def run_markers(table):
+    """One marker per run when the report draws several (colour stays the method's), so that
+    the runs of a two-run report are told apart in every scatter; {} for one run."""
+    runs = list(dict.fromkeys(table.text("run")))
+    return {r: RUN_MARKERS[i % len(RUN_MARKERS)] for i, r in enumerate(runs)} if len(runs) > 1 else {}
 
 
 def series_colours(n):
@@ -58,10 +78,19 @@ def series_colours(n):
     return [cmap(i % cmap.N) for i in range(n)]
 
 
-def subplot_grid(count, width=5.2, height=3.8, max_columns=3):
+def series_styles(n):
+    """(colour, marker, line style) per series: neighbours differ in all three, so that two
+    series that run close (or on top of each other) both stay visible."""
+    return [(c, MARKERS[i % len(MARKERS)], LINE_STYLES[i % len(LINE_STYLES)])
+            for i, c in enumerate(series_colours(n))]
+
+
+def subplot_grid(count, max_columns=2, height=style.PANEL_HEIGHT, width=None):
+    """Panels at a paper's sizes (style.py): one column wide for one panel, the text width
+    for two side by side (or `width`), more rows below."""
     columns = min(count, max_columns)
     rows = math.ceil(count / columns)
-    fig, axes = plt.subplots(rows, columns, figsize=(width * columns, height * rows),
+    fig, axes = plt.subplots(rows, columns, figsize=(width or style.figure_width(columns), height * rows),
                              squeeze=False)
     for extra in axes.flat[count:]:
         extra.set_visible(False)
@@ -86,14 +115,25 @@ def plain_log_ticks(ax, axis_values=None):
             ax.xaxis.set_minor_locator(matplotlib.ticker.NullLocator())
 
 
-def place_legend(ax, inside=8):
-    """A legend inside the axes when short, beside them when long, so that it never hides
-    the data (figures whose legends may be long stack their panels in one column)."""
-    entries = len(ax.get_legend_handles_labels()[1])
-    if entries <= inside:
-        ax.legend(fontsize=7)
+def place_legend(ax, inside=4, columns=1):
+    """A legend inside the axes when short, below them when long (never beside: the figure
+    keeps its paper width), so that it never hides the data."""
+    labels = ax.get_legend_handles_labels()[1]
+    entries = len(labels)
+    if not entries:
+        return
+    if entries <= inside and max(len(t) for t in labels) <= 32:
+        ax.legend(loc="best", framealpha=0.8)
     else:
-        ax.legend(fontsize=6, loc="upper left", bbox_to_anchor=(1.01, 1))
+        ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.3 if columns == 1 else -0.18),
+                  ncol=columns, frameon=False)
+
+
+def figure_legend(fig, handles):
+    """One legend for every panel of a figure, below them (the figure keeps its width)."""
+    if handles:
+        fig.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, 0.0),
+                   ncol=min(3, len(handles)), frameon=False)
 
 
 def wide_span(values):
@@ -102,13 +142,12 @@ def wide_span(values):
     return len(values) > 1 and values.max() / values.min() > 30
 
 
-def scatter(ax, x, y, colour, marker, measured, label):
-    ax.scatter(x[measured], y[measured], color=colour, marker=marker, s=36, zorder=3,
-               label=label if measured.any() else None)
+def scatter(ax, x, y, colour, marker, measured):
+    """Filled markers for ok records, hollow ones for the rest (HOLLOW_NOTE)."""
+    ax.scatter(x[measured], y[measured], color=colour, marker=marker, s=16, zorder=3)
     if (~measured).any():
         ax.scatter(x[~measured], y[~measured], facecolors="none", edgecolors=[colour],
-                   marker=marker, s=36, zorder=3,
-                   label=None if measured.any() else f"{label} (not ok)")
+                   marker=marker, s=16, zorder=3, linewidths=0.8)
 
 
 def time_errors(table, subpass, rows, values):
@@ -120,45 +159,80 @@ def time_errors(table, subpass, rows, values):
     return np.nan_to_num(np.vstack([below, above]))
 
 
-def point_label(table, i):
-    """What tells a point from its neighbours: N and R_LDM (or the pass alone), the run
-    when several are drawn."""
+# Axes a point's label never repeats: they are the panel's (scene), the legend's (structure,
+# pass, run: marker and colour) or always shown (N, R_LDM).
+NOT_IN_POINT_LABELS = {"scene", "structure", "pass", "run", "sweep", "n_views", "r_ldm"}
+
+
+def set_varying(table, rows, candidates):
+    """The candidate axes taking two or more values over the `rows` (a mask) that have one:
+    an axis only some records have (d_max of AO beside indirect light) does not split them."""
+    out = []
+    for a in candidates:
+        if table.has(a):
+            values = table.axis_values(a)[rows]
+            if values[values != ""].nunique() > 1:
+                out.append(a)
+    return out
+
+
+def label_axes(table, rows):
+    """The axes besides N and R_LDM whose values differ among `rows` (a mask): the
+    parameter a panel varies, which each point's label then names."""
+    return [a for a in set_varying(table, rows, table.axes()) if a not in NOT_IN_POINT_LABELS]
+
+
+def point_label(table, i, varying=(), several_runs=None):
+    """What tells a point from its neighbours: N and R_LDM for a structure (the pass for a
+    pass without one), the values of the `varying` axes, and the run when the panel draws
+    several (`several_runs`; default: whether the table holds several)."""
     parts = []
     if table.has_structure()[i]:
         parts += [f"N{table.text('n_views')[i]}", f"R{table.text('r_ldm')[i]}"]
-        params = table.text("structure_params")[i]
-        if params:
-            parts.append(params)
-    if table.text("run").nunique() > 1:
+    else:
+        parts.append(table.text("pass")[i])
+    parts += [describe({a: table.axis_values(a)[i]}) for a in varying if table.axis_values(a)[i]]
+    if several_runs if several_runs is not None else table.text("run").nunique() > 1:
         parts.append(table.text("run")[i])
-    return " ".join(parts)
+    return " ".join(p for p in parts if p)
 
 
 def comparable_groups(table, prefix, column):
     """Rows scored against one reference, per scene: their errors compare. Returns
-    [(title, mask)]."""
+    [(title, mask)], titles after style.panel_title."""
     scored = table.num(column).notna() & np.isfinite(table.num("frame_ms_median"))
     key_column = table.reference_key_column(prefix)
     keys = table.text("scene") + "|" + (table.text(key_column) if key_column else
                                         table.text("width") + "x" + table.text("height"))
     masks = [scored & (keys == k) for k in dict.fromkeys(keys[scored])]
     firsts = [m[m].index[0] for m in masks]
-    candidates = ["scene", "width", "height", "visibility", "d_max"] + table.extra_axes
+    candidates = ["width", "height", "visibility", "d_max"] + table.extra_axes
     differing = [a for a in candidates
                  if len({table.axis_values(a)[i] for i in firsts}) > 1]
     passes = [", ".join(dict.fromkeys(table.text("pass")[m])) for m in masks]
     titles = []
     for i, m, p in zip(firsts, masks, passes):
-        title = describe({a: table.axis_values(a)[i] for a in differing}) or table.text("scene")[i]
-        titles.append(title + (f"; {p}" if len(set(passes)) > 1 else ""))
+        titles.append(style.panel_title(table.text("scene")[i],
+                                        {a: table.axis_values(a)[i] for a in differing},
+                                        p if len(set(passes)) > 1 else None))
     return list(zip(titles, masks))
 
 
+def legend_handles(entries):
+    """Legend handles for (label, colour, marker, line style, filled) entries."""
+    return [Line2D([], [], color=colour, marker=marker, linestyle=line or "none",
+                   markerfacecolor=colour if filled else "none", markersize=4, label=label)
+            for label, colour, marker, line, filled in entries]
+
+
 def draw_tradeoffs(table, canvas):
-    """Time per frame against each image metric, per method, with the Pareto front of the
+    """Time per frame against each image metric, per method (colour) and run (marker), each
+    point labelled and with its time interval as an error bar, and the Pareto front of the
     ok records (faster and better)."""
     styles = method_styles(table)
+    markers_of_run = run_markers(table)
     methods = table.methods()
+    runs = table.text("run")
     measured = table.measured().to_numpy()
     time = table.num("frame_ms_median")
     if not table.metric_columns():
@@ -171,17 +245,24 @@ def draw_tradeoffs(table, canvas):
             continue
         higher = metric == "mssim"
         fig, axes = subplot_grid(len(groups))
+        drawn_methods, drawn_runs, any_hollow = [], [], False
         for ax, (title, mask) in zip(axes, groups):
             x, y = time[mask].to_numpy(), table.num(column)[mask].to_numpy()
-            ok, m = measured[mask.to_numpy()], methods[mask].to_numpy()
+            ok, m, rn = measured[mask.to_numpy()], methods[mask].to_numpy(), runs[mask].to_numpy()
+            any_hollow |= not ok.all()
             rows = list(mask[mask].index)
             errors = time_errors(table, "frame", mask, x)
             for method in sorted(set(m)):
                 colour, marker = styles[method]
-                sel = m == method
-                ax.errorbar(x[sel], y[sel], xerr=errors[:, sel], fmt="none", ecolor=colour,
-                            elinewidth=0.8, alpha=0.7, zorder=2)
-                scatter(ax, x[sel], y[sel], colour, marker, ok[sel], method)
+                drawn_methods += [method] if method not in drawn_methods else []
+                for run in dict.fromkeys(rn):
+                    sel = (m == method) & (rn == run)
+                    if not sel.any():
+                        continue
+                    drawn_runs += [run] if run not in drawn_runs else []
+                    ax.errorbar(x[sel], y[sel], xerr=errors[:, sel], fmt="none", ecolor=colour,
+                                elinewidth=0.7, capsize=1.5, alpha=0.8, zorder=2)
+                    scatter(ax, x[sel], y[sel], colour, markers_of_run.get(run, marker), ok[sel])
             ok_rows = [r for r, good in zip(rows, ok) if good]
             if ok_rows:
                 xs = [ties.time_measure(table, r, "frame") for r in ok_rows]
@@ -189,15 +270,22 @@ def draw_tradeoffs(table, canvas):
                 front = ties.pareto_front(xs, ys, higher)
                 px = np.array([xs[k].value for k in front])
                 py = np.array([ys[k].value for k in front])
-                ax.step(px, py, where="post", color="black", linestyle="--", linewidth=1,
-                        label="Pareto front (ok; ties kept)", zorder=2)
-                ax.scatter(px, py, s=110, facecolors="none", edgecolors="black",
-                           linewidths=1, zorder=4)
-                # Every point is labelled in small panels; in crowded ones the front's.
-                labelled = ok_rows if len(rows) <= 30 else [ok_rows[k] for k in front]
-                for r in labelled:
-                    ax.annotate(point_label(table, r), (time[r], table.num(column)[r]), fontsize=5.5,
-                                xytext=(3, 3), textcoords="offset points", alpha=0.8)
+                ax.step(px, py, where="post", color="black", linestyle="--", linewidth=0.8, zorder=2)
+                ax.scatter(px, py, s=45, facecolors="none", edgecolors="black",
+                           linewidths=0.7, zorder=4)
+            # Every point is labelled in small panels; in crowded ones the front's.
+            varying = label_axes(table, mask)
+            labelled = rows if len(rows) <= 30 else [ok_rows[k] for k in front] if ok_rows else []
+            run_index = {run: k for k, run in enumerate(dict.fromkeys(runs))}
+            for r in labelled:
+                # each run's labels on its own side of the point, so that two runs' don't overlap
+                offset = LABEL_OFFSETS[run_index[runs[r]] % len(LABEL_OFFSETS)]
+                ax.annotate(point_label(table, r, varying, len(set(rn)) > 1),
+                            (time[r], table.num(column)[r]),
+                            fontsize=style.POINT_LABEL_SIZE, xytext=offset,
+                            ha="left" if offset[0] >= 0 else "right",
+                            va="bottom" if offset[1] >= 0 else "top",
+                            textcoords="offset points", alpha=0.85)
             if wide_span(x):
                 ax.set_xscale("log")
             if metric == "mse" and wide_span(y):
@@ -205,23 +293,32 @@ def draw_tradeoffs(table, canvas):
             plain_log_ticks(ax)
             ax.set_xlabel("frame time, median (ms)")
             ax.set_ylabel(column + (" (higher is better)" if higher else " (lower is better)"))
-            ax.set_title(title, fontsize=10)
+            ax.set_title(title)
             ax.grid(alpha=0.3)
-            place_legend(ax)
+        entries = [(method, styles[method][0], styles[method][1] if not markers_of_run else "s",
+                    None, True) for method in drawn_methods]
+        entries += [(f"run {run}", "0.35", markers_of_run[run], None, True)
+                    for run in drawn_runs if markers_of_run]
+        entries.append(("Pareto front (ok; ties kept)", "black", None, "--", True))
+        if any_hollow:
+            entries.append(("hollow: not ok", "0.35", "o", None, False))
+        figure_legend(fig, legend_handles(entries))
         name = f"tradeoff-time-vs-{column}"
         canvas.save(fig, name, f"Frame time vs {column}",
-                    f"Per method, frame time with its 95 % interval as error bars; the dashed "
-                    f"line is the Pareto front of the ok records: nothing is faster or better "
-                    f"beyond the uncertainty (overlapping time intervals, errors within the "
-                    f"reference noise are ties, and tied records all stay on it); points are "
-                    f"labelled N, R_LDM (and run); {HOLLOW_NOTE}.", "Trade-offs")
+                    f"Per method (colour{', and run: marker' if markers_of_run else ''}), frame "
+                    f"time with its 95 % interval as error bars; the dashed line is the Pareto "
+                    f"front of the ok records: nothing is faster or better beyond the "
+                    f"uncertainty (overlapping time intervals, errors within the reference "
+                    f"noise are ties, and tied records all stay on it); points are labelled "
+                    f"N, R_LDM, the parameters that vary in the panel"
+                    f"{' and the run' if markers_of_run else ''}; {HOLLOW_NOTE}.", "Trade-offs")
 
 
 def series_masks(table, rows, series_axes):
     """Split `rows` into series by method and the axes among `series_axes` that vary there:
     [(label, mask)] in a stable order."""
     methods = table.methods()
-    varying = table.varying(rows, series_axes)
+    varying = set_varying(table, rows, series_axes)
     keys = methods.copy()
     for a in varying:
         keys = keys + "|" + table.axis_values(a)
@@ -246,6 +343,36 @@ def x_is_a_range(table, canvas, rows, x_column, what):
     return False
 
 
+def merge_coinciding(curves):
+    """Curves [(label, data)] whose data (a tuple of arrays) are equal merged into one, their
+    labels joined with " = ": a line drawn on top of another would hide it, and two legend
+    entries for one line would say nothing."""
+    merged = []
+    for label, data in curves:
+        for entry in merged:
+            if len(entry[1]) == len(data) and all(
+                    a.shape == b.shape and np.allclose(a, b, rtol=1e-9, atol=0, equal_nan=True)
+                    for a, b in zip(entry[1], data)):
+                entry[0].append(label)
+                break
+        else:
+            merged.append(([label], data))
+    return [(merged_label(labels), data) for labels, data in merged]
+
+
+def merged_label(labels):
+    """"a (x) = b (x) = a (y)" written once per method and qualifier: "a = b (x; y)"."""
+    if len(labels) == 1:
+        return labels[0]
+    methods, qualifiers = [], []
+    for label in labels:
+        method, _, qualifier = label.partition(" (")
+        methods += [method] if method not in methods else []
+        qualifier = qualifier.rstrip(")")
+        qualifiers += [qualifier] if qualifier and qualifier not in qualifiers else []
+    return " = ".join(methods) + (f" ({'; '.join(qualifiers)})" if qualifiers else "")
+
+
 def draw_memory(table, canvas):
     """Bytes allocated (solid) and used (dashed) by the structures against N and R_LDM."""
     allocated, used = table.num("bytes_allocated") / MIB, table.num("bytes_used") / MIB
@@ -256,24 +383,29 @@ def draw_memory(table, canvas):
         if not x_is_a_range(table, canvas, rows, x_column, what):
             continue
         scenes = list(dict.fromkeys(table.text("scene")[rows]))
-        fig, axes = subplot_grid(len(scenes), max_columns=1)
+        fig, axes = subplot_grid(len(scenes), max_columns=1, height=style.PANEL_HEIGHT + 0.6)
         for ax, scene in zip(axes, scenes):
             in_scene = rows & (table.text("scene") == scene)
-            series = series_masks(table, in_scene, [other, "structure_params", "sizing_policy",
-                                                    "payload", "run"])
-            for colour, (label, mask) in zip(series_colours(len(series)), series):
+            curves = []
+            for label, mask in series_masks(table, in_scene, [other, "structure_params",
+                                                              "sizing_policy", "payload", "run"]):
                 x = table.num(x_column)[mask]
                 first = ~x.duplicated()  # memory does not depend on the pass's settings
                 order = np.argsort(x[first].to_numpy())
-                xs = x[first].to_numpy()[order]
-                ok = measured[mask][first].to_numpy()[order]
-                for values, style in ((allocated, "-"), (used, "--")):
-                    ys = values[mask][first].to_numpy()[order]
-                    ax.plot(xs, ys, style, color=colour, linewidth=1.2,
-                            label=label if style == "-" else None)
-                    ax.scatter(xs[ok], ys[ok], color=colour, s=20, zorder=3)
-                    ax.scatter(xs[~ok], ys[~ok], facecolors="none", edgecolors=[colour],
-                               s=20, zorder=3)
+                curves.append((label, (x[first].to_numpy()[order],
+                                       allocated[mask][first].to_numpy()[order],
+                                       used[mask][first].to_numpy()[order],
+                                       measured[mask][first].to_numpy()[order].astype(float))))
+            curves = merge_coinciding(curves)
+            for (colour, marker, _), (label, (xs, ys_allocated, ys_used, ok)) in zip(
+                    series_styles(len(curves)), curves):
+                ok = ok.astype(bool)
+                # used = allocated (a structure sized exactly): one line, said in the legend
+                same = np.allclose(ys_allocated, ys_used, rtol=1e-9, atol=0, equal_nan=True)
+                for ys, line in ((ys_allocated, "-"),) + ((() if same else ((ys_used, "--"),))):
+                    ax.plot(xs, ys, line, color=colour, linewidth=1.0,
+                            label=(label + (" (used = allocated)" if same else "")) if line == "-" else None)
+                    scatter(ax, xs, ys, colour, marker, ok)
             if wide_span(table.num(x_column)[in_scene].to_numpy()):
                 ax.set_xscale("log", base=2)
             if wide_span(allocated[in_scene].to_numpy()):
@@ -281,12 +413,13 @@ def draw_memory(table, canvas):
             plain_log_ticks(ax, table.num(x_column)[in_scene].to_numpy())
             ax.set_xlabel(axis_label(x_column))
             ax.set_ylabel("MiB (solid allocated, dashed used)")
-            ax.set_title(scene, fontsize=10)
+            ax.set_title(style.panel_title(scene))
             ax.grid(alpha=0.3)
             place_legend(ax)
         canvas.save(fig, f"memory-vs-{x_column}", f"Memory vs {axis_label(x_column)}",
                     f"Bytes allocated (solid) and used after the build (dashed) per structure; "
-                    f"{HOLLOW_NOTE}.", "Memory")
+                    f"structures with the same bytes at every point share one line and legend "
+                    f"entry (\"a = b\"); {HOLLOW_NOTE}.", "Memory")
 
 
 def parse_histogram(text):
@@ -316,7 +449,7 @@ def draw_depth_histograms(table, canvas):
         canvas.note("depth histograms: no record of an LDM structure carries a histogram")
         return
     scene_of = table.text("scene_name" if table.has("scene_name") else "scene")
-    fig, axes = subplot_grid(len(scenes), width=4.6, height=3.2)
+    fig, axes = subplot_grid(len(scenes))
     panels = []
     for ax, scene in zip(axes, scenes):
         in_scene = rows & (scene_of == scene)
@@ -328,16 +461,17 @@ def draw_depth_histograms(table, canvas):
         labels = [label for label, _ in bins]
         ax.bar(range(len(bins)), [p / total for _, p in bins], color="tab:blue")
         ax.set_xticks(range(len(bins)))
-        ax.set_xticklabels(labels, rotation=45 if len(labels) > 6 else 0, fontsize=7)
+        ax.set_xticklabels(labels, rotation=45 if len(labels) > 6 else 0)
         ax.set_xlabel("fragments in the pixel's list")
         ax.set_ylabel("share of occupied LDM pixels")
         n, r = common.split("/")
-        ax.set_title(f"{scene} (N={n}, R_LDM={r})", fontsize=9)
-        panels.append(f"{scene} (N={n}, R_LDM={r})")
+        title = style.panel_title(scene, {"n_views": n, "r_ldm": r})
+        ax.set_title(title)
+        panels.append(title)
         quantiles = ", ".join(f"{q} {table.text(c)[i]}" for q, c in
                               (("p50", "depth_p50"), ("p90", "depth_p90"), ("p99", "depth_p99"),
                                ("max", "max_depth_complexity")) if table.has(c))
-        ax.text(0.98, 0.95, quantiles, transform=ax.transAxes, ha="right", va="top", fontsize=7,
+        ax.text(0.98, 0.95, quantiles, transform=ax.transAxes, ha="right", va="top", fontsize=6,
                 bbox={"facecolor": "white", "alpha": 0.85, "edgecolor": "none"})
         ax.grid(alpha=0.3, axis="y")
     canvas.save(fig, "depth-histograms", "Depth complexity per scene",
@@ -347,14 +481,28 @@ def draw_depth_histograms(table, canvas):
                 "the total). Panels: " + "; ".join(panels) + ".", "Depth complexity")
 
 
+LONE_COLOUR = "0.6"
+MANY_SERIES = 10  # past this, a cost figure stacks its panels (legends need the width)
+MIN_FIT_POINTS = 3  # two points always fit a line exactly: a slope from them is no finding
+
+
 def fitted_slope(x, y):
-    """Least-squares slope of log y over log x, or None with fewer than two distinct x."""
+    """Least-squares slope of log y over log x, or (None, None) with fewer than
+    MIN_FIT_POINTS distinct x."""
     keep = np.isfinite(x) & np.isfinite(y) & (x > 0) & (y > 0)
     x, y = x[keep], y[keep]
-    if len(set(x)) < 2:
+    if len(set(x)) < MIN_FIT_POINTS:
         return None, None
     slope, intercept = np.polyfit(np.log(x), np.log(y), 1)
     return slope, intercept
+
+
+def slope_text(label, slope, x):
+    """The legend entry of a series: its slope, or why it has none."""
+    if slope is not None:
+        return f"{label}: slope {round(slope, 2) + 0:.2f}"
+    points = len(set(v for v in x if np.isfinite(v) and v > 0))
+    return f"{label}: no slope ({points} ok point{'s' if points != 1 else ''}, a fit needs {MIN_FIT_POINTS})"
 
 
 SCALING_SERIES = {
@@ -372,9 +520,10 @@ SCALING_SERIES = {
 
 def draw_scaling(table, canvas):
     """Build and query cost against N, R_LDM and the census's fragments on log-log axes,
-    each series with its fitted slope (cost ~ work^slope) in the legend."""
+    each series with its fitted slope (cost ~ work^slope) in the legend where it has at
+    least MIN_FIT_POINTS x values, and says why not where it has fewer."""
     costs = [("build", table.num("build_ms_median"), "build median (ms)", "build"),
-             ("query", table.query_ms(), "query: the pass's own sub-passes, median (ms)", "pass")]
+             ("query", table.query_ms(), "query median (ms)", "pass")]
     measured = table.measured()
     for x_column, series_axes in SCALING_SERIES.items():
         if x_column == "r_light" and not table.has(x_column):
@@ -384,39 +533,64 @@ def draw_scaling(table, canvas):
         rows = (x_all > 0) & table.has_structure()
         if not x_is_a_range(table, canvas, rows, x_column, what):
             continue
-        fig, axes = subplot_grid(len(costs), width=6.0, height=4.4, max_columns=1)
+        # the legend's entries: series over two or more x values, and one for the lone points
+        entries = 1 + sum(table.num(x_column)[m].nunique() > 1
+                          for _, m in series_masks(table, rows, series_axes + table.extra_axes))
+        # Many series: the panels one above the other at the text width, each legend in two
+        # columns below it (side by side, long legends would run into each other).
+        many = entries > MANY_SERIES
+        fig, axes = subplot_grid(len(costs), max_columns=1 if many else 2,
+                                 width=style.DOUBLE_COLUMN if many else None,
+                                 height=style.PANEL_HEIGHT + 0.12 * (entries / 2 if many else entries))
         for ax, (cost_name, cost, ylabel, subpass) in zip(axes, costs):
             in_plot = rows & (cost > 0)
-            series = series_masks(table, in_plot, series_axes + table.extra_axes)
-            for colour, (label, mask) in zip(series_colours(len(series)), series):
+            curves = []
+            for label, mask in series_masks(table, in_plot, series_axes + table.extra_axes):
                 x, y = x_all[mask].to_numpy(), cost[mask].to_numpy()
-                ok = measured[mask].to_numpy()
+                order = np.argsort(x, kind="stable")
+                curves.append((label, (x[order], y[order],
+                                       measured[mask].to_numpy()[order].astype(float),
+                                       time_errors(table, subpass, mask, y)[:, order])))
+            curves = merge_coinciding(curves)
+            # A series at one x value is a point, not a scaling: drawn small and grey, one
+            # legend entry for them all, so that the legend names what has a slope.
+            lone = [c for c in curves if len(set(c[1][0])) < 2]
+            curves = [c for c in curves if len(set(c[1][0])) >= 2]
+            for _, (x, y, ok, errors) in lone:
+                scatter(ax, x, y, LONE_COLOUR, "o", ok.astype(bool))
+            if lone:
+                ax.scatter([], [], color=LONE_COLOUR, marker="o", s=16,
+                           label=f"{len(lone)} series at one {axis_label(x_column)} value "
+                                 "(points only, no slope)")
+            for (colour, marker, line), (label, (x, y, ok, errors)) in zip(
+                    series_styles(len(curves)), curves):
+                ok = ok.astype(bool)
                 slope, intercept = fitted_slope(x[ok], y[ok])
-                text = f"{label}: slope {round(slope, 2) + 0:.2f}" if slope is not None else \
-                    f"{label}: no slope (<2 ok points)"
-                order = np.argsort(x)
-                ax.plot(x[order], y[order], color=colour, linewidth=0.8, alpha=0.6)
-                ax.errorbar(x, y, yerr=time_errors(table, subpass, mask, y), fmt="none",
-                            ecolor=colour, elinewidth=0.7, alpha=0.6)
-                ax.scatter(x[ok], y[ok], color=colour, s=22, zorder=3,
-                           label=text if ok.any() else None)
-                ax.scatter(x[~ok], y[~ok], facecolors="none", edgecolors=[colour], s=22,
-                           zorder=3, label=None if ok.any() else text)
+                ax.plot(x, y, color=colour, linestyle=line, linewidth=0.8, alpha=0.7,
+                        marker=None, label=slope_text(label, slope, x[ok]))
+                ax.errorbar(x, y, yerr=errors, fmt="none", ecolor=colour, elinewidth=0.6,
+                            capsize=1.5, alpha=0.7)
+                scatter(ax, x, y, colour, marker, ok)
                 if slope is not None:
                     xs = np.array([x[ok].min(), x[ok].max()])
-                    ax.plot(xs, np.exp(intercept) * xs ** slope, ":", color=colour,
-                            linewidth=1.5)
+                    ax.plot(xs, np.exp(intercept) * xs ** slope, ":", color=colour, linewidth=1.2)
             ax.set_xscale("log")
             ax.set_yscale("log")
             plain_log_ticks(ax, x_all[in_plot].to_numpy())
             ax.set_xlabel(axis_label(x_column))
             ax.set_ylabel(ylabel)
-            ax.set_title(f"{cost_name} cost vs {axis_label(x_column)}", fontsize=10)
+            scenes = list(dict.fromkeys(table.text("scene")[in_plot]))
+            ax.set_title(style.panel_title(scenes[0] if len(scenes) == 1 else None,
+                                           quantity=cost_name))
             ax.grid(alpha=0.3, which="both")
-            place_legend(ax)
+            place_legend(ax, inside=0, columns=2 if many else 1)
         canvas.save(fig, f"cost-vs-{x_column}", f"Cost vs {axis_label(x_column)} (log-log)",
-                    "Medians per configuration with their 95 % intervals; dotted: least-squares fit in log space over "
-                    f"the ok records, its slope in the legend; {HOLLOW_NOTE}.", "Scaling")
+                    "Medians per configuration with their 95 % intervals; each series has its own "
+                    "colour, marker and line style, and series with the same values share one "
+                    "line (\"a = b\"); dotted: least-squares fit in log space over the ok records, "
+                    f"its slope in the legend, only for series with at least {MIN_FIT_POINTS} x "
+                    f"values (the legend says so otherwise); grey points: series measured at "
+                    f"one x value only; {HOLLOW_NOTE}.", "Scaling")
 
 
 def draw_subpass_bars(table, canvas, per_figure=60):
@@ -434,7 +608,8 @@ def draw_subpass_bars(table, canvas, per_figure=60):
         index = table.df.index[timed & (table.text("scene") == scene)]
         for part, start in enumerate(range(0, len(index), per_figure)):
             chunk = index[start:start + per_figure]
-            fig, ax = plt.subplots(figsize=(9, 1.2 + 0.28 * len(chunk)))
+            suffix = f"-{part + 1}" if len(index) > per_figure else ""
+            fig, ax = plt.subplots(figsize=(style.DOUBLE_COLUMN, 0.9 + 0.16 * len(chunk)))
             labels = []
             for row, i in enumerate(chunk):
                 left = 0.0
@@ -454,13 +629,14 @@ def draw_subpass_bars(table, canvas, per_figure=60):
                     table.text("config_id")[i]
                 labels.append(label if ok else f"{label} [{status[i]}]")
             ax.set_yticks(range(len(chunk)))
-            ax.set_yticklabels(labels, fontsize=7)
+            ax.set_yticklabels(labels, fontsize=5.5)
             ax.invert_yaxis()
             ax.set_xlabel("median time per frame (ms), stacked by sub-pass")
             handles = [plt.Rectangle((0, 0), 1, 1, color=colours[s]) for s in subpasses]
-            ax.legend(handles, subpasses, fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1))
+            fig.legend(handles, subpasses, loc="upper center", bbox_to_anchor=(0.5, 0.0),
+                       ncol=min(6, len(subpasses)), frameon=False)
+            ax.set_title(style.panel_title(scene, quantity="sub-pass medians" + suffix.replace("-", ", part ")))
             ax.grid(alpha=0.3, axis="x")
-            suffix = f"-{part + 1}" if len(index) > per_figure else ""
             canvas.save(fig, f"subpasses-{safe_name(scene)}{suffix}",
                         f"Sub-pass times, {scene}{suffix.replace('-', ' part ')}",
                         "Median of every timed sub-pass per configuration, the structure's "

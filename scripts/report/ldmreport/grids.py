@@ -10,7 +10,9 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.image as mpimg  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
 
+from . import style  # noqa: E402
 from .figures import safe_name  # noqa: E402
 from .runs import RUN_DIR_COLUMN  # noqa: E402
 from .table import axis_label, describe, sort_key  # noqa: E402
@@ -20,7 +22,6 @@ from .table import axis_label, describe, sort_key  # noqa: E402
 NOT_HELD = {"structure", "pass", "frames"}
 # Axes held but never run down the rows (a grid compares images of one size and run).
 NOT_ROWS = {"run", "sweep", "width", "height"}
-CELL_INCHES = 1.5
 
 
 def image_path(table, i, column):
@@ -88,51 +89,233 @@ def plan_grid(table, rows_index, axes, row_axis):
     return values, cells, held
 
 
-def draw_cell(ax, path, label=None):
+def srgb_encode(linear):
+    linear = np.clip(linear, 0.0, 1.0)
+    return np.where(linear <= 0.0031308, 12.92 * linear, 1.055 * np.power(linear, 1 / 2.4) - 0.055)
+
+
+def srgb_decode(encoded):
+    return np.where(encoded <= 0.04045, encoded / 12.92, np.power((encoded + 0.055) / 1.055, 2.4))
+
+
+def read_exr(path):
+    """A linear EXR as floats (H x W [x C]), or None without OpenImageIO's Python module
+    (Debian's python3-openimageio, which scripts/setup.sh installs)."""
+    try:
+        import OpenImageIO as oiio
+    except ImportError:
+        return None
+    pixels = oiio.ImageBuf(path).get_pixels(oiio.FLOAT)
+    if pixels is None or pixels.size == 0:
+        return None
+    return pixels[..., 0] if pixels.ndim == 3 and pixels.shape[2] == 1 else pixels[..., :3]
+
+
+def tone_mapped(png_path, exr_path, exposure):
+    """A linear HDR image as shown: value x exposure, clamped, sRGB-encoded; from its EXR
+    where it can be read, else from the 8-bit PNG (written at exposure 1: its clipped pixels
+    stay clipped). Returns (pixels, source)."""
+    linear = read_exr(exr_path) if exr_path and os.path.isfile(exr_path) else None
+    source = "EXR"
+    if linear is None:
+        encoded = mpimg.imread(png_path)
+        linear = srgb_decode(encoded[..., :3] if encoded.ndim == 3 else encoded)
+        source = "8-bit PNG"
+    return srgb_encode(linear * exposure), source
+
+
+def is_grey(pixels):
+    """One channel, or three equal ones."""
+    if pixels.ndim == 2:
+        return True
+    rgb = pixels[..., :3]
+    return bool(np.all(rgb[..., 0] == rgb[..., 1]) and np.all(rgb[..., 1] == rgb[..., 2]))
+
+
+VIRIDIS = None
+
+
+def heat_map_values(png_path, top):
+    """The values of a heat-map PNG (harness/metrics/heat_map.h: viridis at v / top, clamped)
+    recovered by the nearest of viridis's 256 colours: v to 1/255 of `top`."""
+    global VIRIDIS
+    if VIRIDIS is None:
+        VIRIDIS = plt.get_cmap("viridis")(np.linspace(0, 1, 256))[:, :3]
+    pixels = mpimg.imread(png_path)
+    # A heat map has at most 256 colours: match those, not every pixel (a 1280x720 map
+    # against 256 colours pixel by pixel would take gigabytes)
+    rgb = np.rint(pixels[..., :3].reshape(-1, 3) * 255).astype(np.int32)
+    codes, inverse = np.unique((rgb[:, 0] << 16) | (rgb[:, 1] << 8) | rgb[:, 2], return_inverse=True)
+    colours = np.stack([(codes >> 16) & 255, (codes >> 8) & 255, codes & 255], axis=1) / 255.0
+    nearest = np.argmin(((colours[:, None, :] - VIRIDIS[None, :, :]) ** 2).sum(axis=2), axis=1)
+    return (nearest[inverse.reshape(-1)] / 255.0 * top).reshape(pixels.shape[:2])
+
+
+def blank_cell(ax):
     ax.set_xticks([])
     ax.set_yticks([])
-    if path:
-        ax.imshow(mpimg.imread(path), interpolation="nearest")
-    else:
+    for spine in ax.spines.values():
+        spine.set_linewidth(0.4)
+
+
+def flag(ax, label):
+    ax.text(0.03, 0.03, label, transform=ax.transAxes, fontsize=5, color="white",
+            va="bottom", bbox={"facecolor": "black", "alpha": 0.6, "pad": 0.8, "lw": 0})
+
+
+def draw_picture(ax, pixels):
+    """An image as it is: grey ones in grey (black 0 .. white 1), colour ones as RGB."""
+    blank_cell(ax)
+    if pixels is None:
         ax.text(0.5, 0.5, "–", ha="center", va="center", transform=ax.transAxes)
-    if label:
-        ax.text(0.02, 0.02, label, transform=ax.transAxes, fontsize=6, color="white",
-                va="bottom", bbox={"facecolor": "black", "alpha": 0.5, "pad": 1, "lw": 0})
+    elif is_grey(pixels):
+        ax.imshow(pixels if pixels.ndim == 2 else pixels[..., 0], cmap="gray", vmin=0, vmax=1,
+                  interpolation="nearest")
+    else:
+        ax.imshow(np.clip(pixels[..., :3], 0, 1), interpolation="nearest")
+
+
+class ReferenceGroup:
+    """Methods whose records were scored against the same reference in every row (AO and
+    HBAO; indirect light apart): one reference column, one error scale and colour bar."""
+
+    def __init__(self, methods, passes, exposure):
+        self.methods, self.passes, self.exposure = methods, passes, exposure
+
+    @property
+    def hdr(self):
+        return np.isfinite(self.exposure) and self.exposure != 1.0
+
+
+def reference_groups(table, values, cells, methods):
+    """Methods grouped by the reference their cells name in each row."""
+    def paths(m):
+        return [table.text("reference_exr")[cells[(v, m)]] if (v, m) in cells else None
+                for v in values]
+
+    groups = []  # [(methods, row paths)]
+    for m in methods:
+        mine = paths(m)
+        for members, theirs in groups:
+            if all(a is None or b is None or a == b for a, b in zip(mine, theirs)):
+                members.append(m)
+                for k, p in enumerate(mine):
+                    theirs[k] = theirs[k] or p
+                break
+        else:
+            groups.append(([m], list(mine)))
+    out = []
+    for members, _ in groups:
+        rows = [cells[k] for k in cells if k[1] in members]
+        exposure = table.num("ssim_exposure")[rows].dropna()
+        passes = list(dict.fromkeys(table.text("pass")[rows]))
+        out.append(ReferenceGroup(members, passes, float(exposure.iloc[0]) if len(exposure) else 1.0))
+    return out
+
+
+def held_description(table, held):
+    """The held settings for a grid's title: the image size once, not the timing's frames."""
+    shown = {k: v for k, v in held.items() if k not in ("scene", "width", "height", "frames", "warmup")
+             and (k != "run" or table.text("run").nunique() > 1)}
+    if held.get("width") and held.get("height"):
+        shown["image size"] = f"{held['width']}x{held['height']}"
+    return shown
 
 
 def render_grid(table, canvas, scene, row_axis, values, cells, held):
     methods = sorted({m for (_, m) in cells})
-    columns = methods + ["reference"] + [f"error: {m}" for m in methods]
-    fig, axes = plt.subplots(len(values), len(columns), squeeze=False,
-                             figsize=(CELL_INCHES * len(columns), CELL_INCHES * len(values) + 0.6))
+    groups = reference_groups(table, values, cells, methods)
+    # Columns: per reference group its methods' images, then its reference; then every
+    # method's error map, group by group (each group on one error scale).
+    columns = []
+    for g in groups:
+        columns += [("image", m, g) for m in g.methods] + [("reference", None, g)]
+    for g in groups:
+        columns += [("error", m, g) for m in g.methods]
+    # Square cells in a figure sized for them (no tight layout: it cannot know that the
+    # images keep their aspect): margins for the row labels, titles and colour bars.
+    left, top, bottom = 0.3, 0.65, 0.45
+    cell = min(1.3, (style.DOUBLE_COLUMN - left) / len(columns))
+    width, height = left + cell * len(columns) * 1.04, top + bottom + cell * len(values) * 1.04
+    fig, axes = plt.subplots(len(values), len(columns), squeeze=False, figsize=(width, height))
+    fig.subplots_adjust(left=left / width, right=0.995, bottom=bottom / height,
+                        top=1 - top / height, wspace=0.04, hspace=0.04)
     status = table.status()
+    top = {id(g): max([float(table.num("diff_png_max")[i]) for (v, m), i in cells.items()
+                       if m in g.methods and np.isfinite(table.num("diff_png_max")[i])] or [1.0])
+           for g in groups}
+    sources = set()
+    error_images = {}
     for r, value in enumerate(values):
-        row_cells = {m: cells.get((value, m)) for m in methods}
-        reference = next((image_path(table, i, "reference_png") for i in row_cells.values()
-                          if i is not None and image_path(table, i, "reference_png")), None)
-        for c, m in enumerate(methods):
-            i = row_cells[m]
-            flag = None if i is None or status[i] == "ok" else status[i]
-            draw_cell(axes[r][c], image_path(table, i, "image_png") if i is not None else None,
-                      flag)
-            diff_max = table.text("diff_png_max")[i] if i is not None else ""
-            draw_cell(axes[r][len(methods) + 1 + c],
-                      image_path(table, i, "diff_png") if i is not None else None,
-                      f"max {float(diff_max):.2g}" if diff_max not in ("", "nan") else None)
-        draw_cell(axes[r][len(methods)], reference)
-        axes[r][0].set_ylabel(f"{axis_label(row_axis)} = {value}", fontsize=8)
-    for c, title in enumerate(columns):
-        axes[0][c].set_title(textwrap.fill(title, 22), fontsize=7)
-    held_text = describe({k: v for k, v in held.items() if k != "scene" and
-                          (k != "run" or table.text("run").nunique() > 1)})
-    fig.suptitle(textwrap.fill(f"{scene}: rows {axis_label(row_axis)}" +
-                               (f"; held: {held_text}" if held_text else ""),
-                               int(CELL_INCHES * len(columns) * 12)), fontsize=8)
+        for c, (kind, m, g) in enumerate(columns):
+            ax = axes[r][c]
+            if kind == "reference":
+                i = next((cells[(value, x)] for x in g.methods if (value, x) in cells
+                          and image_path(table, cells[(value, x)], "reference_png")), None)
+            else:
+                i = cells.get((value, m))
+            if i is None:
+                draw_picture(ax, None)
+                continue
+            if kind == "error":
+                path = image_path(table, i, "diff_png")
+                blank_cell(ax)
+                if path and np.isfinite(table.num("diff_png_max")[i]):
+                    error_images[id(g)] = ax.imshow(
+                        heat_map_values(path, float(table.num("diff_png_max")[i])),
+                        cmap="viridis", vmin=0, vmax=top[id(g)], interpolation="nearest")
+                continue
+            png = image_path(table, i, "reference_png" if kind == "reference" else "image_png")
+            if png is None:
+                draw_picture(ax, None)
+                continue
+            if g.hdr:
+                exr = os.path.join(table.text(RUN_DIR_COLUMN)[i], table.text(
+                    "reference_exr" if kind == "reference" else "image_exr")[i])
+                pixels, source = tone_mapped(png, exr, g.exposure)
+                sources.add(source)
+            else:
+                pixels = mpimg.imread(png)
+            draw_picture(ax, pixels)
+            if kind == "image" and status[i] != "ok":
+                flag(ax, status[i])
+        axes[r][0].set_ylabel(f"{axis_label(row_axis)}={value}")
+    for c, (kind, m, g) in enumerate(columns):
+        title = m if kind == "image" else f"reference: {', '.join(g.passes)}" \
+            if kind == "reference" else f"|error|: {m}"
+        title = textwrap.fill(title.replace("/", "/ "), max(8, int(cell * 13)),
+                              break_long_words=False).replace("/ ", "/").replace("/\n", "/\n")
+        if kind != "error" and g.hdr:
+            title += f"\nexp. x{g.exposure:.3g}"
+        axes[0][c].set_title(title, fontsize=5.5)
+    for g in groups:  # one colour bar under each group's error columns, with its scale
+        first = next(c for c, col in enumerate(columns) if col[0] == "error" and col[2] is g)
+        count = len(g.methods)
+        if id(g) not in error_images:
+            continue
+        cax = axes[-1][first].inset_axes([0.05, -0.2, count - 0.1 + 0.02 * (count - 1), 0.07])
+        bar = fig.colorbar(error_images[id(g)], cax=cax, orientation="horizontal")
+        bar.ax.tick_params(labelsize=5, length=2)
+        bar.set_label("|error| " + ("(linear radiance)" if g.hdr else "(AO, 0..1)"), fontsize=5.5,
+                      labelpad=1)
+    fig.suptitle(textwrap.fill(style.panel_title(scene, held_description(table, held),
+                                                 quantity=f"rows: {axis_label(row_axis)}"),
+                               int(cell * len(columns) * 13)), fontsize=6.5, y=1 - 0.04 / height,
+                 va="top")
     name = f"grid-{safe_name(scene)}-{safe_name(row_axis)}"
+    exposures = "; ".join(f"{', '.join(g.passes)} tone-mapped: linear value x {g.exposure:.3g} "
+                          f"(the exposure mapping the reference's 99th-percentile luminance to "
+                          f"1), clamped, sRGB" for g in groups if g.hdr)
     canvas.save(fig, name, f"Images, {scene}, by {axis_label(row_axis)}",
-                "Columns: each method's image, the reference, each method's error "
-                "(absolute difference heat map, its top value in the corner); labelled "
-                "cells are not ok.", "Images")
+                "Columns: each method's image and the reference it is scored against (one "
+                "reference column per pass or group of passes sharing one); grey-scale images "
+                "in grey; then each method's absolute error on one colour scale per reference "
+                "(its colour bar below, from 0 to the largest error top of the group's maps)"
+                + (f"; {exposures}" if exposures else "")
+                + ("; tone-mapped from the 8-bit PNG (no python3-openimageio for the EXR)"
+                   if "8-bit PNG" in sources else "")
+                + "; labelled cells are not ok.", "Images",
+                tight=False)
 
 
 def draw_image_grids(table, canvas):

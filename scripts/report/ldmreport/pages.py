@@ -7,7 +7,7 @@ import math
 
 import numpy as np
 
-from . import ties
+from . import style, ties
 
 
 MIB = float(1 << 20)
@@ -125,6 +125,98 @@ def best_rows(table):
     return rows
 
 
+CHOOSE_HEADER = ["compared within", "configuration", "run", "frame ms", "MiB allocated", "error",
+                 "best in (tied: within the uncertainty)"]
+CHOOSE_CAP = 8  # rows per group shown in the front table; the details list the rest
+
+
+def choose_criteria(table):
+    """The three criteria of the front table: frame time (with its interval), memory (the
+    structure's bytes allocated: none for a pass without a structure), and the error (mse,
+    else mssim, within the reference noise). Returns [(name, higher, measure(row), shown(row))]."""
+    allocated = table.num("bytes_allocated").fillna(0)
+    low, high = table.time_interval("frame")
+    time = table.num("frame_ms_median")
+    out = [("time", False, lambda i: ties.time_measure(table, i, "frame"),
+            lambda i: fmt_time(time[i], low[i], high[i])),
+           ("memory", False, lambda i: ties.exact_measure(allocated[i]),
+            lambda i: fmt(allocated[i] / MIB) if table.has_structure()[i] else "– (no structure)")]
+    metrics = {metric: (prefix, column) for prefix, metric, column in table.metric_columns()
+               if prefix == ""}
+    for metric in ("mse", "mssim"):
+        if metric in metrics:
+            prefix, column = metrics[metric]
+            values = table.num(column)
+            out.append((column, metric == "mssim",
+                        lambda i, c=column, p=prefix, m=metric: ties.error_measure(table, i, c, p, m),
+                        lambda i, c=column, v=values: f"{c} {fmt(v[i])}"))
+            break
+    return out
+
+
+def choose_rows(table):
+    """The front table: per scene and reference (ranking_groups), the ok configurations no
+    other beats in time, memory and error at once beyond the tie bands (ties.py), fastest
+    first; each with the criteria it is best in, "(tied)" where another front member cannot
+    be told from it there. Returns (rows, notes about cut groups)."""
+    criteria = choose_criteria(table)
+    higher = [h for _, h, _, _ in criteria]
+    measured = table.measured() & table.num("frame_ms_median").notna()
+    rows, cut = [], []
+    for group, in_group in ranking_groups(table):
+        index = list(table.df.index[in_group & measured])
+        if len(criteria) == 3:
+            error_column = criteria[2][0]
+            index = [i for i in index if np.isfinite(table.num(error_column)[i])]
+        if not index:
+            continue
+        points = [[measure(i) for _, _, measure, _ in criteria] for i in index]
+        front = ties.pareto_front_all(points, higher)
+        best = [set(front[k] for k in ties.best_and_tied([points[f][c] for f in front], higher[c]))
+                for c in range(len(criteria))]
+        for f in front[:CHOOSE_CAP]:
+            i = index[f]
+            best_in = [criteria[c][0] if criteria[c][0] in ("time", "memory") else "error"
+                       for c in range(len(criteria)) if f in best[c]]
+            tied_in = [c for c in range(len(criteria)) if f in best[c] and len(best[c]) > 1]
+            text = ", ".join(name + (" (tied)" if c in tied_in else "")
+                             for c, name in zip([c for c in range(len(criteria)) if f in best[c]], best_in))
+            several_runs = table.text("run").nunique() > 1
+            same = [table.text("config_id")[index[g]] +
+                    (f" ({table.text('run')[index[g]]})" if several_runs else "")
+                    for g in front if g != f and ties.tied_in_all(points[f], points[g])]
+            if same:
+                text += ("; " if text else "") + "tied in all with " + ", ".join(same[:2]) + \
+                    (f" and {len(same) - 2} more" if len(same) > 2 else "")
+            rows.append([group, table.text("config_id")[i], table.text("run")[i],
+                         *[shown(i) for _, _, _, shown in criteria]] + [""] * (3 - len(criteria)) +
+                        [text or "trade-off (none best alone)"])
+        if len(front) > CHOOSE_CAP:
+            cut.append(f"{group}: {len(front)} configurations on the front, the {CHOOSE_CAP} "
+                       "fastest shown (the rest: All configurations)")
+    return rows, cut
+
+
+def choose_table(table):
+    """The front table's header and rows; without the run column for a single run."""
+    rows, cut = choose_rows(table)
+    if table.text("run").nunique() > 1:
+        return CHOOSE_HEADER, rows, cut
+    drop = CHOOSE_HEADER.index("run")
+    return ([h for k, h in enumerate(CHOOSE_HEADER) if k != drop],
+            [[c for k, c in enumerate(r) if k != drop] for r in rows], cut)
+
+
+CHOOSE_INTRO = ("Per scene and reference image, the `ok` configurations that no other beats "
+                "in frame time, memory (bytes the structure allocates) and error at once: "
+                "choose among these. A difference within the measurement's uncertainty is a "
+                "tie (overlapping 95 % time intervals, errors within the reference's noise, "
+                "equal bytes), and tied configurations all stay; \"best in\" names the "
+                "criteria a configuration is best in, \"(tied)\" where other rows cannot be "
+                "told from it there. The details follow: best per criterion, flagged "
+                "configurations, figures, every configuration.")
+
+
 def flagged_rows(table):
     """Every record not ranked: lossy, invalid, failed, and degenerate (measured, but of
     nothing: its `degenerate` column says why)."""
@@ -172,12 +264,12 @@ def markdown_table(header, rows):
 
 
 def html_table(header, rows, flag_column=None):
-    out = ["<table>", "<tr>" + "".join(f"<th>{html.escape(h)}</th>" for h in header) + "</tr>"]
+    out = ['<div class="scroll"><table>', "<tr>" + "".join(f"<th>{html.escape(h)}</th>" for h in header) + "</tr>"]
     for row in rows:
         flagged = flag_column is not None and str(row[flag_column]).startswith("⚠")
         cls = ' class="flagged"' if flagged else ""
         out.append(f"<tr{cls}>" + "".join(f"<td>{html.escape(str(c))}</td>" for c in row) + "</tr>")
-    out.append("</table>")
+    out.append("</table></div>")
     return "\n".join(out)
 
 
@@ -192,8 +284,12 @@ def sections(figures):
 def write_markdown(path, title, runs_info, table, figures, notes):
     header, config_rows = configuration_rows(table)
     flagged = flagged_rows(table)
+    choose_header, choose, cut = choose_table(table)
     parts = [f"# {title}", "",
-             "Generated by `ldmbench report`; every figure regenerates from `tidy.csv` "
+             "## Choose a structure", "", CHOOSE_INTRO, "",
+             markdown_table(choose_header, choose) if choose else "No ok record to choose from.", ""]
+    parts += [f"- {c}" for c in cut] + ([""] if cut else [])
+    parts += ["Generated by `ldmbench report`; every figure regenerates from `tidy.csv` "
              "(`scripts/report/ldmbench_report.py --from-csv tidy.csv --out DIR`). "
              "Only `ok` records are ranked; lossy, invalid, failed and degenerate ones are flagged.", "",
              "## Runs", "", markdown_table(RUNS_HEADER, runs_rows(runs_info)), "",
@@ -206,14 +302,17 @@ def write_markdown(path, title, runs_info, table, figures, notes):
     for section, figs in sections(figures):
         parts += [f"## {section}", ""]
         for f in figs:
-            parts += [f"### {f['title']}", "", f"![{f['title']}]({f['files'][0]})", "",
+            parts += [f"### {f['title']}", "", f"![{f['title']}]({style.page_file(f['files'])})", "",
                       f["caption"], ""]
     parts += ["## All configurations", "", markdown_table(header, config_rows), ""]
     with open(path, "w") as out:
         out.write("\n".join(parts))
 
 
-STYLE = """body{font-family:sans-serif;margin:2em;max-width:1400px}
+# Readable from a phone's width up: wide tables scroll in their own box, images shrink.
+STYLE = """body{font-family:sans-serif;margin:2em auto;padding:0 1em;max-width:1400px}
+.scroll{overflow-x:auto;max-width:100%}
+@media (max-width:600px){body{margin:0.5em auto}}
 table{border-collapse:collapse;font-size:12px;margin-bottom:1em}
 td,th{border:1px solid #ccc;padding:2px 6px;text-align:left}
 tr.flagged td{background:#fde8e8}
@@ -225,14 +324,19 @@ def write_html(path, title, runs_info, table, figures, notes):
     header, config_rows = configuration_rows(table)
     flagged = flagged_rows(table)
     best = best_rows(table)
+    choose_header, choose, cut = choose_table(table)
     e = html.escape
     parts = ["<!DOCTYPE html>", "<html><head><meta charset=\"utf-8\">",
+             '<meta name="viewport" content="width=device-width, initial-scale=1">',
              f"<title>{e(title)}</title><style>{STYLE}</style></head><body>",
              f"<h1>{e(title)}</h1>",
              "<p>Generated by <code>ldmbench report</code>. Data: <a href=\"tidy.csv\">tidy.csv</a> "
              "(every figure regenerates from it); summary: <a href=\"summary.md\">summary.md</a>. "
              "Only <code>ok</code> records are ranked; lossy, invalid, failed and degenerate ones are "
              "flagged (hollow markers, hatched bars, red rows).</p>",
+             "<h2>Choose a structure</h2>", f"<p>{e(CHOOSE_INTRO.replace('`', ''))}</p>",
+             html_table(choose_header, choose) if choose else "<p>No ok record to choose from.</p>",
+             "".join(f"<p>{e(c)}</p>" for c in cut),
              "<h2>Runs</h2>", html_table(RUNS_HEADER, runs_rows(runs_info)),
              "<h2>Best per criterion (ok records only)</h2>",
              html_table(BEST_HEADER, best) if best else "<p>No ok record to rank.</p>",
@@ -244,7 +348,7 @@ def write_html(path, title, runs_info, table, figures, notes):
         parts.append(f"<h2>{e(section)}</h2>")
         for f in figs:
             links = " ".join(f'<a href="{e(p)}">{e(p.rsplit(".", 1)[1])}</a>' for p in f["files"])
-            parts.append(f'<figure><img src="{e(f["files"][0])}" alt="{e(f["title"])}">'
+            parts.append(f'<figure><img src="{e(style.page_file(f["files"]))}" alt="{e(f["title"])}">'
                          f'<figcaption><b>{e(f["title"])}</b>: {e(f["caption"])} {links}'
                          "</figcaption></figure>")
     parts += ["<h2>All configurations</h2>", html_table(header, config_rows, flag_column=2),

@@ -98,3 +98,25 @@ def error_measure(table, row, column, prefix, metric):
 
 def exact_measure(value):
     return Measure(value, exact=True)
+
+
+def dominates_all(a, b, higher_is_better):
+    """Record a dominates record b over several criteria (lists of Measures, one flag per
+    criterion): a is no worse in any beyond the tie bands and better in at least one."""
+    pairs = list(zip(a, b, higher_is_better))
+    no_worse = not any(better(y, x, h) for x, y, h in pairs)
+    return no_worse and any(better(x, y, h) for x, y, h in pairs)
+
+
+def pareto_front_all(points, higher_is_better):
+    """Indices of the points (lists of Measures) that no other point dominates over every
+    criterion, in order of the first criterion: ties beyond which nothing is better all stay."""
+    front = [i for i in range(len(points))
+             if not any(dominates_all(points[j], points[i], higher_is_better)
+                        for j in range(len(points)) if j != i)]
+    return sorted(front, key=lambda i: points[i][0].value)
+
+
+def tied_in_all(a, b):
+    """Two records no criterion tells apart."""
+    return all(tied(x, y) for x, y in zip(a, b))

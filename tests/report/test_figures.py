@@ -1,0 +1,249 @@
+"""Unit tests of what the report's figures and front table show (scripts/report/ldmreport:
+style, figures, grids, pages), on hand-made tables: each test names the issue-23 item it
+holds. Run by tests/report (ctest report.ReportFigures.*)."""
+import os
+import sys
+import tempfile
+import unittest
+
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "scripts", "report"))
+
+import numpy as np  # noqa: E402
+import matplotlib.pyplot as plt  # noqa: E402
+
+from ldmreport import figures, grids, pages, style  # noqa: E402
+from ldmreport.table import Table, declare_axes  # noqa: E402
+
+declare_axes({"axes": [
+    {"key": "scenes", "label": "scene", "owner_kind": "harness", "column": "scene"},
+    {"key": "passes", "label": "pass", "owner_kind": "harness", "column": "pass"},
+    {"key": "structures", "label": "structure", "owner_kind": "harness", "column": "structure"},
+    {"key": "views", "label": "N", "owner_kind": "harness", "column": "n_views", "ldm_only": True},
+    {"key": "r_ldm", "label": "R_LDM", "owner_kind": "harness", "column": "r_ldm", "ldm_only": True},
+    {"key": "d_max", "label": "d_max", "owner_kind": "harness", "column": "d_max"}]})
+style.apply()
+
+
+class Inspecting(figures.Canvas):
+    """A canvas that keeps, per figure, what the tests look at before the figure closes."""
+
+    def __init__(self, formats=("png",)):
+        super().__init__(tempfile.mkdtemp(prefix="ldm-report-figures-"), formats=formats, dpi=30)
+        self.seen = {}
+
+    def inspect(self, fig, name):
+        self.seen[name] = {
+            "size": tuple(fig.get_size_inches()),
+            "titles": [ax.get_title() for ax in fig.axes if ax.get_title()],
+            "annotations": [t.get_text() for ax in fig.axes for t in ax.texts],
+            "legend": [t.get_text() for ax in fig.axes if ax.get_legend()
+                       for t in ax.get_legend().get_texts()] +
+                      [t.get_text() for lg in fig.legends for t in lg.get_texts()],
+            "markers": {tuple(c.get_paths()[0].vertices.round(3).flatten()) for ax in fig.axes
+                        for c in ax.collections if type(c).__name__ == "PathCollection" and
+                        len(c.get_offsets()) and c.get_paths()},
+            "error_bars": sum(1 for ax in fig.axes for c in ax.collections
+                              if type(c).__name__ == "LineCollection"),
+        }
+
+
+def record(**values):
+    base = {"run": "a", "run_dir": ".", "status": "ok", "scene": "cornell", "pass": "ao",
+            "structure": "psppsll", "n_views": 8, "r_ldm": 32, "d_max": 1.5, "ref_cache_key": "k",
+            "bytes_allocated": 1 << 20, "bytes_used": 1 << 19, "ref_noise_mse": 1e-6,
+            "ref_noise_mssim": 0.999, "build_ms_median": 1.0, "build_ms_ci_low": 0.9,
+            "build_ms_ci_high": 1.1, "pass_ms_median": 5.0, "pass_ms_ci_low": 4.5,
+            "pass_ms_ci_high": 5.5, "frame_ms_median": 6.0, "frame_ms_ci_low": 5.5,
+            "frame_ms_ci_high": 6.5, "mse": 1e-3}
+    base.update(values)
+    base.setdefault("config_id", f"{base['structure']}-n{base['n_views']}-{base['run']}")
+    return base
+
+
+def table(rows):
+    columns = list(dict.fromkeys(c for r in rows for c in r))
+    return Table(columns, [[str(r.get(c, "")) for c in columns] for r in rows])
+
+
+class TradeOffs(unittest.TestCase):
+    """Item 1: labelled points, time intervals as error bars, one marker per run."""
+
+    def two_runs(self):
+        rows = []
+        for run, slower in (("before", 1.0), ("after", 1.3)):
+            for n, mse in ((4, 4e-3), (8, 2e-3), (16, 1e-3)):
+                rows.append(record(run=run, n_views=n, mse=mse, frame_ms_median=n * slower,
+                                   frame_ms_ci_low=n * slower * 0.9, frame_ms_ci_high=n * slower * 1.1))
+        return table(rows)
+
+    def test_two_runs_get_two_markers_and_labelled_points(self):
+        canvas = Inspecting()
+        figures.draw_tradeoffs(self.two_runs(), canvas)
+        seen = canvas.seen["tradeoff-time-vs-mse"]
+        self.assertIn("run before", seen["legend"])
+        self.assertIn("run after", seen["legend"])
+        self.assertIn("N16 R32 after", seen["annotations"])
+        self.assertIn("N4 R32 before", seen["annotations"])
+        self.assertGreaterEqual(len(seen["markers"]), 2, "the runs share one marker")
+        self.assertGreater(seen["error_bars"], 0, "no time interval drawn")
+
+    def test_the_varying_parameter_is_in_the_label(self):
+        rows = [record(d_max=d, mse=m, frame_ms_median=t, config_id=f"d{d}")
+                for d, m, t in ((0.5, 3e-3, 5), (1.5, 2e-3, 6), (3.0, 1e-3, 9))]
+        canvas = Inspecting()
+        figures.draw_tradeoffs(table(rows), canvas)
+        self.assertIn("N8 R32 d_max=0.5", canvas.seen["tradeoff-time-vs-mse"]["annotations"])
+
+
+class Scaling(unittest.TestCase):
+    """Item 3: slopes only from three points; coinciding series merged."""
+
+    def test_a_slope_needs_three_points(self):
+        self.assertEqual(figures.fitted_slope(np.array([4.0, 8.0]), np.array([1.0, 2.0])), (None, None))
+        slope, _ = figures.fitted_slope(np.array([4.0, 8.0, 16.0]), np.array([1.0, 2.0, 4.0]))
+        self.assertAlmostEqual(slope, 1.0)
+        self.assertIn("no slope (2 ok points, a fit needs 3)",
+                      figures.slope_text("x", None, np.array([4.0, 8.0])))
+
+    def test_a_two_point_series_says_so_in_the_legend(self):
+        rows = [record(n_views=n, structure=s, build_ms_median=b, pass_ms_median=5 * b)
+                for s, ns in (("psppsll", (4, 8, 16)), ("ppsll", (4, 8)))
+                for n, b in zip(ns, (1.0, 2.1, 3.9))]
+        canvas = Inspecting()
+        figures.draw_scaling(table(rows), canvas)
+        legend = canvas.seen["cost-vs-n_views"]["legend"]
+        self.assertTrue(any(t.startswith("psppsll: slope") for t in legend), legend)
+        self.assertIn("ppsll: no slope (2 ok points, a fit needs 3)", legend)
+
+    def test_series_at_one_x_share_one_entry(self):
+        rows = [record(n_views=n, structure="psppsll", build_ms_median=n / 4) for n in (4, 8, 16)]
+        rows += [record(n_views=8, structure=s, build_ms_median=b) for s, b in (("ppsll", 2.0), ("dfbuffer", 3.0))]
+        canvas = Inspecting()
+        figures.draw_scaling(table(rows), canvas)
+        legend = canvas.seen["cost-vs-n_views"]["legend"]
+        self.assertIn("2 series at one N value (points only, no slope)", legend)
+        self.assertFalse(any(t.startswith(("ppsll", "dfbuffer")) for t in legend), legend)
+
+    def test_coinciding_series_share_one_line_and_entry(self):
+        x = np.array([4.0, 8.0])
+        merged = figures.merge_coinciding([("a", (x, x * 2)), ("b", (x, x * 2)), ("c", (x, x * 3))])
+        self.assertEqual([label for label, _ in merged], ["a = b", "c"])
+        self.assertEqual(figures.merged_label(["ppfla/ao (run=1)", "ppfla/indirect (run=1)", "ppfla/ao (run=2)"]),
+                         "ppfla/ao = ppfla/indirect (run=1; run=2)")
+
+    def test_memory_lines_that_coincide_are_merged_and_said(self):
+        # psppsll and ppsll: the same bytes, used = allocated; dfbuffer: twice, half used
+        rows = [record(structure=s, n_views=n, bytes_allocated=(n << 21) if s == "dfbuffer" else n << 20,
+                       bytes_used=n << 20) for s in ("psppsll", "ppsll", "dfbuffer") for n in (4, 8)]
+        canvas = Inspecting()
+        figures.draw_memory(table(rows), canvas)
+        legend = canvas.seen["memory-vs-n_views"]["legend"]
+        self.assertEqual(sorted(legend), ["dfbuffer", "ppsll = psppsll (used = allocated)"])
+
+
+class Grids(unittest.TestCase):
+    """Item 2: grey images in grey, HDR tone-mapped, one reference per pass."""
+
+    def test_a_grey_image_is_drawn_in_grey(self):
+        fig, ax = plt.subplots()
+        grids.draw_picture(ax, np.linspace(0, 1, 16).reshape(4, 4))
+        self.assertEqual(ax.images[0].get_cmap().name, "gray")
+        self.assertEqual(ax.images[0].get_clim(), (0, 1))
+        grids.draw_picture(ax, np.dstack([np.full((4, 4), 0.5)] * 3))  # three equal channels
+        self.assertEqual(ax.images[1].get_cmap().name, "gray")
+        plt.close(fig)
+
+    def test_tone_mapping_applies_the_exposure(self):
+        encoded = grids.srgb_encode(np.array([0.02 * 10, 0.5 * 10]))
+        self.assertAlmostEqual(float(grids.srgb_decode(encoded)[0]), 0.2, places=6)
+        self.assertAlmostEqual(float(encoded[1]), 1.0)  # clamped
+        # without an EXR, from the PNG written at exposure 1: linear 0.1 shown as 0.4 at x4
+        png = os.path.join(tempfile.mkdtemp(), "hdr.png")
+        plt.imsave(png, np.dstack([np.full((4, 4), float(grids.srgb_encode(np.array(0.1))))] * 3))
+        pixels, source = grids.tone_mapped(png, None, 4.0)
+        self.assertEqual(source, "8-bit PNG")
+        self.assertAlmostEqual(float(grids.srgb_decode(pixels[0, 0, 0])), 0.4, delta=0.01)
+
+    def test_error_maps_are_read_back_on_their_scale(self):
+        # a heat map as the harness writes it (viridis at v / top): its values come back
+        # within two of viridis's 256 steps, so that maps of one group share one colour bar
+        values = np.random.default_rng(1).random((40, 60))
+        png = os.path.join(tempfile.mkdtemp(), "diff.png")
+        plt.imsave(png, values, cmap="viridis", vmin=0, vmax=1)
+        recovered = grids.heat_map_values(png, 0.5)
+        self.assertEqual(recovered.shape, values.shape)
+        self.assertLess(float(np.abs(recovered - 0.5 * values).max()), 0.5 * 2.5 / 255)
+
+    def test_each_pass_has_its_reference_column(self):
+        rows = [record(structure="psppsll", n_views=n, config_id=f"ao{n}", reference_exr="ao.exr")
+                for n in (4, 8)]
+        rows += [record(structure="none", **{"pass": "hbao"}, config_id="hbao", reference_exr="ao.exr")]
+        rows += [record(structure="psppsll", n_views=n, config_id=f"in{n}", reference_exr="in.exr",
+                        ssim_exposure=25, **{"pass": "indirect"}) for n in (4, 8)]
+        t = table(rows)
+        methods = sorted(set(t.methods()))
+        cells = {}
+        for i in t.df.index:
+            for v in ("4", "8"):
+                if t.text("n_views")[i] in (v, "nan") or t.text("structure")[i] == "none":
+                    cells.setdefault((v, t.methods()[i]), i)
+        groups = grids.reference_groups(t, ["4", "8"], cells, methods)
+        self.assertEqual(sorted(tuple(g.passes) for g in groups), [("ao", "hbao"), ("indirect",)])
+        self.assertEqual([g.hdr for g in groups if g.passes == ["indirect"]], [True])
+        self.assertEqual([g.exposure for g in groups if g.passes == ["indirect"]], [25.0])
+
+
+class FrontTable(unittest.TestCase):
+    """Item 5: per scene the non-dominated configurations (time, memory, error), ties shown."""
+
+    def test_the_dominated_go_and_ties_stay_marked(self):
+        rows = [record(config_id="fast", frame_ms_median=1, frame_ms_ci_low=0.9, frame_ms_ci_high=1.1, mse=4e-3),
+                record(config_id="twin", frame_ms_median=1.05, frame_ms_ci_low=0.95, frame_ms_ci_high=1.15, mse=4e-3),
+                record(config_id="good", frame_ms_median=5, frame_ms_ci_low=4.9, frame_ms_ci_high=5.1, mse=1e-3),
+                record(config_id="worse", frame_ms_median=6, frame_ms_ci_low=5.9, frame_ms_ci_high=6.1, mse=2e-3),
+                record(config_id="small", frame_ms_median=9, frame_ms_ci_low=8.9, frame_ms_ci_high=9.1, mse=3e-3,
+                       bytes_allocated=1000)]
+        shown, cut = pages.choose_rows(table(rows))
+        by_config = {r[1]: r for r in shown}
+        self.assertEqual(set(by_config), {"fast", "twin", "good", "small"})
+        self.assertIn("time (tied)", by_config["fast"][-1])
+        self.assertIn("tied in all with twin", by_config["fast"][-1])
+        self.assertEqual(by_config["good"][-1], "error")
+        self.assertEqual(by_config["small"][-1], "memory")
+        self.assertEqual(cut, [])
+
+
+class Style(unittest.TestCase):
+    """Items 4 and 6: one title scheme; formats; paper widths."""
+
+    def test_formats(self):
+        self.assertEqual(style.parse_formats(["png,svg", "pdf", "svg"]), ["png", "svg", "pdf"])
+        with self.assertRaisesRegex(ValueError, "'tiff' is not one of png, svg, pdf"):
+            style.parse_formats(["tiff"])
+        self.assertEqual(style.written_formats(["pdf"]), ["pdf", "png"])
+        self.assertEqual(style.page_file(["figures/a.png", "figures/a.svg"]), "figures/a.svg")
+
+    def test_titles_follow_one_scheme(self):
+        self.assertEqual(style.panel_title("cornell"), "cornell")
+        self.assertEqual(style.panel_title("cornell", {"d_max": "0.5"}, "build"), "cornell, d_max=0.5 | build")
+        self.assertEqual(style.panel_title(None, quantity="query"), "all scenes | query")
+
+    def test_figures_fit_a_two_column_page(self):
+        rows = [record(n_views=n, mse=1e-3 / n, frame_ms_median=n) for n in (4, 8, 16)]
+        rows += [record(n_views=n, mse=2e-3 / n, frame_ms_median=n, **{"pass": "indirect"},
+                        ref_cache_key="other") for n in (4, 8, 16)]
+        canvas = Inspecting(formats=("pdf",))
+        figures.draw_tradeoffs(table(rows), canvas)
+        figures.draw_scaling(table(rows), canvas)
+        for name, seen in canvas.seen.items():
+            self.assertIn(seen["size"][0], (style.SINGLE_COLUMN, style.DOUBLE_COLUMN), name)
+            for title in seen["titles"]:
+                self.assertTrue(title.startswith("cornell"), f"{name}: {title}")
+        files = [f for fig in canvas.figures for f in fig["files"]]
+        self.assertIn("figures/tradeoff-time-vs-mse.pdf", files)
+        with open(os.path.join(canvas.out_dir, "figures/tradeoff-time-vs-mse.pdf"), "rb") as f:
+            self.assertEqual(f.read(5), b"%PDF-")
+
+
+if __name__ == "__main__":
+    unittest.main()
