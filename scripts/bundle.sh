@@ -180,6 +180,6 @@ unpacked="$(for p in "$out"/lib/packed/*.xz; do xz --robot --list "$p"; done |
   awk -v n="$size_bytes" '$1 == "totals" { n += $5 - $4 } END { printf "%d", n }')"
 echo "bundle: $out ($((size_bytes * 10 / 1048576 / 10)).$((size_bytes * 10 / 1048576 % 10)) MiB; $((unpacked >> 20)) MiB once its packed libraries are unpacked; ${#libraries[@]} libraries; needs glibc >= $glibc_needed)"
 if [ "$do_tar" = 1 ]; then
-  tar -C "$(dirname "$out")" -cJf "$out.tar.xz" "$(basename "$out")"
+  XZ_OPT="${XZ_OPT:--T0}" tar -C "$(dirname "$out")" -cJf "$out.tar.xz" "$(basename "$out")"
   echo "bundle: $out.tar.xz ($(( $(stat -c %s "$out.tar.xz") >> 20 )) MiB)"
 fi
