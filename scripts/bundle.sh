@@ -21,7 +21,9 @@ do_build=1
 do_tar=0
 while [ $# -gt 0 ]; do
   case "$1" in
-    --build) build="$(cd "$2" && pwd)"; shift 2 ;;
+    --build) build="$(cd "${2:?--build needs a folder}" 2>/dev/null && pwd)" ||
+               { echo "bundle.sh: --build '$2' is not a folder" >&2; exit 2; }
+             shift 2 ;;
     --no-build) do_build=0; shift ;;
     --tar) do_tar=1; shift ;;
     -h|--help) sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;

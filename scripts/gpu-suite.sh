@@ -133,7 +133,7 @@ if [ "$dry_run" = 1 ]; then
 else
   image="1280x720"; reps=3; frames=5; warmup=2; n_scenes=""; r_scenes=""
   ao_base_n=32; ao_ns='[16, 64, 128]'; ao_base_r=256; ao_rs='[200, 512]'; ao_spp=1024
-  ind_base_n=32; ind_ns='[16, 64]'; ind_base_r=256; ind_rs='[512]'; ind_light=256; ind_spp=256
+  ind_base_n=32; ind_ns='[16, 64]'; ind_base_r=256; ind_rs='[512]'; ind_light=256; ind_spp=128
   # Guesses until a GPU run calibrates them (its steps.tsv): 0.8 s per configuration and
   # repetition (GL context, census, 7 frames, metrics and images of a 1280x720 frame), and
   # the references (one per scene and pass) on the node's CPU cores.
