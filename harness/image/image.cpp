@@ -70,7 +70,7 @@ std::string encode_exr(const Image& image) {
     frame.insert(names[size_t(c)], Imf::Slice(Imf::FLOAT, base, pixel_stride, pixel_stride * size_t(image.width)));
   }
   Imf::StdOSStream memory;
-  Imf::OutputFile out(memory, header, 1);  // one thread: the caller's threads are its own
+  Imf::OutputFile out(memory, header, 0);  // in the calling thread: the callers have their own
   out.setFrameBuffer(frame);
   out.writePixels(image.height);
   return memory.str();
@@ -90,7 +90,7 @@ std::vector<std::string> exr_channel_order(const Imf::ChannelList& list) {
 }
 
 Image read_exr(const std::string& path) {
-  Imf::InputFile in(path.c_str(), 1);
+  Imf::InputFile in(path.c_str(), 0);  // in the calling thread
   const Imath::Box2i window = in.header().dataWindow();
   const int width = window.max.x - window.min.x + 1, height = window.max.y - window.min.y + 1;
   const std::vector<std::string> names = exr_channel_order(in.header().channels());
