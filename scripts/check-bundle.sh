@@ -110,6 +110,10 @@ step "its time guard: a step over its share is stopped, one that cannot fit is s
 summary="$(ls "$work"/guard/*/summary.md)"
 grep -q '^| ao | stopped ' "$summary" || fail "the AO step was not stopped at its 3 s limit ($summary)"
 grep -q '^| indirect | skipped ' "$summary" || fail "the indirect step was not skipped ($summary)"
+step "bad arguments: exit 2, nothing written"
+rc=0; "$moved/gpu-suite.sh" --estimates foo=3 --out "$work/bad" 2> "$work/bad.txt" || rc=$?
+[ "$rc" = 2 ] && [ ! -e "$work/bad" ] && grep -q "no step 'foo'" "$work/bad.txt" ||
+  fail "gpu-suite.sh --estimates foo=3: exit $rc, $(ls "$work/bad" 2>/dev/null | wc -l) files, '$(cat "$work/bad.txt")'"
 step "the full-size plan: its sweeps enumerate"
 "$moved/gpu-suite.sh" --plan --out "$work/plan" | tee "$work/plan.txt"
 grep -q -E 'ao [0-9]+ configurations x 3 repetitions at 1280x720' "$work/plan.txt" || fail "no full-size plan"

@@ -46,6 +46,18 @@ while [ $# -gt 0 ]; do
   esac
 done
 case "$budget" in ''|*[!0-9]*) echo "gpu-suite.sh: --budget '$budget' is not a whole number of seconds" >&2; exit 2 ;; esac
+# Checked before anything is written.
+override_tests=""; override_ao=""; override_indirect=""
+for pair in ${estimates//,/ }; do
+  seconds="${pair#*=}"
+  case "$seconds" in ''|*[!0-9]*) echo "gpu-suite.sh: --estimates '$pair': not STEP=SECONDS" >&2; exit 2 ;; esac
+  case "${pair%%=*}" in
+    gpu-tests) override_tests="$seconds" ;;
+    ao) override_ao="$seconds" ;;
+    indirect) override_indirect="$seconds" ;;
+    *) echo "gpu-suite.sh: --estimates '$pair': no step '${pair%%=*}' (gpu-tests, ao, indirect)" >&2; exit 2 ;;
+  esac
+done
 start=$(date +%s)
 
 # Where the binaries are: the bundle's launchers, else a build of this source tree.
@@ -140,17 +152,6 @@ else
   est_tests=40; run_ms=800; ao_reference_s=20; indirect_reference_s=30
 fi
 
-override_tests=""; override_ao=""; override_indirect=""
-for pair in ${estimates//,/ }; do
-  seconds="${pair#*=}"
-  case "$seconds" in ''|*[!0-9]*) echo "gpu-suite.sh: --estimates '$pair': not STEP=SECONDS" >&2; exit 2 ;; esac
-  case "${pair%%=*}" in
-    gpu-tests) override_tests="$seconds" ;;
-    ao) override_ao="$seconds" ;;
-    indirect) override_indirect="$seconds" ;;
-    *) echo "gpu-suite.sh: --estimates '$pair': no step '${pair%%=*}' (gpu-tests, ao, indirect)" >&2; exit 2 ;;
-  esac
-done
 
 write_ao_sweep() {
   cat > "$dir/ao-sweep.json" <<EOF
