@@ -14,13 +14,15 @@ packages=(
   # virtual X server (xvfb-run needs xauth) and xdotool to type into the window
   libglfw3-dev libimgui-dev xvfb xauth xdotool
   # libraries
-  libglm-dev libopenimageio-dev libembree-dev libtbb-dev
+  libglm-dev libopenexr-dev libpng-dev libembree-dev libtbb-dev
   nlohmann-json3-dev libcli11-dev
   # mesh files of every common format (glTF/GLB, PLY, FBX, Collada, 3DS, STL, OFF, OBJ, IFC)
   libassimp-dev
   # real-world models referenced by scenes/ (installed under /usr/share/assimp/models)
   assimp-testmodels
   libgtest-dev libgmock-dev libbenchmark-dev
+  # scripts/bundle.sh: RUNPATH $ORIGIN on the bundled binaries and libraries
+  patchelf
   # distributions for the timing statistics (harness/stats: binomial, Student t, non-central t)
   libboost-math-dev
   # Google Benchmark's compare.py (/usr/share/benchmark/compare.py) for ldmbench_gbench JSON

@@ -34,7 +34,7 @@ std::vector<unsigned char> png_bytes(const Image& image, float exposure = 1.0f);
 // 8-bit data as they are (rows top first), e.g. a screenshot.
 void write_png_bytes(const std::string& path, int width, int height, int channels,
                      const std::vector<unsigned char>& bytes);
-// Reads EXR, PNG or anything OpenImageIO knows, as linear float (8-bit files are decoded
+// Reads OpenEXR or PNG (told by their signatures), as linear float (8-bit files are decoded
 // from sRGB). Throws UserError naming the path.
 Image read_image(const std::string& path);
 

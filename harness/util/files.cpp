@@ -62,7 +62,7 @@ void write_file_atomically(const std::string& path,
                       errno_text(error.value()) + " (a file stands in its way)");
     if (error) throw_io_error("cannot create the folder '" + target.parent_path().string() + "'", error.value());
   }
-  // Keep the extension last so that format-sniffing writers (OpenImageIO) still work.
+  // Keep the extension last so that writers that tell the format by it still work.
   const std::string temporary = (target.parent_path() / ("." + target.stem().string() + ".tmp" +
                                                          std::to_string(::getpid()) +
                                                          target.extension().string())).string();

@@ -204,14 +204,17 @@ INSTANTIATE_TEST_SUITE_P(AllStructures, Contention, ::testing::ValuesIn(every_st
                          [](const auto& info) { return info.param.label(); });
 
 // Other paths under the same contention: the §3.4.3 atomic reads, a pool grown and rebuilt
-// from a one-node-per-pixel start (the previous_frame sizing policy), and post-sorts whose local array is shorter than the hot
-// pixels' lists (sorted in place).
+// from a one-node-per-pixel start (the previous_frame sizing policy), post-sorts whose local array is shorter than the hot
+// pixels' lists (sorted in place), and the HA-buffer's 64-bit keys.
 INSTANTIATE_TEST_SUITE_P(Paths, Contention,
                          ::testing::Values(Variant{"psppsll", {{"atomic_reads", "true"}}},
                                            Variant{"psppsll", {}, SizingPolicy::PreviousFrame},
                                            Variant{"ppsll", {}, SizingPolicy::PreviousFrame},
                                            Variant{"ppsll", {{"local", "8"}}},
-                                           Variant{"dfbuffer", {{"local", "8"}}}),
+                                           Variant{"dfbuffer", {{"local", "8"}}},
+                                           // 64-bit keys where the device has 64-bit
+                                           // atomics (a GPU: scripts/gpu-suite.sh), else 32
+                                           Variant{"habuffer", {{"key_bits", "auto"}}}),
                          [](const auto& info) { return info.param.label(); });
 
 // The synthetic source itself: the census shader run on it counts every listed fragment
