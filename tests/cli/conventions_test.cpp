@@ -7,7 +7,6 @@
 #include <regex>
 #include <string>
 
-#include "harness/util/version.h"
 #include "support/test_support.h"
 
 namespace ldm {
@@ -24,14 +23,13 @@ TEST(Conventions, VersionNamesTheProjectVersionAndCommit) {
   ASSERT_EQ(o.status, 0) << o.output;
   EXPECT_TRUE(std::regex_match(o.output, std::regex(R"(ldmbench \d+\.\d+\.\d+ \(commit ([0-9a-f]{7,40}|unknown)(, dirty)?\)\n)")))
       << o.output;
-  EXPECT_EQ(o.output, version_line("ldmbench") + "\n");
   // The project version is CMakeLists.txt's project(... VERSION x.y.z).
   const std::string cmake = test::read_text((kRoot / "CMakeLists.txt").string());
   std::smatch m;
   ASSERT_TRUE(std::regex_search(cmake, m, std::regex(R"(project\(ldmbench VERSION ([0-9.]+))")));
   EXPECT_NE(o.output.find("ldmbench " + m[1].str() + " "), std::string::npos) << o.output;
   const Outcome help = ldmbench("--help");
-  EXPECT_NE(help.output.find(version_line("ldmbench")), std::string::npos) << help.output;
+  EXPECT_NE(help.output.find("\n" + o.output), std::string::npos) << help.output;
   EXPECT_NE(help.output.find("--version"), std::string::npos) << help.output;
 }
 
