@@ -81,6 +81,9 @@ TEST_F(Completion, OptionsOfTheSubcommand) {
   for (const char* option : {"--structure", "--scene", "-N", "--views", "--param", "--out", "--cache-dir"})
     EXPECT_TRUE(run.count(option)) << option;
   EXPECT_FALSE(run.count("--ignore-param")) << "an option of compare offered for run";
+  // interleave's command line after --: that subcommand's options.
+  EXPECT_EQ(complete("ldmbench interleave A B -- run --str"), std::set<std::string>{"--structure"});
+  EXPECT_TRUE(complete("ldmbench interleave A B -- sw").count("sweep"));
 }
 
 TEST_F(Completion, AxisValuesFromTheRegistry) {
