@@ -13,6 +13,8 @@ packages=(
   # `ldmbench view`: GLFW and Dear ImGui (GLFW + OpenGL 3 backends), and for its tests a
   # virtual X server (xvfb-run needs xauth) and xdotool to type into the window
   libglfw3-dev libimgui-dev xvfb xauth xdotool
+  # the man page's rendering test (groff -man -ww, tests/cli/docs_test.cpp)
+  groff-base
   # libraries
   libglm-dev libopenexr-dev libpng-dev libembree-dev libtbb-dev
   nlohmann-json3-dev libcli11-dev

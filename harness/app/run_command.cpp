@@ -112,7 +112,7 @@ void list_configurations(const std::vector<PlannedConfiguration>& configurations
 }
 
 void check_cache_dir(const std::string& cache_dir) {
-  std::filesystem::path dir = cache_dir.empty() ? kDefaultReferenceCacheDir : cache_dir;
+  std::filesystem::path dir = reference_cache_dir(cache_dir);
   std::error_code error;
   for (std::filesystem::path p = dir; !p.empty(); p = p.parent_path()) {
     if (std::filesystem::exists(p, error)) {

@@ -25,6 +25,9 @@
 // Debian's libbenchmark is built without NDEBUG and says "Library was built as DEBUG" in
 // its context: that is the harness library's build type only; ldmbench's own code is built
 // Release and the timed work runs on the GPU (or llvmpipe's threads), not in the library.
+// The JSON context (--benchmark_format=json) records so (library_build_type_note), with
+// ldmbench's build type, version and commit, the device, and every axis's values and
+// parameter the benchmarks were registered with (ldm_<axis>, ldm_param).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -78,8 +81,25 @@ Axes default_axes() {
   return axes;
 }
 
+// What an axis accepts, short: its choices, or its range.
+std::string domain_text(const AxisSpec& spec) {
+  if (spec.kind == AxisKind::Choice) {
+    std::vector<std::string> names = axis_choices(spec);
+    if (spec.key == "structures") names.push_back("all");
+    if (spec.key == "passes") names = structure_pass_names();
+    std::string out;
+    for (const auto& n : names) out += (out.empty() ? "" : "|") + n;
+    return out;
+  }
+  if (spec.kind == AxisKind::Bool) return "true|false";
+  if (spec.kind == AxisKind::UInt || spec.kind == AxisKind::Real || spec.kind == AxisKind::ImageSize)
+    return axis_range_text(spec);
+  return "";
+}
+
 std::string flags_help() {
   std::string help =
+      version_line("ldmbench_gbench") + "\n"
       "ldmbench_gbench: Google Benchmark over ldmbench's configurations.\n"
       "ldmbench's own flags (before or among Google Benchmark's), one per axis of `ldmbench run`\n"
       "(`ldmbench axes` describes each); a comma list is an axis:\n";
@@ -87,6 +107,8 @@ std::string flags_help() {
     const std::string flag = "  " + flag_of(axis) + "=" + (axis.spec.list ? "LIST" : "VALUE");
     help += flag + std::string(flag.size() < 38 ? 38 - flag.size() : 2, ' ');
     help += axis.spec.display_name();
+    if (!axis.spec.unit.empty()) help += " [" + axis.spec.unit + "]";
+    if (const std::string domain = domain_text(axis.spec); !domain.empty()) help += " " + domain;
     if (!axis.spec.default_value.empty()) help += " (run's default " + axis.spec.default_value + ")";
     help += "\n";
   }
@@ -157,6 +179,45 @@ std::string benchmark_name(const Configuration& c, const Axes& axes) {
 
 std::unique_ptr<HeadlessContext> g_context;
 
+// The values of an axis the benchmarks use, comma-joined: those given, else gbench's or
+// run's default, else its note in parentheses ("(the scene's)").
+std::string axis_values_text(const HarnessAxis& axis, const RunSettings& settings) {
+  std::vector<std::string> values = axis.get ? axis.get(settings) : std::vector<std::string>();
+  if (!axis.get) {
+    const auto it = settings.axis_lists.find(axis.spec.key);
+    if (it != settings.axis_lists.end()) values = it->second;
+  }
+  std::string out;
+  for (const auto& v : values) out += (out.empty() ? "" : ",") + v;
+  if (!out.empty()) return out;
+  return axis.spec.default_value.empty() ? "(" + axis.spec.default_note + ")" : axis.spec.default_value;
+}
+
+// The JSON context of a run: what was measured, with which build, on which device.
+void add_context(const RunSettings& s, const DeviceInfo& device) {
+  benchmark::AddCustomContext("ldmbench_version", ldmbench_version());
+  benchmark::AddCustomContext("git_commit", git_commit());
+  benchmark::AddCustomContext("git_dirty", git_tree_dirty() ? "true" : "false");
+  benchmark::AddCustomContext("ldmbench_build_type", LDM_BUILD_TYPE);
+  benchmark::AddCustomContext(
+      "library_build_type_note",
+      "library_build_type is libbenchmark's own (Debian builds it without NDEBUG, hence 'debug' "
+      "and its DEBUG warning); ldmbench's code is built as ldmbench_build_type and the timed work "
+      "runs on the GL device, so the frame times are not a debug build's");
+  benchmark::AddCustomContext("gl_renderer", device.gl_renderer);
+  benchmark::AddCustomContext("gl_vendor", device.gl_vendor);
+  benchmark::AddCustomContext("gl_version", device.gl_version);
+  benchmark::AddCustomContext("glsl_version", device.glsl_version);
+  benchmark::AddCustomContext("egl_platform", device.egl_platform + " (" + device.egl_vendor + ")");
+  benchmark::AddCustomContext("timer", timer_source_name(default_timer_source(device.gl_renderer)));
+  for (const HarnessAxis& axis : harness_axes())
+    benchmark::AddCustomContext("ldm_" + axis.spec.key, axis_values_text(axis, s));
+  std::string params;
+  for (const auto& [owner, values] : s.structure_params)
+    for (const auto& [key, value] : values) params += (params.empty() ? "" : ";") + owner + ":" + key + "=" + value;
+  benchmark::AddCustomContext("ldm_param", params);
+}
+
 // One benchmark: a whole configuration's frames through the same measure() as `ldmbench
 // run`, every build judged by the same BuildHealth, so a configuration `ldmbench run` marks
 // invalid is an error here, never a time.
@@ -220,14 +281,7 @@ int main(int argc, char** argv) {
   g_context = HeadlessContext::create(default_context_options());
   const DeviceInfo device = g_context->device();
   const RunSettings& s = axes.settings;
-  benchmark::AddCustomContext("gl_renderer", device.gl_renderer);
-  benchmark::AddCustomContext("gl_version", device.gl_version);
-  benchmark::AddCustomContext("timer", timer_source_name(default_timer_source(device.gl_renderer)));
-  benchmark::AddCustomContext("ldmbench_version", ldmbench_version());
-  benchmark::AddCustomContext("git_commit", git_commit());
-  benchmark::AddCustomContext("ldm_frames", std::to_string(s.frames));
-  benchmark::AddCustomContext("ldm_warmup", std::to_string(s.warmup));
-  benchmark::AddCustomContext("ldm_image", std::to_string(s.width) + "x" + std::to_string(s.height));
+  add_context(s, device);
   for (const Configuration& c : configurations)
     benchmark::RegisterBenchmark(benchmark_name(c, axes).c_str(), run_measurement, &scenes.at(c.scene), c, &s)
         ->UseManualTime()

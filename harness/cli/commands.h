@@ -32,4 +32,9 @@ Runner add_listing_commands(CLI::App& app);
 // ldmbench view (harness/viewer); `program` is argv[0], for the command lines it saves.
 Runner add_view_command(CLI::App& app, const std::string& program);  // scenes, structures, passes, columns, info
 
+// `ldmbench completion bash` and `ldmbench man` describe `app` itself (harness/cli/cli_model.h):
+// call them after every other subcommand is added.
+Runner add_completion_command(CLI::App& app);
+Runner add_man_command(CLI::App& app);
+
 }  // namespace ldm::cli

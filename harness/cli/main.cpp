@@ -10,17 +10,42 @@
 //   ldmbench view            interactive viewer of one configuration (GLFW, Dear ImGui)
 //   ldmbench axes            every axis: the harness's and the structures' and passes' parameters
 //   ldmbench scenes | structures | passes | columns | info
+//   ldmbench completion bash | man   the shell completion and the man page, from these definitions
+//   ldmbench --version
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <iostream>
 #include <map>
 #include <new>
 
 #include "harness/app/run_command.h"
+#include "harness/cli/cli_model.h"
 #include "harness/cli/commands.h"
 #include "harness/records/run_lock.h"
 #include "harness/util/error.h"
 #include "harness/util/json_input.h"
+#include "harness/util/version.h"
+
+namespace {
+
+// `ldmbench foo`: CLI11 alone would say "A subcommand is required". The first argument is
+// the subcommand (the program has no option that takes a value), so an unknown one is named,
+// with the closest known one and the list. Empty when `argument` is a known subcommand.
+std::string unknown_subcommand_error(const CLI::App& app, const std::string& argument) {
+  if (argument.empty() || argument[0] == '-') return "";
+  std::vector<std::string> names;
+  for (const CLI::App* sub : ldm::cli::subcommands_of(app)) names.push_back(sub->get_name());
+  if (std::find(names.begin(), names.end(), argument) != names.end()) return "";
+  std::string message = "unknown subcommand '" + argument + "'";
+  const std::string closest = ldm::cli::closest_name(argument, names);
+  if (!closest.empty()) message += " (did you mean '" + closest + "'?)";
+  message += "\nsubcommands:";
+  for (const std::string& name : names) message += " " + name;
+  return message + "\n`ldmbench --help` describes each";
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   std::string command_line;
@@ -40,10 +65,18 @@ int main(int argc, char** argv) {
       {"compare", ldm::cli::add_compare_runs_command(app)},
       {"listing", ldm::cli::add_listing_commands(app)},
       {"view", ldm::cli::add_view_command(app, argv[0])},
+      {"completion", ldm::cli::add_completion_command(app)},
+      {"man", ldm::cli::add_man_command(app)},
   };
+  // Set after the subcommands, which would inherit the footer.
+  app.set_version_flag("--version", ldm::version_line("ldmbench"), "Print the version and the commit it was built from");
+  app.footer(ldm::version_line("ldmbench"));
   try {
     ldm::cli::reject_empty_list_items(argc, argv);
     ldm::cli::reject_empty_paths(argc, argv);
+    if (argc > 1)
+      if (const std::string error = unknown_subcommand_error(app, argv[1]); !error.empty())
+        throw ldm::UserError(error);
   } catch (const ldm::UserError& e) {
     std::cerr << "ldmbench: error: " << e.what() << "\n";
     return ldm::kExitUsage;

@@ -46,7 +46,6 @@ std::map<std::string, std::string> pass_params(const ReferenceOptions& o) {
 
 Runner add_reference_command(CLI::App& app) {
   auto o = std::make_shared<ReferenceOptions>();
-  o->reference.cache_dir = kDefaultReferenceCacheDir;
   auto* cmd = app.add_subcommand("reference", "Render the path-traced (Embree) reference of a "
                                               "pass for a scene's camera");
   cmd->add_option("--scene", o->scene, "Built-in scene name or scene file path")
@@ -88,8 +87,9 @@ Runner add_reference_command(CLI::App& app) {
       ->check(CLI::IsMember({"scene", "attenuated", "unattenuated"}))
       ->capture_default_str();
   cmd->add_option("--out", o->out, "Output EXR path (a PNG is written beside it)")->required();
-  cmd->add_option("--cache-dir", o->reference.cache_dir, "Reference cache folder")
-      ->capture_default_str();
+  cmd->add_option("--cache-dir", o->reference.cache_dir,
+                  "Reference cache folder (default: $XDG_CACHE_HOME/ldmbench/references, else "
+                  "~/.cache/ldmbench/references)");
   cmd->add_flag("!--no-cache", o->reference.use_cache, "Render even if a cached reference exists");
   return [o]() {
     if (std::filesystem::path(o->out).extension() != ".exr")

@@ -182,7 +182,8 @@ void add_run_options(CLI::App* run, RunOptions* o) {
   run->add_option("--reference-seed", s.reference.seed, "Seed of the reference (halves: s, s+1)")
       ->capture_default_str();
   run->add_option("--cache-dir", s.reference.cache_dir,
-                  "Reference cache folder (default: results/cache/references)");
+                  "Reference cache folder (default: $XDG_CACHE_HOME/ldmbench/references, else "
+                  "~/.cache/ldmbench/references)");
   run->add_option("--egl-platform", o->platform,
                   "EGL platform: auto (NVIDIA device if present, else Mesa surfaceless), device, "
                   "surfaceless")

@@ -54,7 +54,8 @@ Runner add_sweep_command(CLI::App& app, const std::string& command_line,
   sweep->add_flag("--dry-run", o->dry_run,
                   "List the configurations (index, id, image size, frames) and write nothing");
   sweep->add_option("--cache-dir", o->cache_dir,
-                    "Reference cache folder (default: results/cache/references)");
+                    "Reference cache folder (default: $XDG_CACHE_HOME/ldmbench/references, else "
+                    "~/.cache/ldmbench/references)");
   sweep->add_option("--egl-platform", o->platform, "EGL platform: auto, device, surfaceless")
       ->check(CLI::IsMember({"auto", "device", "surfaceless"}))
       ->capture_default_str();

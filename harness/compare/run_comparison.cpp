@@ -85,6 +85,44 @@ std::string identity_of(const json& record, const std::set<std::string>& ignored
   return id;
 }
 
+// The structure parameters' keys a record names ("k=4;local=1" -> k, local).
+std::set<std::string> parameter_keys(const json& record) {
+  std::set<std::string> keys;
+  std::stringstream params(text(record, "structure_params"));
+  for (std::string item; std::getline(params, item, ';');)
+    if (const size_t eq = item.find('='); eq != std::string::npos && eq > 0) keys.insert(item.substr(0, eq));
+  return keys;
+}
+
+// For each parameter --ignore-param could leave out (the records' structure parameters, N,
+// R_LDM), how many of BASE's `missing` records it pairs one to one with NEW's `added`
+// records; those that pair any, most first. A pairing that makes two records of either side
+// one identity is not counted (compare_runs refuses it).
+std::vector<PairingHint> pairing_hints(const std::vector<const json*>& missing,
+                                       const std::vector<const json*>& added,
+                                       const std::set<std::string>& ignored) {
+  std::set<std::string> candidates = {"n_views", "r_ldm"};
+  for (const auto* side : {&missing, &added})
+    for (const json* r : *side)
+      for (const std::string& key : parameter_keys(*r)) candidates.insert(key);
+  std::vector<PairingHint> hints;
+  for (const std::string& param : candidates) {
+    if (ignored.count(param)) continue;
+    std::set<std::string> without = ignored;
+    without.insert(param);
+    std::map<std::string, int> in_new, in_base;
+    for (const json* r : added) ++in_new[identity_of(*r, without)];
+    for (const json* r : missing) ++in_base[identity_of(*r, without)];
+    PairingHint hint{param, 0, missing.size()};
+    for (const auto& [identity, count] : in_base)
+      if (count == 1 && in_new.count(identity) && in_new[identity] == 1) ++hint.paired;
+    if (hint.paired) hints.push_back(hint);
+  }
+  std::stable_sort(hints.begin(), hints.end(),
+                   [](const PairingHint& a, const PairingHint& b) { return a.paired > b.paired; });
+  return hints;
+}
+
 int status_rank(const std::string& status) {
   static const std::map<std::string, int> ranks = {
       {"ok", 0}, {"lossy", 1}, {"invalid", 2}, {"failed", 3}, {"missing", 4}};
@@ -335,8 +373,16 @@ RunComparison compare_runs(const RunRecords& base, const RunRecords& next, const
     }
     out.matched.push_back(std::move(c));
   }
+  std::vector<const json*> added;
   for (const json& r : next.records)
-    if (!used.count(&r)) out.added.push_back(identity_of(r, t.ignored_params));
+    if (!used.count(&r)) {
+      out.added.push_back(identity_of(r, t.ignored_params));
+      added.push_back(&r);
+    }
+  std::vector<const json*> missing;
+  for (size_t i = 0; i < base.records.size(); ++i)
+    if (out.matched[i].new_status == "missing") missing.push_back(&base.records[i]);
+  if (!missing.empty() && !added.empty()) out.pairing_hints = pairing_hints(missing, added, t.ignored_params);
   // Holm over every time test at once (configurations x sub-passes); each test's MDE at
   // alpha / tests, the level of Holm's first and strictest step.
   std::vector<TimeChange*> tested;
@@ -452,6 +498,10 @@ std::string comparison_table(const RunComparison& comparison) {
            percent_text(detectable[detectable.size() / 2]) + ", best " + percent_text(detectable.front()) +
            ", worst " + percent_text(detectable.back()) + "\n";
   }
+  for (const PairingHint& h : comparison.pairing_hints)
+    out += "hint: --ignore-param " + h.param + " pairs " + std::to_string(h.paired) + " of the " +
+           std::to_string(h.missing) + " configurations missing from NEW with configurations only in NEW" +
+           (h.paired == h.missing ? " (all of them)" : "") + "\n";
   out += "regressions:";
   for (const std::string& kind : regression_kinds())
     out += " " + kind + " " + std::to_string(count_regressions(comparison, kind));
@@ -508,6 +558,9 @@ nlohmann::ordered_json comparison_json(const RunComparison& comparison, const Co
   root["paired"] = comparison.paired;
   root["only_in_new"] = comparison.added;
   root["warnings"] = comparison.warnings;
+  root["pairing_hints"] = oj::array();
+  for (const PairingHint& h : comparison.pairing_hints)
+    root["pairing_hints"].push_back({{"ignore_param", h.param}, {"pairs", h.paired}, {"missing", h.missing}});
   oj counts;
   for (const std::string& kind : regression_kinds()) counts[kind] = count_regressions(comparison, kind);
   root["regressions"] = counts;

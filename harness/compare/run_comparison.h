@@ -87,9 +87,19 @@ struct ConfigChange {
   bool accuracy_regression() const { return accuracy_verdict == "WORSE"; }
 };
 
+// A parameter whose --ignore-param would pair configurations of BASE missing from NEW with
+// configurations only in NEW (two runs of one sweep at two values of it): found by pairing
+// them with it left out, so the suggestion is known to work.
+struct PairingHint {
+  std::string param;  // a structure parameter's key, or n_views, r_ldm
+  size_t paired = 0;  // how many of the missing configurations it pairs
+  size_t missing = 0; // of how many
+};
+
 struct RunComparison {
   std::vector<ConfigChange> matched;   // BASE order; includes those missing from NEW
   std::vector<std::string> added;      // identities only in NEW
+  std::vector<PairingHint> pairing_hints;  // best first; empty when nothing is missing
   std::vector<std::string> warnings;   // run-level (different commits, devices, ...)
   size_t time_tests = 0;               // how many the Holm correction spans
   bool paired = false;                 // both runs from one interleaved session

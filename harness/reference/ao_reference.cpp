@@ -123,7 +123,7 @@ ReferenceResult ao_reference_for_run(const Scene& scene, const AoSettings& ao, i
   request.progress = settings.progress;
   if (!settings.use_cache) return render_ao_reference(scene, request);
   return cached_ao_reference(
-      scene, request, settings.cache_dir.empty() ? kDefaultReferenceCacheDir : settings.cache_dir);
+      scene, request, reference_cache_dir(settings.cache_dir));
 }
 
 }  // namespace ldm

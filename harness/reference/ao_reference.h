@@ -46,7 +46,7 @@ Image render_ao_half(const EmbreeScene& centred, const AoSettings& ao, int width
 ReferenceResult render_ao_reference(const Scene& scene, const AoReferenceRequest& request);
 // As render_ao_reference, through the disk cache (reference_cache.h).
 ReferenceResult cached_ao_reference(const Scene& scene, const AoReferenceRequest& request,
-                                    const std::string& cache_dir = kDefaultReferenceCacheDir);
+                                    const std::string& cache_dir = default_reference_cache_dir());
 // The AO reference a run's records are scored against: `ao` at width x height under the
 // run's reference settings, through the cache unless they say otherwise. Every AO-like pass
 // (the LDM AO, HBAO) calls this, so one cache entry serves them all.

@@ -158,7 +158,7 @@ ReferenceResult lighting_reference_for_run(const Scene& scene, LightingComponent
   request.progress = settings.progress;
   if (!settings.use_cache) return render_lighting_reference(scene, request);
   return cached_lighting_reference(
-      scene, request, settings.cache_dir.empty() ? kDefaultReferenceCacheDir : settings.cache_dir);
+      scene, request, reference_cache_dir(settings.cache_dir));
 }
 
 double lighting_ssim_exposure(const Image& reference) { return exposure_for_reference(reference); }

@@ -87,7 +87,7 @@ ReferenceResult render_lighting_reference(const Scene& scene,
 // As render_lighting_reference, through the disk cache (reference_cache.h).
 ReferenceResult cached_lighting_reference(const Scene& scene,
                                           const LightingReferenceRequest& request,
-                                          const std::string& cache_dir = kDefaultReferenceCacheDir);
+                                          const std::string& cache_dir = default_reference_cache_dir());
 // The lighting reference a run's records are scored against, under the run's reference
 // settings, through the cache unless they say otherwise.
 ReferenceResult lighting_reference_for_run(const Scene& scene, LightingComponent component,

@@ -1,5 +1,6 @@
 #include "harness/reference/reference_cache.h"
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -10,6 +11,26 @@
 #include "harness/util/json_input.h"
 
 namespace ldm {
+
+std::string default_reference_cache_dir() {
+  const char* xdg = std::getenv("XDG_CACHE_HOME");
+  if (xdg && xdg[0] == '/') return (std::filesystem::path(xdg) / "ldmbench" / "references").string();
+  const char* home = std::getenv("HOME");
+  if (home && home[0] != '\0')
+    return (std::filesystem::path(home) / ".cache" / "ldmbench" / "references").string();
+  throw UserError("the reference cache has no default folder: neither XDG_CACHE_HOME (absolute) "
+                  "nor HOME is set; give --cache-dir");
+}
+
+std::string reference_cache_dir(const std::string& given) {
+  return given.empty() ? default_reference_cache_dir() : given;
+}
+
+std::string reference_cache_default_text() {
+  return "The reference cache's folder when --cache-dir is not given: "
+         "$XDG_CACHE_HOME/ldmbench/references, else ~/.cache/ldmbench/references";
+}
+
 namespace {
 
 struct EntryPaths {

@@ -17,7 +17,17 @@
 
 namespace ldm {
 
-inline constexpr const char* kDefaultReferenceCacheDir = "results/cache/references";
+// Where references are cached when no --cache-dir is given: the user's cache folder, as the
+// XDG base directory specification puts it, $XDG_CACHE_HOME/ldmbench/references (an
+// absolute XDG_CACHE_HOME only), else $HOME/.cache/ldmbench/references. Entries are keyed by
+// content and renderer version and written atomically, so one cache serves every checkout,
+// build, working folder and concurrent process (docs/reference/accuracy.md, "Cache").
+// Throws UserError when neither variable gives a folder.
+std::string default_reference_cache_dir();
+// `given`, or the default when it is empty.
+std::string reference_cache_dir(const std::string& given);
+// How --help and the man page state the default (no machine's path).
+std::string reference_cache_default_text();
 
 std::string reference_cache_key(const nlohmann::json& inputs);
 // The spp rule as a key's "spp" field: the fixed count, or the automatic rule's parameters.

@@ -12,7 +12,7 @@ struct ReferenceSettings {
   bool enabled = true;
   SppRule spp;            // samples per pixel: fixed, or doubling until the noise target
   uint64_t seed = 1;      // the halves use seed and seed + 1
-  std::string cache_dir;  // default: results/cache/references
+  std::string cache_dir;  // empty: default_reference_cache_dir() (reference_cache.h)
   bool use_cache = true;  // false: render even when the cache holds a matching entry
   bool progress = true;   // progress with ETA on a terminal
 };

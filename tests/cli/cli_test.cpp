@@ -276,6 +276,16 @@ TEST(Gbench, OneBenchmarkPerConfigurationWithEverySubpassAsACounter) {
   EXPECT_FALSE(j["context"]["gl_renderer"].get<std::string>().empty());
   EXPECT_FALSE(j["context"]["git_commit"].get<std::string>().empty());
   EXPECT_EQ(j["context"]["ldm_frames"], "3");
+  // The context says what was measured (every axis), with which build, on which device.
+  const auto& context = j["context"];
+  EXPECT_EQ(context["ldm_views"], "4");
+  EXPECT_EQ(context["ldm_image_size"], "32x32");
+  EXPECT_EQ(context["ldm_passes"], "ao,indirect");
+  EXPECT_EQ(context["ldm_structures"], "psppsll,ppsll,dfbuffer,habuffer,ppfla,psppfla");
+  EXPECT_EQ(context["ldm_param"], "");
+  for (const char* key : {"gl_vendor", "gl_version", "glsl_version", "egl_platform", "git_dirty",
+                          "ldmbench_version", "ldmbench_build_type", "library_build_type_note"})
+    EXPECT_FALSE(context.value(key, std::string()).empty()) << key << " missing from the context";
   std::set<std::string> names;
   size_t iterations = 0, aggregates = 0;
   for (const auto& b : j["benchmarks"]) {
@@ -302,6 +312,13 @@ TEST(Gbench, OneBenchmarkPerConfigurationWithEverySubpassAsACounter) {
   EXPECT_EQ(bad.status, 2);
   const Outcome help = {test::run_command(std::string(LDM_GBENCH_PATH) + " --help", &output), output};
   EXPECT_NE(help.output.find("--ldm_frames"), std::string::npos) << help.output;
+  // One line per --ldm_* flag, before Google Benchmark's own, with the version.
+  for (const char* line : {"\n  --ldm_structures=LIST               structure psppsll|ppsll|dfbuffer|habuffer|ppfla|psppfla|all",
+                           "\n  --ldm_views=LIST                    N [views] [1, 4096] (run's default 32)\n",
+                           "\n  --ldm_param=OWNER:KEY=VALUE         a structure's or pass's parameter, repeatable\n"})
+    EXPECT_NE(help.output.find(line), std::string::npos) << line << "\n" << help.output;
+  EXPECT_LT(help.output.find("--ldm_param"), help.output.find("--benchmark_filter")) << help.output;
+  EXPECT_EQ(help.output.rfind("ldmbench_gbench 0.", 0), 0u) << help.output;
 }
 
 // gbench judges builds as `ldmbench run` does (the same measure() and BuildHealth): a lossy

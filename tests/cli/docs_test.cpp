@@ -22,9 +22,11 @@ namespace fs = std::filesystem;
 const fs::path kRoot = fs::path(LDM_TEST_SOURCE_DIR) / "..";
 
 // What scripts/update_docs.py writes for a command's output: the binary's path shown as its
-// name, trailing spaces and blank lines removed.
+// name, a version line's commit as "(commit COMMIT)" (the reference would else be stale at
+// every commit), trailing spaces and blank lines removed.
 std::string normalised(std::string text, const std::string& binary, const std::string& name) {
   for (size_t at; (at = text.find(binary)) != std::string::npos;) text.replace(at, binary.size(), name);
+  text = std::regex_replace(text, std::regex(R"(\(commit [^)]*\))"), "(commit COMMIT)");
   std::stringstream in(text);
   std::string out, blank;
   for (std::string line; std::getline(in, line);) {
@@ -125,6 +127,41 @@ TEST(Docs, AxesTableIsTheRegistry) {
         << key << " has no row in `ldmbench axes --markdown`";
   }
   EXPECT_GE(axes, 16) << json.output.substr(0, 400);
+}
+
+// docs/man/ldmbench.1 is `ldmbench man` (the CLI definitions), as scripts/update_docs.py
+// writes it.
+TEST(Docs, ManPageIsGenerated) {
+  const std::string page = test::read_text((kRoot / "docs" / "man" / "ldmbench.1").string());
+  ASSERT_FALSE(page.empty()) << "docs/man/ldmbench.1 is missing: run scripts/update_docs.py";
+  const test::Outcome man = test::ldmbench("man");
+  ASSERT_EQ(man.status, 0) << man.output;
+  EXPECT_EQ(page, man.output) << "docs/man/ldmbench.1 is stale: run scripts/update_docs.py";
+}
+
+// The page renders without a single groff warning (-ww: every warning), and documents
+// every subcommand of `ldmbench --help` with its options.
+TEST(Docs, ManPageRendersWithoutWarnings) {
+  const std::string dir = test::make_temp_dir("ldm-man");
+  const test::Outcome page = test::ldmbench("man > " + dir + "/ldmbench.1");
+  ASSERT_EQ(page.status, 0) << page.output;
+  // -P-cbou: plain text (no escape sequences, bold, overstrike or underline) to search.
+  // The page goes to page.txt; what is captured is groff's stderr, its warnings (run_shell
+  // appends 2>&1, which must not follow the page into the file: hence the group).
+  const test::Outcome warnings =
+      test::run_shell("{ groff -man -Tutf8 -ww -P-cbou " + dir + "/ldmbench.1 >" + dir + "/page.txt; }");
+  EXPECT_EQ(warnings.status, 0) << warnings.output;
+  EXPECT_EQ(warnings.output, "") << "groff warns about the man page";
+  const test::Outcome text = test::run_shell("cat " + dir + "/page.txt");
+  const test::Outcome top = test::ldmbench("--help");
+  const std::regex subcommand("\n  ([a-z][a-z-]*) ");
+  int listed = 0;
+  for (auto it = std::sregex_iterator(top.output.begin(), top.output.end(), subcommand);
+       it != std::sregex_iterator(); ++it, ++listed)
+    EXPECT_NE(text.output.find("ldmbench " + (*it)[1].str()), std::string::npos) << (*it)[1].str();
+  EXPECT_GE(listed, 16);
+  for (const char* option : {"--structure", "--ignore-param", "--cache-dir", "XDG_CACHE_HOME", "--version"})
+    EXPECT_NE(text.output.find(option), std::string::npos) << option;
 }
 
 TEST(Docs, EveryRelativeLinkResolves) {

@@ -337,6 +337,48 @@ TEST(CompareRuns, IgnoredViewCountPairsTwoValuesOfN) {
             "cornell-psppsll-ao-n160-r64-plane-prevframe");
 }
 
+// Two runs of one sweep at two values of a parameter share no configuration: the comparison
+// names the --ignore-param that pairs them, and that option does pair them.
+json ppfla_at(int k, const std::string& scene) {
+  json r = record(scene + "-ppfla-ao-n4-r32-plane-k=" + std::to_string(k), {});
+  r["structure_params"] = "k=" + std::to_string(k);
+  r["n_views"] = 4;
+  r["r_ldm"] = 32;
+  return r;
+}
+
+TEST(CompareRuns, SuggestsTheIgnoredParameterThatPairsMissingConfigurations) {
+  const RunRecords base = run_of({ppfla_at(8, "cornell"), ppfla_at(8, "atrium")});
+  const RunRecords next = run_of({ppfla_at(2, "cornell"), ppfla_at(2, "atrium")});
+  const RunComparison c = compare_runs(base, next, {});
+  EXPECT_EQ(count_regressions(c, "status"), 2u);
+  ASSERT_EQ(c.pairing_hints.size(), 1u);  // n_views and r_ldm pair nothing
+  EXPECT_EQ(c.pairing_hints[0].param, "k");
+  EXPECT_EQ(c.pairing_hints[0].paired, 2u);
+  EXPECT_EQ(c.pairing_hints[0].missing, 2u);
+  EXPECT_NE(comparison_table(c).find("hint: --ignore-param k pairs 2 of the 2 configurations missing from NEW"),
+            std::string::npos)
+      << comparison_table(c);
+  EXPECT_EQ(comparison_json(c, {})["pairing_hints"][0]["ignore_param"], "k");
+  // The suggestion works: nothing missing, nothing suggested.
+  CompareThresholds t;
+  t.ignored_params = {"k"};
+  const RunComparison paired = compare_runs(base, next, t);
+  EXPECT_EQ(count_regressions(paired, "status"), 0u);
+  EXPECT_TRUE(paired.added.empty());
+  EXPECT_TRUE(paired.pairing_hints.empty());
+  // A genuinely different configuration is not paired by any parameter.
+  const RunComparison unrelated = compare_runs(run_of({record("a", {})}), run_of({record("b", {})}), {});
+  EXPECT_TRUE(unrelated.pairing_hints.empty());
+}
+
+TEST(CompareRuns, NoSuggestionThatWouldMergeTwoRecords) {
+  // NEW has k=2 and k=4 of one configuration: leaving k out would make them one identity.
+  const RunComparison c = compare_runs(run_of({ppfla_at(8, "cornell")}),
+                                       run_of({ppfla_at(2, "cornell"), ppfla_at(4, "cornell")}), {});
+  EXPECT_TRUE(c.pairing_hints.empty());
+}
+
 // The command: exit 0 without selected regressions, 1 with, 2 for bad input.
 using test::Outcome;
 using test::ldmbench;
@@ -345,6 +387,22 @@ fs::path write_run(const fs::path& dir, const std::vector<json>& records) {
   fs::create_directories(dir);
   std::ofstream(dir / "records.json") << json{{"run", {{"device", "gpu A"}}}, {"records", records}}.dump();
   return dir;
+}
+
+TEST(CompareCommand, SuggestsIgnoreParamAndItPairs) {
+  const fs::path tmp = test::make_temp_dir("ldm-compare");
+  const fs::path a = write_run(tmp / "a", {ppfla_at(8, "cornell"), ppfla_at(8, "atrium")});
+  const fs::path b = write_run(tmp / "b", {ppfla_at(2, "cornell"), ppfla_at(2, "atrium")});
+  Outcome o = ldmbench("compare " + a.string() + " " + b.string());
+  EXPECT_EQ(o.status, 0) << o.output;
+  EXPECT_NE(o.output.find("hint: --ignore-param k pairs 2 of the 2 configurations missing from NEW"),
+            std::string::npos)
+      << o.output;
+  o = ldmbench("compare --ignore-param k " + a.string() + " " + b.string());
+  EXPECT_EQ(o.status, 0) << o.output;
+  EXPECT_EQ(o.output.find("missing"), std::string::npos) << o.output;
+  EXPECT_EQ(o.output.find("hint:"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("regressions: time 0 memory 0 accuracy 0 status 0"), std::string::npos) << o.output;
 }
 
 TEST(CompareCommand, ExitCodeFollowsFailOn) {
