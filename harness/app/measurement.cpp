@@ -6,6 +6,7 @@
 
 #include "harness/app/measurement_session.h"
 #include "harness/metrics/image_checks.h"
+#include "harness/passes/raster_baseline.h"
 #include "harness/records/record.h"
 #include "harness/util/error.h"
 
@@ -18,6 +19,14 @@ TimingSeries Measurement::series() const {
 }
 
 std::vector<TimingSummary> Measurement::summaries() const { return series().summarize(); }
+
+double Measurement::frames_timed_ms() const {
+  double total = 0;
+  for (const auto& frame : frames)
+    for (const auto& [name, ms] : frame)
+      if (name == "frame" || RasterBaseline::is_baseline_subpass(name)) total += ms;
+  return total;
+}
 
 namespace {
 constexpr const char* kSamplesHeader = "repetition,frame,subpass,ms\n";
