@@ -110,6 +110,9 @@ void add_measurement(Record& r, const Measurement& m, const TimePrecision& preci
   r.set("sizing_reallocations", m.sizing_reallocations);
 
   r.set("raster_touch_fragments", m.raster_touch_fragments);
+  const TimingSeries series = m.series();
+  if (const std::vector<double>* baseline = series.find(kRasterBaselineSubpass))
+    r.set("baseline_frames", baseline->size());
   TimingOutcome timing;
   timing.summaries = m.summaries();
   timing.frames_per_repetition = {m.frames.size()};

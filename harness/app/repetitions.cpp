@@ -79,7 +79,7 @@ Record combine_repetitions(const std::vector<Record>& repetitions, const std::st
   std::map<std::string, double> sums;
   constexpr const char* kSummed[] = {"frames_timed_ms", "verify_ms", "verify_warmup_ms",
                                      "verify_full_checks", "verify_sampled_checks",
-                                     "verify_sampled_pixels"};
+                                     "verify_sampled_pixels", "baseline_frames"};
   for (size_t j = 0; j < repetitions.size(); ++j) {
     const Record& rep = repetitions[j];
     frames.push_back(repetition_frames(rep, out_dir));

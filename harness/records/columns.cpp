@@ -112,6 +112,7 @@ std::vector<ColumnSpec> main_columns() {
       {"time", "<subpass>_ms_stddev", "ms", "sample standard deviation over the measured frames (pooled over repetitions)"},
       {"time", "build_vs_raster", "", "build median over raster_baseline median (the empty raster pass)"},
       {"time", "build_vs_raster_touch", "", "build median over raster_touch median (every fragment shaded, one atomicAdd each)"},
+      {"time", "baseline_frames", "frames", "measured frames on which the two raster baselines were timed: every second one from the first (over every repetition)"},
       {"time", "raster_touch_fragments", "fragments", "fragments the raster_touch baseline shaded (checked against the census)"},
       {"time", "fragments_per_second", "1/s", "census fragments over the build median"},
       {"time", "frame_samples_csv", "", "every measured frame's time of every sub-pass (repetition, frame, subpass, ms), path relative to the records"},

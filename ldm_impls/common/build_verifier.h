@@ -25,7 +25,7 @@ const char* verify_mode_name(VerifyMode mode);
 // "every" or "sampled"; throws UserError naming `what` otherwise.
 VerifyMode parse_verify_mode(const std::string& text, const std::string& what = "--verify");
 
-inline constexpr uint32_t kDefaultVerifyStride = 16;
+inline constexpr uint32_t kDefaultVerifyStride = 32;
 
 struct VerifyCounts {
   uint64_t full = 0;            // builds checked in full
