@@ -69,6 +69,7 @@ MeasurementRequest measurement_request(const Configuration& config, const RunSet
   request.frames = settings.frames;
   request.precision = settings.precision;
   request.timer = timer_source(settings.timer, device);
+  request.verify = parse_verify_mode(settings.verify);
   return request;
 }
 
@@ -95,6 +96,15 @@ void add_measurement(Record& r, const Measurement& m, const TimePrecision& preci
   r.set("overflow", m.overflow);
   r.set("checksum_changes", m.checksum_changes);
   r.set("lists_checksum", hex64(m.lists_checksum));
+  if (!m.verify_mode.empty()) {  // a structure's builds were checked
+    r.set("verify_mode", m.verify_mode);
+    r.set("verify_stride", m.verify_stride);
+    r.set("verify_full_checks", m.verify_counts.full);
+    r.set("verify_sampled_checks", m.verify_counts.sampled);
+    r.set("verify_sampled_pixels", m.verify_counts.sampled_pixels);
+    r.set("verify_ms", m.verify_measured_ms);
+    r.set("verify_warmup_ms", m.verify_warmup_ms);
+  }
   for (const auto& [name, value] : m.last_build.counters) r.set("counter_" + name, value);
   for (const auto& [key, value] : m.sizing) r.set("sizing_" + key, value);
   r.set("sizing_rebuilds", m.sizing_rebuilds);
@@ -102,12 +112,17 @@ void add_measurement(Record& r, const Measurement& m, const TimePrecision& preci
   r.set("sizing_reallocations", m.sizing_reallocations);
 
   r.set("raster_touch_fragments", m.raster_touch_fragments);
+  const TimingSeries series = m.series();
+  if (const std::vector<double>* baseline = series.find(kRasterBaselineSubpass))
+    r.set("baseline_frames", baseline->size());
   TimingOutcome timing;
   timing.summaries = m.summaries();
   timing.frames_per_repetition = {m.frames.size()};
   timing.target_met = m.time_target_met;
   timing.precision = precision;
   add_timing_columns(r, timing);
+  r.set("frames_timed_ms", m.frames_timed_ms());
+  set_verify_share(r);
   const std::string warning = time_target_warning(timing);
   if (!warning.empty()) {
     const RecordValue* detail = r.get("status_detail");

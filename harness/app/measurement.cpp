@@ -6,6 +6,7 @@
 
 #include "harness/app/measurement_session.h"
 #include "harness/metrics/image_checks.h"
+#include "harness/passes/raster_baseline.h"
 #include "harness/records/record.h"
 #include "harness/util/error.h"
 
@@ -18,6 +19,14 @@ TimingSeries Measurement::series() const {
 }
 
 std::vector<TimingSummary> Measurement::summaries() const { return series().summarize(); }
+
+double Measurement::frames_timed_ms() const {
+  double total = 0;
+  for (const auto& frame : frames)
+    for (const auto& [name, ms] : frame)
+      if (name == "frame" || RasterBaseline::is_baseline_subpass(name)) total += ms;
+  return total;
+}
 
 namespace {
 constexpr const char* kSamplesHeader = "repetition,frame,subpass,ms\n";
@@ -36,10 +45,15 @@ std::string frame_samples_csv(const std::vector<TimingSeries>& repetitions) {
   std::string out = kSamplesHeader;
   for (size_t r = 0; r < repetitions.size(); ++r) {
     const TimingSeries& series = repetitions[r];
+    // Frame by frame, each sub-pass that has a sample in it (subsampled ones skip frames).
+    std::vector<size_t> next(series.subpasses().size(), 0);
     for (size_t frame = 0; frame < series.frames(); ++frame)
-      for (size_t i = 0; i < series.subpasses().size(); ++i)
+      for (size_t i = 0; i < series.subpasses().size(); ++i) {
+        const std::vector<size_t>& frames = series.sample_frames(i);
+        if (next[i] >= frames.size() || frames[next[i]] != frame) continue;
         out += std::to_string(r) + "," + std::to_string(frame) + "," + series.subpasses()[i] +
-               "," + format_csv_value(series.samples(i)[frame]) + "\n";
+               "," + format_csv_value(series.samples(i)[next[i]++]) + "\n";
+      }
   }
   return out;
 }

@@ -21,6 +21,7 @@
 #include "harness/passes/pass.h"
 #include "harness/scene/scene.h"
 #include "ldm_impls/common/build_health.h"
+#include "ldm_impls/common/build_verifier.h"
 #include "ldm_impls/common/fragment_census.h"
 #include "ldm_impls/ldm_structure.h"
 
@@ -41,6 +42,9 @@ struct MeasurementRequest {
   int warmup = 2, frames = 5;
   TimePrecision precision{0.0};  // exactly `frames` unless asked (`ldmbench run` asks)
   TimerSource timer = TimerSource::FencedWallClock;
+  // How much of each build is checked (ldm_impls/common/build_verifier.h).
+  VerifyMode verify = VerifyMode::Sampled;
+  uint32_t verify_stride = kDefaultVerifyStride;
   // Decides before each measured frame whether to run it; unset: the stop rule above.
   // Google Benchmark passes its own loop (State::KeepRunning) here.
   std::function<bool()> keep_running;
@@ -75,6 +79,11 @@ struct Measurement {
   BuildStats last_build;  // stats() of the last build
   bool overflow = false;
   uint64_t checksum_changes = 0, lists_checksum = 0;
+  // How the builds were checked, and the wall time the checks took (warm-up, measured).
+  std::string verify_mode;
+  uint32_t verify_stride = 0;
+  VerifyCounts verify_counts;
+  double verify_warmup_ms = 0, verify_measured_ms = 0;
   // The structure's sizing() and the policy's (SizingDriver::describe()).
   std::vector<std::pair<std::string, std::string>> sizing;
   // Rebuilds after an overflow (all builds; in measured frames) and reallocations.
@@ -99,6 +108,8 @@ struct Measurement {
   std::vector<std::pair<std::string, RecordValue>> pass_results;  // Pass::results()
 
   TimingSeries series() const;  // the measured frames
+  // Sum over the measured frames of every timed sub-pass (the frame and the baselines).
+  double frames_timed_ms() const;
   std::vector<TimingSummary> summaries() const;  // per sub-pass, first-seen order
   uint64_t bytes_allocated() const;
   uint64_t bytes_used() const;

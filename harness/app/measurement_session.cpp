@@ -1,6 +1,7 @@
 #include "harness/app/measurement_session.h"
 
 #include <algorithm>
+#include <chrono>
 #include <optional>
 #include <stdexcept>
 
@@ -9,6 +10,7 @@
 #include "harness/passes/raster_baseline.h"
 #include "harness/util/error.h"
 #include "harness/util/hash.h"
+#include "ldm_impls/common/build_verifier.h"
 #include "ldm_impls/common/ldm_inspector.h"
 #include "ldm_impls/common/sizing_driver.h"
 #include "ldm_impls/common/storage_fit.h"
@@ -67,7 +69,9 @@ struct MeasurementSession::State {
   std::unique_ptr<LdmInspector> inspector;
   std::unique_ptr<SizingDriver> sizer;
   std::optional<BuildHealth> health;
+  std::unique_ptr<BuildVerifier> verifier;
   uint64_t rebuilds_in_warmup = 0;
+  uint64_t sizing_changes_seen = 0;  // rebuilds + reallocations at the last verification
 
   // Peer passes: the scene as given (no LDM views, so no centred frame is imposed).
   std::unique_ptr<Scene> peer_scene;
@@ -143,6 +147,8 @@ MeasurementSession::MeasurementSession(const Scene& scene, const MeasurementRequ
                                                std::max(1u, census.max_depth_complexity));
   s.sizer = std::make_unique<SizingDriver>(*s.structure, in);
   s.health.emplace(census);
+  s.verifier = std::make_unique<BuildVerifier>(*s.structure, *s.inspector, *s.health,
+                                               request.verify, request.verify_stride);
   if (census.max_depth_complexity > kMaxListWalk)
     s.health->report_problem("a pixel holds " + std::to_string(census.max_depth_complexity) +
                              " fragments, more than list walks follow (" +
@@ -158,10 +164,15 @@ MeasurementSession::~MeasurementSession() = default;
 FrameTimes MeasurementSession::run_frame() {
   State& s = *state_;
   const bool warmup = in_warmup();
+  // The yardsticks on the first warm-up frame (their programs' first use) and on every
+  // kBaselineFrameStride-th measured frame from the first: they are compared with the
+  // build's median, for which a subset of frames suffices, and cost a build's worth each.
+  const int measured_index = s.frames_run - s.request.warmup;
+  const bool yardsticks = warmup ? s.frames_run == 0 : measured_index % kBaselineFrameStride == 0;
   ++s.frames_run;
   s.timer.begin_frame();
   if (s.setup) {
-    s.baseline->render(&s.timer);
+    if (yardsticks) s.baseline->render(&s.timer);
     try {
       s.sizer->build(&s.timer);  // the structure's build() under its sizing policy
     } catch (const StorageBlockExceeded& e) {  // grown past the device: say what would fit
@@ -171,9 +182,16 @@ FrameTimes MeasurementSession::run_frame() {
   s.pass->render(&s.timer);
   FrameTimes times = s.timer.end_frame();
   if (s.setup) {
-    // Untimed: what the build stored, read back through the query API.
-    s.m.last_build = s.structure->stats();
-    s.health->observe(s.m.last_build, s.inspector->check());
+    // Untimed: what the build stored, read back through the query API (in full, or a
+    // sample of it: build_verifier.h); its wall time is the harness's own cost.
+    const auto verify_start = std::chrono::steady_clock::now();
+    const uint64_t sizing_changes = s.sizer->rebuilds() + s.sizer->reallocations();
+    s.verifier->verify(sizing_changes != s.sizing_changes_seen);
+    s.sizing_changes_seen = sizing_changes;
+    s.m.last_build = s.verifier->last_stats();
+    const double verify_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - verify_start).count();
+    (warmup ? s.m.verify_warmup_ms : s.m.verify_measured_ms) += verify_ms;
     if (warmup) {  // judged, but not measured
       s.rebuilds_in_warmup = s.sizer->rebuilds();
       return times;
@@ -221,6 +239,9 @@ Measurement MeasurementSession::result() const {
     m.status_detail = health.detail();
     m.overflow = health.overflow();
     m.checksum_changes = health.checksum_changes();
+    m.verify_mode = verify_mode_name(s.verifier->mode());
+    m.verify_stride = s.verifier->stride();
+    m.verify_counts = s.verifier->counts();
     m.lists_checksum = health.first_checksum();
     m.sizing = s.structure->sizing();
     for (const auto& entry : s.sizer->describe()) m.sizing.push_back(entry);

@@ -5,8 +5,9 @@
 // frame. So what the viewer shows is what `ldmbench run` records, by construction.
 //
 // A pass that reads a structure gets the whole LDM frame (raster baselines │ build under the
-// sizing policy │ pass, judged by BuildHealth after every frame); a peer pass
-// (requirements().needs_structure false) gets its frames alone.
+// sizing policy │ pass, judged after every frame: ldm_impls/common/build_verifier.h); the
+// raster baselines only on every kBaselineFrameStride-th measured frame (and the first
+// warm-up frame). A peer pass (requirements().needs_structure false) gets its frames alone.
 #include <memory>
 
 #include "harness/app/measurement.h"
@@ -14,6 +15,8 @@
 namespace ldm {
 
 struct LdmSetup;
+
+inline constexpr int kBaselineFrameStride = 2;
 
 class MeasurementSession {
  public:

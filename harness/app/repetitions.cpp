@@ -1,6 +1,7 @@
 #include "harness/app/repetitions.h"
 
 #include <filesystem>
+#include <map>
 #include <sstream>
 
 #include "harness/app/measurement.h"
@@ -74,6 +75,11 @@ Record combine_repetitions(const std::vector<Record>& repetitions, const std::st
   std::string status = text_of(r, "status");
   std::vector<std::string> notes;
   double wall = 0;
+  // The harness's own costs add up over the repetitions, as their frames do.
+  std::map<std::string, double> sums;
+  constexpr const char* kSummed[] = {"frames_timed_ms", "verify_ms", "verify_warmup_ms",
+                                     "verify_full_checks", "verify_sampled_checks",
+                                     "verify_sampled_pixels", "baseline_frames"};
   for (size_t j = 0; j < repetitions.size(); ++j) {
     const Record& rep = repetitions[j];
     frames.push_back(repetition_frames(rep, out_dir));
@@ -82,6 +88,7 @@ Record combine_repetitions(const std::vector<Record>& repetitions, const std::st
     if (record_status_rank(text_of(rep, "status")) > record_status_rank(status)) status = text_of(rep, "status");
     add_note(notes, text_of(rep, "status_detail"));
     wall += number_of(rep, "wall_seconds");
+    for (const char* key : kSummed) sums[key] += number_of(rep, key);
     if (j == 0) continue;
     for (const char* key : {"lists_checksum", "fragments"}) {
       const RecordValue* first = repetitions.front().get(key);
@@ -99,6 +106,13 @@ Record combine_repetitions(const std::vector<Record>& repetitions, const std::st
   r.set("status", status);
   r.set("status_detail", detail);
   r.set("wall_seconds", wall);
+  for (const char* key : kSummed) {
+    if (!r.get(key)) continue;
+    const std::string name = key;
+    if (name.size() > 3 && name.compare(name.size() - 3, 3, "_ms") == 0) r.set(name, sums[name]);
+    else r.set(name, int64_t(sums[name]));
+  }
+  set_verify_share(r);
   return r;
 }
 

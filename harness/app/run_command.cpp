@@ -295,10 +295,36 @@ std::string default_out_dir(const std::string& out_dir) {
                          : out_dir;
 }
 
-// The end of a run: the summary table, the records' paths and outcome counts, the next
-// command; the exit status from the outcomes.
+// What the configurations this process measured cost beside their measured frames.
+struct HarnessCost {
+  size_t measured = 0;     // records measured here (repetitions count one each)
+  double timed_ms = 0;     // their measured frames' timed work (frames_timed_ms)
+  double verify_ms = 0;    // their build checks, measured frames and warm-up
+  void add(const Record& r) {
+    if (!r.get("frames_timed_ms")) return;  // failed: nothing was timed
+    ++measured;
+    timed_ms += number_of(r, "frames_timed_ms");
+    verify_ms += number_of(r, "verify_ms") + number_of(r, "verify_warmup_ms");
+  }
+};
+
+// "harness cost: 7.41 s wall for 2.96 s of measured frames (2.5x); build checks 1.2%": how
+// much of the process's time went into the frames the records are made of (issue 21).
+std::string harness_cost_line(const HarnessCost& cost) {
+  if (cost.measured == 0 || cost.timed_ms <= 0) return "";
+  const double wall = seconds_since_process_start(), timed = cost.timed_ms / 1000.0;
+  std::ostringstream out;
+  out << "harness cost: " << four_digits(wall) << " s wall for " << four_digits(timed)
+      << " s of measured frames (" << four_digits(wall / timed) << "x); build checks "
+      << four_digits(100.0 * cost.verify_ms / cost.timed_ms) << "% of the measured frames' time\n";
+  return out.str();
+}
+
+// The end of a run: the summary table, the records' paths and outcome counts, what the run
+// cost beside its measured frames, the next command; the exit status from the outcomes.
 int finish_run(const std::vector<Record>& records, size_t configurations, int interrupted_by,
-               const std::string& out_dir, const std::string& report_hint, std::ostream& log) {
+               const std::string& out_dir, const std::string& report_hint, std::ostream& log,
+               const HarnessCost& cost = {}) {
   const std::string csv_path = (std::filesystem::path(out_dir) / "records.csv").string();
   const std::string json_path = (std::filesystem::path(out_dir) / "records.json").string();
   std::map<std::string, int> outcomes;
@@ -311,6 +337,7 @@ int finish_run(const std::vector<Record>& records, size_t configurations, int in
     first = false;
   }
   log << ")\n";
+  log << harness_cost_line(cost);
   if (interrupted_by) {
     log << "interrupted by signal " << interrupted_by << ": " << records.size() << " of "
         << configurations << " configurations recorded; run the same command again "
@@ -608,6 +635,7 @@ int run_configurations(const ConfigurationRun& job, const std::string& command_l
     if (found != partial.end() && found->second.size() >= repetitions) combine(id, found->second, settings);
   }
 
+  HarnessCost cost;
   // Round robin: repetition 1 of every configuration, then repetition 2, ... Each round
   // after the first runs in a fresh GL context, so that no repetition shares another's.
   bool stepped = false;  // a step measures one repetition, then stops
@@ -681,6 +709,7 @@ int run_configurations(const ConfigurationRun& job, const std::string& command_l
       const double seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
       record.set("wall_seconds", seconds);
+      cost.add(record);
       const std::string status = status_of(record);
       begin_line();
       log << status << timed_sums(record);
@@ -715,7 +744,7 @@ int run_configurations(const ConfigurationRun& job, const std::string& command_l
     stop_for_io(e, "", {});
   }
   if (stepping) return interrupted_by ? kExitInterruptedBase + interrupted_by : kExitOk;
-  return finish_run(records, configurations.size(), interrupted_by, out_dir, job.report_hint, log);
+  return finish_run(records, configurations.size(), interrupted_by, out_dir, job.report_hint, log, cost);
 }
 
 }  // namespace ldm

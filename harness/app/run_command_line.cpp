@@ -93,6 +93,7 @@ std::string run_command_line(const RunSettings& s, const std::string& program,
   add("--time-cap", shortest(s.precision.cap_seconds));
   add("--max-frames", std::to_string(s.precision.max_frames));
   add("--timer", s.timer);
+  add("--verify", s.verify);
   if (!s.reference.enabled) {
     line += " --no-reference";
   } else {
@@ -142,7 +143,7 @@ std::string sweep_file_json(const RunSettings& s, const std::string& description
                        {"cap_s", s.precision.cap_seconds},
                        {"max_frames", s.precision.max_frames}};
   file["settings"] = {{"reference", reference}, {"images", s.write_images}, {"timer", s.timer},
-                      {"timing", timing}};
+                      {"verify", s.verify}, {"timing", timing}};
   return file.dump(2) + "\n";
 }
 

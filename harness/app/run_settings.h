@@ -67,6 +67,7 @@ struct RunSettings {
   // canonical, by key.
   std::map<std::string, std::vector<std::string>> axis_lists;
   std::string timer = "auto";  // auto | gl_timestamp | fenced_wall_clock
+  std::string verify = "sampled";  // every | sampled (ldm_impls/common/build_verifier.h)
   ReferenceSettings reference;
 };
 

@@ -201,6 +201,11 @@ void check_settings(const json& settings, const std::string& name) {
       if (!value.is_string() ||
           std::find(timers.begin(), timers.end(), value.get<std::string>()) == timers.end())
         fail(name, path, "expected one of " + joined(timers) + ", got " + value.dump());
+    } else if (key == "verify") {
+      static const std::vector<std::string> modes = {"every", "sampled"};
+      if (!value.is_string() ||
+          std::find(modes.begin(), modes.end(), value.get<std::string>()) == modes.end())
+        fail(name, path, "expected one of " + joined(modes) + ", got " + value.dump());
     } else if (key == "reference") {
       require_object(value, name, path);
       for (const auto& [rkey, rvalue] : value.items()) {
@@ -245,7 +250,7 @@ void check_settings(const json& settings, const std::string& name) {
         }
       }
     } else {
-      fail(name, path, "unknown key (known: images, timer, reference, timing, comment)");
+      fail(name, path, "unknown key (known: images, timer, verify, reference, timing, comment)");
     }
   }
 }

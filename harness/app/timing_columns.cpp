@@ -62,6 +62,14 @@ void add_timing_columns(Record& r, const TimingOutcome& t) {
     r.set("fragments_per_second", fragments / (build->median * 1e-3));
 }
 
+void set_verify_share(Record& r) {
+  const RecordValue* verify = r.get("verify_ms");
+  const RecordValue* timed = r.get("frames_timed_ms");
+  const double* verify_ms = verify ? std::get_if<double>(verify) : nullptr;
+  const double* timed_ms = timed ? std::get_if<double>(timed) : nullptr;
+  if (verify_ms && timed_ms && *timed_ms > 0) r.set("verify_share", *verify_ms / *timed_ms);
+}
+
 std::string time_target_warning(const TimingOutcome& t) {
   if (t.target_met || t.precision.target <= 0) return "";
   char text[200];

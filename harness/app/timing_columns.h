@@ -26,6 +26,10 @@ struct TimingOutcome {
 // fragments_per_second (a pass without a structure has none).
 void add_timing_columns(Record& r, const TimingOutcome& timing);
 
+// verify_share = verify_ms / frames_timed_ms, when the record has both (a structure's builds
+// were checked and frames were timed).
+void set_verify_share(Record& r);
+
 // The status_detail warning of a repetition that missed the precision target, or "".
 std::string time_target_warning(const TimingOutcome& timing);
 

@@ -195,6 +195,12 @@ void add_run_options(CLI::App* run, RunOptions* o) {
                   "rasterisers such as llvmpipe, whose timestamps miss most of the work)")
       ->check(CLI::IsMember({"auto", "gl_timestamp", "fenced_wall_clock"}))
       ->capture_default_str();
+  run->add_option("--verify", s.verify,
+                  "How much of each build is checked: sampled (in full after the first build "
+                  "and after the sizing policy changed the storage, otherwise one 64-pixel "
+                  "block in 32, rotating) or every (in full after every build)")
+      ->check(CLI::IsMember({"every", "sampled"}))
+      ->capture_default_str();
   run->add_flag("--gl-debug", s.context.debug_output, "Print OpenGL debug messages");
 }
 

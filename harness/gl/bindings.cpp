@@ -12,6 +12,7 @@ ShaderDefines binding_defines() {
   d.set("LDM_VIEWS_BINDING", kViewsBinding);
   d.set("LDM_CENSUS_BINDING", kCensusBinding);
   d.set("LDM_VALIDATION_BINDING", kValidationBinding);
+  d.set("LDM_INSPECT_BLOCKS_BINDING", kInspectBlocksBinding);
   d.set("LDM_PASS_BINDING0", kPassBinding0);
   d.set("LDM_PASS_BINDING1", kPassBinding0 + 1);
   return d;

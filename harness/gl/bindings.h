@@ -21,6 +21,9 @@ constexpr uint32_t kMaterialAlbedoBinding = kPassBinding0 + 5;
 // passes, which never run together with a pass, so it borrows the passes' bindings.
 constexpr uint32_t kSyntheticFragmentsBinding = kPassBinding0;
 constexpr uint32_t kSyntheticRetryBinding = kPassBinding0 + 1;
+// The inspector's per-block hashes (ldm_impls/common/ldm_inspector.h), beside the buffers a
+// pass may still have bound (the trace-steps counters use kPassBinding0 + 6).
+constexpr uint32_t kInspectBlocksBinding = kPassBinding0 + 7;
 
 ShaderDefines binding_defines();
 

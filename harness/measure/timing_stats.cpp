@@ -40,19 +40,35 @@ const TimingSummary* find_summary(const std::vector<TimingSummary>& summaries,
 }
 
 void TimingSeries::add_frame(const FrameTimes& frame) {
-  ++frames_;
+  const size_t index_of_frame = frames_++;
+  std::vector<bool> seen(order_.size(), false);
   for (const auto& [name, ms] : frame) {
     auto it = std::find(order_.begin(), order_.end(), name);
     size_t index = size_t(it - order_.begin());
     if (it == order_.end()) {
       order_.push_back(name);
-      samples_.emplace_back(frames_ - 1, 0.0);  // absent from the earlier frames: 0 ms there
+      seen.push_back(false);
+      // Absent from the earlier frames: 0 ms there (no sample, for a subsampled one).
+      const bool zeros = !is_subsampled_subpass(name);
+      samples_.emplace_back(zeros ? index_of_frame : 0, 0.0);
+      sample_frames_.emplace_back();
+      if (zeros)
+        for (size_t f = 0; f < index_of_frame; ++f) sample_frames_.back().push_back(f);
     }
+    if (seen[index]) {  // a name timed twice in one frame (end_frame() sums, but be safe)
+      samples_[index].back() += ms;
+      continue;
+    }
+    seen[index] = true;
     samples_[index].push_back(ms);
+    sample_frames_[index].push_back(index_of_frame);
   }
   // A sub-pass that only some frames run (a rebuild, a reallocation) took 0 ms in the rest.
-  for (auto& values : samples_)
-    if (values.size() < frames_) values.push_back(0.0);
+  for (size_t i = 0; i < order_.size(); ++i)
+    if (!seen[i] && !is_subsampled_subpass(order_[i])) {
+      samples_[i].push_back(0.0);
+      sample_frames_[i].push_back(index_of_frame);
+    }
 }
 
 const std::vector<double>* TimingSeries::find(const std::string& subpass) const {
@@ -62,7 +78,8 @@ const std::vector<double>* TimingSeries::find(const std::string& subpass) const 
 
 std::vector<TimingSummary> TimingSeries::summarize() const {
   std::vector<TimingSummary> out;
-  for (size_t i = 0; i < order_.size(); ++i) out.push_back(frame_summary(order_[i], samples_[i]));
+  for (size_t i = 0; i < order_.size(); ++i)
+    if (!samples_[i].empty()) out.push_back(frame_summary(order_[i], samples_[i]));
   return out;
 }
 
@@ -77,11 +94,14 @@ std::vector<TimingSummary> summarize_repetitions(const std::vector<TimingSeries>
     std::vector<double> pooled, medians;
     for (const auto& r : repetitions) {
       const std::vector<double>* values = r.find(name);
-      const std::vector<double> zeros(r.frames(), 0.0);  // never timed there: 0 ms a frame
+      // Never timed there: 0 ms a frame, or no sample for a subsampled sub-pass.
+      const std::vector<double> zeros(is_subsampled_subpass(name) ? 0 : r.frames(), 0.0);
       const std::vector<double>& v = values ? *values : zeros;
+      if (v.empty()) continue;
       pooled.insert(pooled.end(), v.begin(), v.end());
       medians.push_back(median_of(v));
     }
+    if (pooled.empty()) continue;
     TimingSummary s = frame_summary(name, pooled);
     s.repetitions = repetitions.size();
     s.repetition_medians = medians;

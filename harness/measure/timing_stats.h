@@ -19,6 +19,15 @@ namespace ldm {
 
 inline constexpr double kTimeConfidence = 0.95;
 
+// The raster yardsticks (harness/passes/raster_baseline.h): sub-passes timed on a subset of
+// the measured frames only. A frame without them holds no sample of them (where a frame
+// without a rebuild holds a 0 ms one).
+inline constexpr const char* kRasterBaselineSubpass = "raster_baseline";
+inline constexpr const char* kRasterTouchSubpass = "raster_touch";
+inline bool is_subsampled_subpass(const std::string& name) {
+  return name == kRasterBaselineSubpass || name == kRasterTouchSubpass;
+}
+
 // How a summary's interval was made (the record's time_interval column).
 inline constexpr const char* kFrameInterval = "order_statistics_of_frames";
 inline constexpr const char* kRepetitionInterval = "t_on_log_repetition_medians";
@@ -43,13 +52,16 @@ const TimingSummary* find_summary(const std::vector<TimingSummary>& summaries,
 
 // Collects the per-frame sub-pass times of the measured frames (warm-up frames are simply
 // never added) and summarises each sub-pass, in first-seen order. A sub-pass missing from a
-// frame (one that only some frames run, such as a rebuild) counts 0 ms in that frame.
+// frame (one that only some frames run, such as a rebuild) counts 0 ms in that frame,
+// unless it is subsampled (is_subsampled_subpass): then the frame holds no sample of it.
 class TimingSeries {
  public:
   void add_frame(const FrameTimes& frame);
-  // Every sub-pass's frames, in first-seen order (absent ones as 0 ms).
+  // Every sub-pass's frames, in first-seen order (absent ones as 0 ms, except subsampled).
   const std::vector<std::string>& subpasses() const { return order_; }
   const std::vector<double>& samples(size_t subpass) const { return samples_[subpass]; }
+  // The frame each of samples(subpass) was taken in (0, 1, 2, ... but for subsampled ones).
+  const std::vector<size_t>& sample_frames(size_t subpass) const { return sample_frames_[subpass]; }
   // The samples of `subpass`, or null when it was never timed.
   const std::vector<double>* find(const std::string& subpass) const;
   std::vector<TimingSummary> summarize() const;  // one repetition
@@ -58,6 +70,7 @@ class TimingSeries {
  private:
   std::vector<std::string> order_;
   std::vector<std::vector<double>> samples_;
+  std::vector<std::vector<size_t>> sample_frames_;
   size_t frames_ = 0;
 };
 

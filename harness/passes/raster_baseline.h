@@ -1,7 +1,8 @@
 #pragma once
 // The cost floors of every structure's construction: the same fragments (the structure's
 // fragment source, the same instanced geometry pass) with fragment shaders that store
-// nothing of their own. Two sub-passes, both timed every frame:
+// nothing of their own. Two sub-passes, both timed on the frames the measurement picks
+// (harness/app/measurement_session.cpp: every kBaselineFrameStride-th measured frame):
 //   raster_baseline  ldm/raster_only.frag, an empty shader without attachments: a driver may
 //                    skip shading altogether, so this is the rasteriser's setup and coverage
 //                    cost at most
@@ -15,23 +16,21 @@
 
 #include "harness/gl/gl_objects.h"
 #include "harness/measure/gpu_timer.h"
+#include "harness/measure/timing_stats.h"
 #include "harness/views/view_set.h"
 #include "ldm_impls/common/fragment_source.h"
 
 namespace ldm {
 
-// The names render() times its two sub-passes under.
-inline constexpr const char* kRasterBaselineSubpass = "raster_baseline";
-inline constexpr const char* kRasterTouchSubpass = "raster_touch";
+// render() times its two sub-passes under kRasterBaselineSubpass and kRasterTouchSubpass
+// (harness/measure/timing_stats.h: subsampled, timed on some measured frames only).
 
 class RasterBaseline {
  public:
   // `fragments` must outlive the baseline.
   RasterBaseline(const FragmentSource& fragments, const ViewSet& views);
   void render(GpuTimer* timer) const;
-  static bool is_baseline_subpass(const std::string& name) {
-    return name == kRasterBaselineSubpass || name == kRasterTouchSubpass;
-  }
+  static bool is_baseline_subpass(const std::string& name) { return is_subsampled_subpass(name); }
   // Fragments the last raster_touch pass counted (a read-back, never timed): the census
   // total when every fragment was shaded.
   uint64_t touched_fragments() const;

@@ -18,6 +18,10 @@ struct ProcessResult {
 // on to the child, which then stops as it would on its own.
 ProcessResult run_process(const std::vector<std::string>& argv, bool capture, bool forward_stop = false);
 
+// Wall seconds since this process started (since its static initialisation: exec and
+// dynamic loading are not counted, a few milliseconds).
+double seconds_since_process_start();
+
 // The absolute path of the running executable (/proc/self/exe), or "" when unknown.
 std::string executable_path();
 

@@ -1,6 +1,7 @@
 #include "ldm_impls/common/build_health.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace ldm {
 
@@ -44,6 +45,22 @@ void BuildHealth::observe(const BuildStats& stats, const LdmIntegrity& integrity
     if (stats.fragments_lost == 0)
       report_problem("the stored lists changed between identical builds (nodes dropped or reordered)");
   }
+}
+
+void BuildHealth::observe_sample(const SampledIntegrity& sample) {
+  if (builds_ == 0) throw std::logic_error("BuildHealth: a sampled check before any full check");
+  ++sampled_builds_;
+  if (sample.unsorted_pixels > 0)
+    report_problem(std::to_string(sample.unsorted_pixels) + " pixels with unsorted depths");
+  if (sample.overlong_pixels > 0)
+    report_problem(std::to_string(sample.overlong_pixels) +
+                   " pixels longer than the census's maximum depth complexity");
+  if (sample.changed_blocks == 0) return;
+  ++checksum_changes_;
+  if (max_lost_ == 0)
+    report_problem("the stored lists changed between identical builds (nodes dropped or "
+                   "reordered): " + std::to_string(sample.changed_blocks) + " of " +
+                   std::to_string(sample.blocks) + " sampled 64-pixel blocks differ");
 }
 
 void BuildHealth::report_problem(const std::string& p) {

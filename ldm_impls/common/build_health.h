@@ -29,13 +29,17 @@ class BuildHealth {
   explicit BuildHealth(const FragmentCensus& census);
 
   void observe(const BuildStats& stats, const LdmIntegrity& integrity);
+  // A build checked on a sample of its pixels only (ldm_impls/common/build_verifier.h),
+  // after at least one full observe(): its lists against the full check's, block by block.
+  void observe_sample(const SampledIntegrity& sample);
   // A fault found outside the build (e.g. a NaN in the pass's image): the result is invalid.
   void report_problem(const std::string& problem);
 
   BuildStatus status() const;
   // The problems, "; "-separated, or for a lossy build how many fragments it lost.
   std::string detail() const;
-  uint64_t builds() const { return builds_; }
+  uint64_t builds() const { return builds_; }  // fully checked builds
+  uint64_t sampled_builds() const { return sampled_builds_; }
   uint64_t checksum_changes() const { return checksum_changes_; }
   uint64_t first_checksum() const { return first_checksum_; }
   bool overflow() const { return overflow_; }
@@ -43,7 +47,7 @@ class BuildHealth {
 
  private:
   const FragmentCensus& census_;
-  uint64_t builds_ = 0, max_lost_ = 0, checksum_changes_ = 0, first_checksum_ = 0;
+  uint64_t builds_ = 0, sampled_builds_ = 0, max_lost_ = 0, checksum_changes_ = 0, first_checksum_ = 0;
   bool overflow_ = false;
   std::vector<std::string> problems_;
 };

@@ -1,7 +1,10 @@
-// Walks every pixel's list through the query API, the same way passes do, to check a built
-// structure (validation after every measured build) or to dump its lists (tests).
+// Walks pixels' lists through the query API, the same way passes do, to check a built
+// structure (validation of builds) or to dump its lists (tests).
 //   LDM_INSPECT_DUMP 0: per pixel length, and totals: nodes, unsorted pixels, pixels that
-//                       reach LDM_MAX_LIST_LENGTH, checksum of every list's depth sequence.
+//                       reach LDM_MAX_LIST_LENGTH, checksum of every list's depth sequence;
+//                       per 64-pixel block (one workgroup) a hash of its lists, which
+//                       inspect_block_mode writes (a full check: the reference) or compares
+//                       with the reference (a sampled check: 1 block in inspect_block_stride)
 //   LDM_INSPECT_DUMP 1: writes the depths of pixel g at inspect_offsets[g - first].
 layout(local_size_x = 64) in;
 
@@ -9,13 +12,30 @@ layout(local_size_x = 64) in;
 #include "ldm/common/compute_grid.glsl"
 
 layout(std430, binding = LDM_VALIDATION_BINDING) restrict buffer Inspect {
-  uint inspect_totals[8];  // 0 nodes, 1 unsorted pixels, 2 over-long pixels, 3-4 checksums
+  // 0 nodes, 1 unsorted pixels, 2 over-long pixels, 3-4 checksums, 5 changed blocks,
+  // 6 pixels visited
+  uint inspect_totals[8];
   uint inspect_data[];     // lengths (mode 0) or offsets then depths (mode 1)
 };
+
+#if !LDM_INSPECT_DUMP
+// One hash per 64-pixel block, indexed by (first pixel) / 64.
+layout(std430, binding = LDM_INSPECT_BLOCKS_BINDING) restrict buffer InspectBlocks {
+  uint inspect_block_hash[];
+};
+#endif
 
 uniform uint inspect_first_pixel;
 uniform uint inspect_pixel_count;
 uniform uint inspect_store_lengths;  // mode 0: also write per-pixel lengths
+// 0: no block hashes; 1: write each block's hash (every block visited); 2: visit one block
+// in inspect_block_stride, at phase (inspect_block_phase + workgroup) mod stride, and count
+// the blocks whose hash differs from the one written before.
+uniform uint inspect_block_mode;
+uniform uint inspect_block_stride;
+uniform uint inspect_block_phase;
+
+shared uint block_hash;
 
 uint mix_hash(uint h, uint v) {
   h ^= v;
@@ -25,37 +45,58 @@ uint mix_hash(uint h, uint v) {
 }
 
 void main() {
-  const uint local = linear_invocation_index();
-  if (local >= inspect_pixel_count) return;
+  // No early return: every invocation reaches the barriers below.
+  uint block = linear_workgroup_index();
+  if (inspect_block_mode == 2u)
+    block = block * inspect_block_stride + (inspect_block_phase + block) % inspect_block_stride;
+  const uint local = block * gl_WorkGroupSize.x + gl_LocalInvocationID.x;
+  const bool in_range = local < inspect_pixel_count;
   const uint pixel = inspect_first_pixel + local;
+#if !LDM_INSPECT_DUMP
+  if (gl_LocalInvocationID.x == 0u) block_hash = 0u;
+  barrier();
+#endif
   uint length = 0u;
 #if LDM_INSPECT_DUMP
-  uint out_at = inspect_data[local];
+  uint out_at = in_range ? inspect_data[local] : 0u;
 #else
   bool sorted = true;
   float previous = -1.0 / 0.0;
   uint hash = 0x811c9dc5u;
 #endif
-  for (LdmCursor c = ldm_begin(pixel); ldm_valid(c) && length <= LDM_MAX_LIST_LENGTH;
-       c = ldm_next(c)) {
-    const float depth = ldm_depth(c);
+  if (in_range) {
+    for (LdmCursor c = ldm_begin(pixel); ldm_valid(c) && length <= LDM_MAX_LIST_LENGTH;
+         c = ldm_next(c)) {
+      const float depth = ldm_depth(c);
 #if LDM_INSPECT_DUMP
-    inspect_data[inspect_pixel_count + out_at + length] = floatBitsToUint(depth);
+      inspect_data[inspect_pixel_count + out_at + length] = floatBitsToUint(depth);
 #else
-    sorted = sorted && depth >= previous;
-    previous = depth;
-    hash = mix_hash(hash, floatBitsToUint(depth));
+      sorted = sorted && depth >= previous;
+      previous = depth;
+      hash = mix_hash(hash, floatBitsToUint(depth));
 #endif
-    ++length;
+      ++length;
+    }
   }
 #if !LDM_INSPECT_DUMP
-  if (inspect_store_lengths != 0u) inspect_data[local] = length;
-  atomicAdd(inspect_totals[0], length);
-  if (!sorted) atomicAdd(inspect_totals[1], 1u);
-  if (length > LDM_MAX_LIST_LENGTH) atomicAdd(inspect_totals[2], 1u);
-  if (length > 0u) {
-    atomicAdd(inspect_totals[3], mix_hash(hash, pixel));
-    atomicXor(inspect_totals[4], mix_hash(hash * 0x9e3779b9u, pixel + 0x68bc21ebu));
+  if (in_range) {
+    if (inspect_store_lengths != 0u) inspect_data[local] = length;
+    atomicAdd(inspect_totals[0], length);
+    atomicAdd(inspect_totals[6], 1u);
+    if (!sorted) atomicAdd(inspect_totals[1], 1u);
+    if (length > LDM_MAX_LIST_LENGTH) atomicAdd(inspect_totals[2], 1u);
+    if (length > 0u) {
+      atomicAdd(inspect_totals[3], mix_hash(hash, pixel));
+      atomicXor(inspect_totals[4], mix_hash(hash * 0x9e3779b9u, pixel + 0x68bc21ebu));
+      // Position-dependent, so that lists swapped between pixels change the block's hash.
+      atomicAdd(block_hash, mix_hash(hash ^ (length * 0x85ebca6bu), pixel));
+    }
+  }
+  barrier();
+  if (gl_LocalInvocationID.x == 0u && block * gl_WorkGroupSize.x < inspect_pixel_count) {
+    if (inspect_block_mode == 1u) inspect_block_hash[block] = block_hash;
+    if (inspect_block_mode == 2u && inspect_block_hash[block] != block_hash)
+      atomicAdd(inspect_totals[5], 1u);
   }
 #endif
 }
