@@ -17,6 +17,7 @@
 #include "harness/reference/reference_cache.h"
 #include "harness/reference/reference_settings.h"
 #include "harness/scene/scene_loader.h"
+#include "harness/reference/ao_reference.h"
 #include "harness/util/error.h"
 
 namespace ldm::cli {
@@ -81,6 +82,12 @@ Runner add_reference_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--seed", o->reference.seed, "Seed (the halves use seed and seed + 1)")
       ->capture_default_str();
+  cmd->add_option_function<std::string>(
+         "--sampler",
+         [o](const std::string& text) { o->reference.ao_sampler = parse_ao_sampler(text, "--sampler"); },
+         "AO reference directions: sobol (Owen-scrambled Sobol per pixel, the default) or random "
+         "(independent PCG32 numbers, as before issue 21)")
+      ->check(CLI::IsMember({"sobol", "random"}));
   cmd->add_option("--d-max", o->d_max, "AO attenuation distance (default: the scene's)")
       ->check(CLI::PositiveNumber);
   cmd->add_option("--visibility", o->visibility, "attenuated, unattenuated or scene")

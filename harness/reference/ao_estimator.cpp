@@ -87,7 +87,8 @@ void AoEstimator::trace_visibility(glm::vec3 origin, const glm::vec3* directions
   }
 }
 
-double AoEstimator::visibility_sum(const SurfacePoint& point, uint32_t count, Pcg32& rng) const {
+template <typename NextUv>
+double AoEstimator::visibility_sum(const SurfacePoint& point, uint32_t count, NextUv next_uv) const {
   const NormalFrame frame(point.shading_normal);
   std::array<glm::vec3, kBatchSize> directions;
   std::array<float, kBatchSize> visibility;
@@ -95,8 +96,8 @@ double AoEstimator::visibility_sum(const SurfacePoint& point, uint32_t count, Pc
   for (uint32_t done = 0; done < count; done += kBatchSize) {
     const uint32_t n = std::min(kBatchSize, count - done);
     for (uint32_t i = 0; i < n; ++i) {
-      const float u1 = rng.next_float(), u2 = rng.next_float();
-      directions[i] = frame.to_world(cosine_weighted_direction(u1, u2));
+      const glm::vec2 u = next_uv();
+      directions[i] = frame.to_world(cosine_weighted_direction(u.x, u.y));
     }
     trace_visibility(point.offset_origin, directions.data(), n, visibility.data());
     for (uint32_t i = 0; i < n; ++i) sum += visibility[i];
@@ -107,7 +108,20 @@ double AoEstimator::visibility_sum(const SurfacePoint& point, uint32_t count, Pc
 float AoEstimator::pixel_mean(int x, int y, uint32_t spp, Pcg32& rng) const {
   const auto point = camera_surface_point(scene_, camera_, x, y, width_, height_);
   if (!point) return 0.0f;  // the GPU writes 0 for background
-  return float(visibility_sum(*point, spp, rng) / double(spp));
+  auto next_uv = [&rng] {
+    const float u1 = rng.next_float(), u2 = rng.next_float();
+    return glm::vec2(u1, u2);
+  };
+  return float(visibility_sum(*point, spp, next_uv) / double(spp));
+}
+
+float AoEstimator::pixel_mean(int x, int y, uint32_t first, uint32_t spp,
+                              const ScrambledSobol2D& points) const {
+  const auto point = camera_surface_point(scene_, camera_, x, y, width_, height_);
+  if (!point) return 0.0f;
+  uint32_t index = first;
+  auto next_uv = [&] { return points.point(index++); };
+  return float(visibility_sum(*point, spp, next_uv) / double(spp));
 }
 
 }  // namespace ldm

@@ -8,6 +8,7 @@
 #include "harness/scene/camera.h"
 #include "harness/reference/embree_scene.h"
 #include "harness/reference/pcg32.h"
+#include "harness/reference/sobol_sampler.h"
 #include "harness/reference/surface_point.h"
 #include "harness/scene/scene.h"
 
@@ -21,13 +22,18 @@ class AoEstimator {
   // The mean of `spp` visibility samples at pixel (x, y); 0 where the primary ray misses
   // (the GPU writes 0 for background).
   float pixel_mean(int x, int y, uint32_t spp, Pcg32& rng) const;
+  // The same from points first .. first + spp - 1 of the pixel's scrambled Sobol sequence
+  // (sobol_sampler.h) instead of independent random numbers.
+  float pixel_mean(int x, int y, uint32_t first, uint32_t spp, const ScrambledSobol2D& points) const;
 
   // Secondary rays start at most this far from x along the camera-facing geometric normal:
   // kRayOffsetUlps float ulps of the largest coordinate of x's triangle (surface_point.h).
   float ray_offset() const { return ray_offset_; }
 
  private:
-  double visibility_sum(const SurfacePoint& point, uint32_t count, Pcg32& rng) const;
+  // The sum of V over `count` directions; next_uv() gives each one's two uniform numbers.
+  template <typename NextUv>
+  double visibility_sum(const SurfacePoint& point, uint32_t count, NextUv next_uv) const;
   // V of `count` (at most one batch) rays from `origin`.
   void trace_visibility(glm::vec3 origin, const glm::vec3* directions, uint32_t count,
                         float* visibility) const;

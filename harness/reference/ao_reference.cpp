@@ -23,8 +23,25 @@ AoSettings settings_used(const Scene& scene, const AoReferenceRequest& request) 
 
 }  // namespace
 
+const char* ao_sampler_name(AoSampler sampler) {
+  return sampler == AoSampler::Sobol ? "sobol" : "random";
+}
+
+AoSampler parse_ao_sampler(const std::string& text, const std::string& what) {
+  if (text == "sobol") return AoSampler::Sobol;
+  if (text == "random") return AoSampler::Random;
+  throw UserError(what + " '" + text + "': expected sobol or random");
+}
+
 Image render_ao_half(const EmbreeScene& embree, const AoSettings& ao, int width, int height,
                      uint32_t spp, uint64_t seed, uint32_t pass, int threads, bool progress) {
+  return render_ao_batch(embree, ao, width, height, spp, seed, pass, 0, AoSampler::Random,
+                         threads, progress);
+}
+
+Image render_ao_batch(const EmbreeScene& embree, const AoSettings& ao, int width, int height,
+                      uint32_t spp, uint64_t seed, uint32_t pass, uint32_t first,
+                      AoSampler sampler, int threads, bool progress) {
   const AoEstimator estimator(embree, ao, width, height);
   PixelRenderSettings settings;
   settings.width = width;
@@ -36,10 +53,15 @@ Image render_ao_half(const EmbreeScene& embree, const AoSettings& ao, int width,
   settings.progress = progress;
   settings.label = "AO reference (seed " + std::to_string(seed) + ", pass " +
                    std::to_string(pass) + ", " + std::to_string(spp) + " spp)";
-  return render_pixels(settings, 1,
-                       [&estimator](int x, int y, uint32_t n, Pcg32& rng, float* mean) {
-                         *mean = estimator.pixel_mean(x, y, n, rng);
-                       });
+  if (sampler == AoSampler::Random)
+    return render_pixels(settings, 1,
+                         [&estimator](int x, int y, uint32_t n, Pcg32& rng, float* mean) {
+                           *mean = estimator.pixel_mean(x, y, n, rng);
+                         });
+  return render_pixels(settings, 1, [&](int x, int y, uint32_t n, Pcg32&, float* mean) {
+    const ScrambledSobol2D points(seed, uint64_t(y) * uint64_t(width) + uint64_t(x));
+    *mean = estimator.pixel_mean(x, y, first, n, points);
+  });
 }
 
 namespace {
@@ -72,9 +94,9 @@ ReferenceResult render_ao_reference(const Scene& scene, const AoReferenceRequest
   const Scene centred = centred_on_bounding_sphere(scene);
   const EmbreeScene embree(centred);  // one BVH for every pass of both halves
   ReferenceResult result = render_reference_pair(
-      [&](uint64_t seed, uint32_t spp, uint32_t pass) {
-        return render_ao_half(embree, ao, request.width, request.height, spp, seed, pass,
-                                request.threads, request.progress);
+      [&](uint64_t seed, uint32_t spp, uint32_t pass, uint32_t first) {
+        return render_ao_batch(embree, ao, request.width, request.height, spp, seed, pass,
+                               first, request.sampler, request.threads, request.progress);
       },
       rule, request.seed);
   result.cache_key = reference_cache_key(ao_reference_inputs(scene, request));
@@ -95,7 +117,8 @@ nlohmann::json ao_reference_inputs(const Scene& scene, const AoReferenceRequest&
             {"d_max", ao.d_max},
             {"falloff_exponent", ao.falloff_exponent}}},
           {"spp", spp_rule_inputs(request.spp)},
-          {"seed", request.seed}};
+          {"seed", request.seed},
+          {"sampler", ao_sampler_name(request.sampler)}};
 }
 
 ReferenceResult cached_ao_reference(const Scene& scene, const AoReferenceRequest& request,
@@ -120,6 +143,7 @@ ReferenceResult ao_reference_for_run(const Scene& scene, const AoSettings& ao, i
   request.ao = ao;
   request.spp = settings.spp;
   request.seed = settings.seed;
+  request.sampler = settings.ao_sampler;
   request.progress = settings.progress;
   if (!settings.use_cache) return render_ao_reference(scene, request);
   return cached_ao_reference(

@@ -19,20 +19,26 @@ namespace ldm {
 // Bump whenever a change to the AO reference alters its images: cached entries of older
 // versions then stop matching.
 // 2: traced in scene-centred coordinates, ray offset from the float precision at the hit.
-inline constexpr int kAoReferenceVersion = 2;
+// 3: the sampler is an input (sobol by default: Owen-scrambled Sobol directions).
+inline constexpr int kAoReferenceVersion = 3;
+
+const char* ao_sampler_name(AoSampler sampler);
+AoSampler parse_ao_sampler(const std::string& text, const std::string& what);
 
 struct AoReferenceRequest {
   int width = 0, height = 0;
   std::optional<AoSettings> ao;  // overrides scene.ao (normal_offset_pixels is not used)
   SppRule spp;                   // samples per pixel (reference_image.h)
   uint64_t seed = 1;   // the halves use seed and seed + 1
+  AoSampler sampler = AoSampler::Sobol;
   int threads = 0;     // 0: all cores; does not change the image
   bool progress = true;
 };
 
 class EmbreeScene;
 
-// One half image: `spp` samples per pixel with seed `seed`, independent pass `pass`.
+// One half image: `spp` samples per pixel with seed `seed`, independent pass `pass` (random
+// samples: the rtao peer's, and the tests').
 Image render_ao_half(const Scene& scene, const AoSettings& ao, int width, int height,
                      uint32_t spp, uint64_t seed, uint32_t pass = 0, int threads = 0,
                      bool progress = false);
@@ -41,6 +47,10 @@ Image render_ao_half(const Scene& scene, const AoSettings& ao, int width, int he
 Image render_ao_half(const EmbreeScene& centred, const AoSettings& ao, int width, int height,
                      uint32_t spp, uint64_t seed, uint32_t pass = 0, int threads = 0,
                      bool progress = false);
+// A batch of the reference's half `seed`: samples first .. first + spp - 1 of `sampler`.
+Image render_ao_batch(const EmbreeScene& centred, const AoSettings& ao, int width, int height,
+                      uint32_t spp, uint64_t seed, uint32_t pass, uint32_t first,
+                      AoSampler sampler, int threads = 0, bool progress = false);
 
 // Throws UserError naming the request field at fault.
 ReferenceResult render_ao_reference(const Scene& scene, const AoReferenceRequest& request);

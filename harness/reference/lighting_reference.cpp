@@ -102,7 +102,7 @@ ReferenceResult render_lighting_reference(const Scene& scene,
   SppRule rule = request.spp;
   if (request.component == LightingComponent::direct) rule.spp_per_half = 1;
   ReferenceResult result = render_reference_pair(
-      [&](uint64_t seed, uint32_t spp, uint32_t pass) {
+      [&](uint64_t seed, uint32_t spp, uint32_t pass, uint32_t /*first: random samples*/) {
         return render_half_with(embree, request.component, request.width, request.height, spp,
                                 seed, pass, request.threads, request.progress,
                                 request.roulette);

@@ -60,8 +60,8 @@ ReferenceResult render_reference_pair(const HalfRenderer& render_half, const Spp
   ReferenceResult r;
   r.spp_per_half = automatic ? std::min(rule.start_spp_per_half, rule.max_spp_per_half)
                              : rule.spp_per_half;
-  r.half_a = render_half(seed, r.spp_per_half, 0);
-  r.half_b = render_half(seed + 1, r.spp_per_half, 0);
+  r.half_a = render_half(seed, r.spp_per_half, 0, 0);
+  r.half_b = render_half(seed + 1, r.spp_per_half, 0, 0);
   r.noise_mse = mean_squared_error(r.half_a, r.half_b) / 4.0;
   auto scaled_noise = [&] {
     return r.noise_mse * (noise_scale ? noise_scale(r.half_a, r.half_b) : 1.0);
@@ -70,8 +70,9 @@ ReferenceResult render_reference_pair(const HalfRenderer& render_half, const Spp
                           r.spp_per_half < rule.max_spp_per_half;
        ++pass) {
     const uint32_t more = std::min(r.spp_per_half, rule.max_spp_per_half - r.spp_per_half);
-    r.half_a = weighted_mean(r.half_a, r.spp_per_half, render_half(seed, more, pass), more);
-    r.half_b = weighted_mean(r.half_b, r.spp_per_half, render_half(seed + 1, more, pass), more);
+    const uint32_t first = r.spp_per_half;
+    r.half_a = weighted_mean(r.half_a, r.spp_per_half, render_half(seed, more, pass, first), more);
+    r.half_b = weighted_mean(r.half_b, r.spp_per_half, render_half(seed + 1, more, pass, first), more);
     r.spp_per_half += more;
     r.noise_mse = mean_squared_error(r.half_a, r.half_b) / 4.0;
   }

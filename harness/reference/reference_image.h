@@ -45,8 +45,10 @@ struct ReferenceResult {
 };
 
 // Renders `spp` samples per pixel of one half: seed s selects the half, `pass` a further
-// independent batch of samples for the same half. Returns per-pixel means.
-using HalfRenderer = std::function<Image(uint64_t seed, uint32_t spp, uint32_t pass)>;
+// batch of samples for the same half, whose first sample is sample `first` of the half
+// (batches are contiguous: a sampler with a sequence continues it). Returns per-pixel means.
+using HalfRenderer =
+    std::function<Image(uint64_t seed, uint32_t spp, uint32_t pass, uint32_t first)>;
 
 // The factor the automatic rule multiplies noise_mse by before comparing it with the target,
 // given the halves so far: none (1) for AO, whose values lie in [0, 1]; the square of the

@@ -8,10 +8,16 @@
 
 namespace ldm {
 
+// Where an AO reference pixel's directions come from: independent random numbers (PCG32 per
+// pixel), or its own Owen-scrambled Sobol sequence (sobol_sampler.h), which reaches the same
+// noise with fewer rays (docs/measured/reference-sampling/).
+enum class AoSampler { Random, Sobol };
+
 struct ReferenceSettings {
   bool enabled = true;
   SppRule spp;            // samples per pixel: fixed, or doubling until the noise target
   uint64_t seed = 1;      // the halves use seed and seed + 1
+  AoSampler ao_sampler = AoSampler::Sobol;  // the AO reference's (lighting's: random)
   std::string cache_dir;  // empty: default_reference_cache_dir() (reference_cache.h)
   bool use_cache = true;  // false: render even when the cache holds a matching entry
   bool progress = true;   // progress with ETA on a terminal

@@ -12,8 +12,10 @@ namespace {
 
 Scene cornell() { return generate_scene("cornell", nlohmann::json::object(), "test"); }
 
-AoReferenceRequest small_request(uint32_t spp_per_half, int threads = 2, uint64_t seed = 1) {
+AoReferenceRequest small_request(uint32_t spp_per_half, int threads = 2, uint64_t seed = 1,
+                                 AoSampler sampler = AoSampler::Sobol) {
   AoReferenceRequest request;
+  request.sampler = sampler;
   request.width = request.height = 32;
   request.spp.spp_per_half = spp_per_half;
   request.seed = seed;
@@ -62,10 +64,12 @@ NoiseEstimate noise_estimate(const ReferenceResult& r) {
   return {mean, std::sqrt((sum2 / n - mean * mean) / (n - 1))};
 }
 
-TEST(ReferenceImage, NoiseEstimateHalvesWhenSppDoubles) {
+TEST(ReferenceImage, NoiseEstimateHalvesWhenSppDoublesWithRandomSamples) {
   const Scene scene = cornell();
-  const NoiseEstimate coarse = noise_estimate(render_ao_reference(scene, small_request(16)));
-  const NoiseEstimate fine = noise_estimate(render_ao_reference(scene, small_request(32, 2, 3)));
+  const NoiseEstimate coarse =
+      noise_estimate(render_ao_reference(scene, small_request(16, 2, 1, AoSampler::Random)));
+  const NoiseEstimate fine =
+      noise_estimate(render_ao_reference(scene, small_request(32, 2, 3, AoSampler::Random)));
   // E[coarse] = 2 E[fine]; both are means of many independent pixel terms.
   const double difference = coarse.mse - 2.0 * fine.mse;
   const double standard_error = std::sqrt(coarse.standard_error * coarse.standard_error +
@@ -75,9 +79,28 @@ TEST(ReferenceImage, NoiseEstimateHalvesWhenSppDoubles) {
   EXPECT_GT(coarse.mse, 0.0);
 }
 
+// Scrambled Sobol directions (the default): at equal rays the noise is far below random
+// sampling's, and the estimate MSE(A, B) / 4 is still the error of the mean: against a
+// reference with 64x the rays, the Sobol image's MSE is its noise estimate plus that
+// reference's own, within sampling error.
+TEST(ReferenceImage, SobolReachesLessNoiseAtEqualRaysAndItsEstimateIsHonest) {
+  const Scene scene = cornell();
+  const ReferenceResult sobol = render_ao_reference(scene, small_request(32));
+  const ReferenceResult random = render_ao_reference(scene, small_request(32, 2, 1, AoSampler::Random));
+  EXPECT_LT(sobol.noise_mse, random.noise_mse / 4) << "sobol " << sobol.noise_mse << ", random "
+                                                   << random.noise_mse;
+  const ReferenceResult truth =
+      render_ao_reference(scene, small_request(2048, 2, 11, AoSampler::Sobol));
+  const double error = mean_squared_error(sobol.image, truth.image);
+  const double expected = sobol.noise_mse + truth.noise_mse;
+  EXPECT_GT(error, 0.5 * expected) << "error " << error << ", noise estimates " << expected;
+  EXPECT_LT(error, 2.0 * expected) << "error " << error << ", noise estimates " << expected;
+}
+
 TEST(ReferenceImage, AutomaticSppStopsAtTheFirstLevelMeetingTheTarget) {
   const Scene scene = cornell();
-  AoReferenceRequest request = small_request(0);
+  // Random samples: the noise the rule watches then falls as 1/spp, level by level.
+  AoReferenceRequest request = small_request(0, 2, 1, AoSampler::Random);
   request.spp.target_noise_mse = 1e-4;
   const ReferenceResult r = render_ao_reference(scene, request);
   EXPECT_TRUE(r.noise_target_met);
