@@ -25,7 +25,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "report"))
 
 from ldmadvise.measure import LEVELS, VERIFY, MeasureError, StageRunner, measurement_of  # noqa: E402
-from ldmadvise.search import YES, Goal, Search  # noqa: E402
+from ldmadvise.search import YES, Goal, Search, choose_best  # noqa: E402
 from ldmadvise.space import (SpaceError, candidate_assignments, candidate_of, load_space,  # noqa: E402
                              sweep_file)
 from ldmadvise.report import fmt_bytes, write_report  # noqa: E402
@@ -189,8 +189,7 @@ def main(argv):
         maybe = [k for k, m in verified.items() if m.status == "ok" and goal.verdict(m) != "no"]
         pool = ok or maybe
         if pool:
-            from ldmadvise.search import rank_key
-            recommended = min(pool, key=lambda k: rank_key(goal, verified[k]))
+            recommended = choose_best(goal, pool, lambda k: verified[k])
             rec_row = vrows[recommended]
     result = {"recommended": recommended, "search_recommended": outcome.recommended,
               "ties": [k for k in outcome.ties if k != recommended] +

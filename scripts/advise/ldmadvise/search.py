@@ -126,6 +126,18 @@ def rank_key(goal, m):
     return (primary_value(goal, m), other, m.memory)
 
 
+def choose_best(goal, items, measurement_of=lambda x: x):
+    """The best of `items` on the goal's criterion where it tells them apart, and among those
+    tied with the leader on it, the best on the other criterion (then memory): a difference
+    inside the bands never decides."""
+    if not items:
+        return None
+    lead = min(items, key=lambda x: rank_key(goal, measurement_of(x)))
+    tied = [x for x in items if primary_tied(goal, measurement_of(x), measurement_of(lead))]
+    other = (lambda m: m.error) if goal.minimize == "time" else (lambda m: m.time)
+    return min(tied, key=lambda x: (other(measurement_of(x)), measurement_of(x).memory))
+
+
 @dataclass
 class State:
     candidate: Candidate
@@ -269,7 +281,7 @@ class Search:
         sure = [s for s in alive if goal.verdict(s.measurement) == YES]
         if not sure:
             return alive, None, False
-        best = min(sure, key=lambda s: rank_key(goal, s.measurement))
+        best = choose_best(goal, sure, lambda s: s.measurement)
         for s in alive:
             if s is not best and beats(goal, best.measurement, s.measurement):
                 self.prune(s.candidate.key, f"beaten: {best.candidate.key} meets the budgets with "
