@@ -24,7 +24,7 @@ import time
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "report"))
 
-from ldmadvise.measure import LEVELS, VERIFY, MeasureError, StageRunner, measurement_of  # noqa: E402
+from ldmadvise.measure import CENSUS, LEVELS, VERIFY, MeasureError, StageRunner, measurement_of  # noqa: E402
 from ldmadvise.search import YES, Goal, Search, choose_best  # noqa: E402
 from ldmadvise.space import (SpaceError, candidate_assignments, candidate_of, load_space,  # noqa: E402
                              sweep_file)
@@ -171,7 +171,17 @@ def main(argv):
         results, _, _ = runner.run_stage([c.key for c in cands], LEVELS[level], stage)
         return results
 
-    search = Search(candidates, goal, a.levels, measure, log)
+    def census(geometries):
+        # Any structure counts the same fragments: a list where the space has one, else the
+        # longest fixed array, at each geometry.
+        picks = []
+        for g in geometries:
+            here = [c for c in candidates if (c.views, c.r_ldm) == g]
+            picks.append(min(here, key=lambda c: (c.k is not None, -(c.k or 0))).key)
+        results, _, _ = runner.run_stage(picks, CENSUS, "census")
+        return {g: results[k].max_depth for g, k in zip(geometries, picks) if results[k].max_depth is not None}
+
+    search = Search(candidates, goal, a.levels, measure, log, census)
     try:
         outcome = search.run()
         verified = {}

@@ -139,6 +139,21 @@ class ExactModels(unittest.TestCase):
         measured = {k for k, _ in model.measured}
         self.assertTrue(all(k not in measured for k in census))
 
+    def test_census_stage_prunes_short_arrays_before_any_measurement(self):
+        cands = space(structures=("slow",), ks=(2, 8))
+        asked = []
+
+        def census(geometries):
+            asked.extend(geometries)
+            return {g: 6 for g in geometries}
+
+        model, events = Model(), []
+        outcome = Search(cands, Goal(budget_ms=60), 3, model, events.append, census).run()
+        self.assertEqual(sorted(asked), sorted({(c.views, c.r_ldm) for c in cands if c.k}))
+        measured = {k for k, _ in model.measured}
+        self.assertFalse([c.key for c in cands if c.k == 2 and c.key in measured])
+        self.assertEqual(outcome.recommended, exhaustive(cands, Goal(budget_ms=60)).key)
+
     def test_ties_are_shown_as_ties(self):
         # two structures with the same time and error: the answer names both
         cands = space(structures=("fast",)) + [Candidate(c.key.replace("fast", "twin"), "twin", c.views, c.r_ldm)

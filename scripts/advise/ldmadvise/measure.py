@@ -17,6 +17,8 @@ LEVELS = [
     {"name": "closer", "frames": 8, "warmup": 1, "target": 0, "spp": 64},
     {"name": "precise", "frames": 5, "warmup": 2, "target": 0.03, "cap_s": 2, "spp": 256},
 ]
+# The census stage: one build per geometry, no time to speak of, no reference.
+CENSUS = {"name": "census", "frames": 1, "warmup": 0, "target": 0, "reference": False}
 # A normal `ldmbench run`: its frames, warm-up, time target and automatic reference.
 VERIFY = {"name": "verify", "frames": 5, "warmup": 2, "target": 0.03, "cap_s": 2, "spp": 0, "images": True}
 SWEEP_FINISHED = (0, 3)  # ok; finished with some records failed (those are pruned)

@@ -160,10 +160,11 @@ class Search:
     precision, `levels - 1` the most precise race level. `log(event_dict)` journals."""
 
     def __init__(self, candidates: List[Candidate], goal: Goal, levels: int,
-                 measure: Callable, log: Callable = lambda event: None):
+                 measure: Callable, log: Callable = lambda event: None, census: Callable = None):
         if not candidates:
             raise ValueError("empty space")
         self.goal, self.levels, self.measure, self.log = goal, levels, measure, log
+        self.census = census  # census([(N, R_LDM)]) -> {(N, R_LDM): deepest LDM pixel}
         self.states: Dict[str, State] = {c.key: State(c) for c in candidates}
         self.stage_count = 0
 
@@ -251,6 +252,23 @@ class Search:
         return order[(len(order) - 1) // 2]
 
     # ---- stages
+    def census_stage(self):
+        """The census of every geometry that has fixed arrays (one unmeasured build each, no
+        reference): a fixed array shorter than the deepest pixel is lossy, known without
+        building it."""
+        geometries = sorted({(s.candidate.views, s.candidate.r_ldm) for s in self.alive()
+                             if s.candidate.k is not None})
+        if not geometries or self.census is None:
+            return
+        self.log({"event": "stage", "stage": "census", "geometries": [list(g) for g in geometries]})
+        depths = self.census(geometries)
+        for s in self.alive():
+            c = s.candidate
+            depth = depths.get((c.views, c.r_ldm))
+            if c.k is not None and depth is not None and c.k < depth:
+                self.prune(c.key, f"lossy (census): the deepest LDM pixel holds {depth} fragments, "
+                                  f"more than k = {c.k}", "census")
+
     def explore(self):
         wave = 0
         while True:
@@ -332,6 +350,7 @@ class Search:
         return Outcome(best.candidate.key, ties, [s.candidate.key for s in self.alive()], why)
 
     def run(self):
+        self.census_stage()
         self.explore()
         outcome = self.race()
         self.log({"event": "outcome", "recommended": outcome.recommended, "ties": outcome.ties,
