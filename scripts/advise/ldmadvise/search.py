@@ -30,8 +30,16 @@ band (the reference's own noise), memory exactly: the tie rules of the report
 (scripts/report/ldmreport/ties.py).
 """
 import math
+import os
+import sys
 from dataclasses import dataclass, field
 from typing import Callable, Dict, List, Optional
+
+# The tie rules are the report's own (installed beside this folder, as in the sources).
+_REPORT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "report"))
+if _REPORT not in sys.path:
+    sys.path.insert(0, _REPORT)
+from ldmreport import ties  # noqa: E402
 
 YES, NO, MAYBE = "yes", "no", "maybe"
 
@@ -94,17 +102,22 @@ class Goal:
         return NO if NO in v else (YES if v == (YES, YES) else MAYBE)
 
 
-# Tie bands (the same rules as scripts/report/ldmreport/ties.py, on this module's values).
-FLOAT_ORDER = 1e-6
+# Tie bands: scripts/report/ldmreport/ties.py on this module's values (time: the intervals
+# overlap; error: within the larger reference noise or float summation order).
+def time_measure(m):
+    return ties.Measure(m.time, m.time_low, m.time_high)
+
+
+def error_measure(m):
+    return ties.Measure(m.error, band=m.error_band)
 
 
 def time_tied(a, b):
-    return a.time == b.time or (a.time_low <= b.time_high and b.time_low <= a.time_high)
+    return ties.tied(time_measure(a), time_measure(b))
 
 
 def error_tied(a, b):
-    tolerance = max(a.error_band, b.error_band, FLOAT_ORDER * max(abs(a.error), abs(b.error)))
-    return abs(a.error - b.error) <= tolerance
+    return ties.tied(error_measure(a), error_measure(b))
 
 
 def primary_tied(goal, a, b):
@@ -359,18 +372,9 @@ class Search:
 
 
 def pareto_front(goal, measurements):
-    """Keys on the time/error front (no other is better beyond the bands in one and no
-    worse in the other), by time."""
+    """Keys on the time/error front (the report's: no other is better beyond the bands in
+    one and no worse in the other), by time."""
     keys = list(measurements)
-
-    def better_time(a, b):
-        return not time_tied(a, b) and a.time < b.time
-
-    def better_error(a, b):
-        return not error_tied(a, b) and a.error < b.error
-
-    def dominates(a, b):
-        return not better_time(b, a) and not better_error(b, a) and (better_time(a, b) or better_error(a, b))
-
-    front = [k for k in keys if not any(dominates(measurements[j], measurements[k]) for j in keys if j != k)]
-    return sorted(front, key=lambda k: measurements[k].time)
+    front = ties.pareto_front([time_measure(measurements[k]) for k in keys],
+                              [error_measure(measurements[k]) for k in keys], False)
+    return [keys[i] for i in front]
