@@ -92,7 +92,8 @@ def advise(a, scene, budget, folder):
 
 def compare(rows, result, goal):
     ms = {k: measurement_of(r, "mse") for k, r in rows.items()}
-    ok = {k: m for k, m in ms.items() if m.status == "ok"}
+    # the front among the configurations within the memory budget (exact: a hard filter)
+    ok = {k: m for k, m in ms.items() if m.status == "ok" and goal.memory_fits(m)}
     front = pareto_front(goal, ok)
     rec = result.get("recommended")
     within = [k for k, m in ok.items() if goal.verdict(m) == YES]

@@ -188,6 +188,10 @@ def main(argv):
         if outcome.recommended:
             keys = [outcome.recommended] + outcome.ties[:2]
             verified, vfolder, vrows = runner.run_stage(keys, VERIFY, "verify")
+            for k, m in verified.items():  # the report shows each at its last precision
+                m.level = len(LEVELS)
+                search.states[k].measurement = m
+                search.states[k].history.append(m)
     except MeasureError as e:
         fail(str(e), EXIT_NONE)
     elapsed = time.monotonic() - start

@@ -50,7 +50,9 @@ def write_report(out, result, search, goal, metric, costs, title):
     folder = os.path.join(out, "report")
     os.makedirs(folder, exist_ok=True)
     measured = {k: (s.measurement, s.pruned) for k, s in search.states.items() if s.measurement is not None}
-    ok = {k: m for k, (m, _) in measured.items() if m.status == "ok"}
+    # Memory is exact, so its budget is a hard filter: the front is the time/error trade-off
+    # among the configurations that fit it.
+    ok = {k: m for k, (m, _) in measured.items() if m.status == "ok" and goal.memory_fits(m)}
     front = pareto_front(goal, ok)
     rec = result.get("recommended")
     write_front_plot(os.path.join(folder, "front.png"), goal, {k: measured[k] for k in ok}, front,
@@ -59,7 +61,8 @@ def write_report(out, result, search, goal, metric, costs, title):
     lines += result["answer_lines"] + [""]
     lines += ["![front](front.png)", "",
               "## Front found", "",
-              f"Among the {len(ok)} configurations measured without loss, at each one's last precision "
+              f"Among the {len(ok)} configurations measured without loss"
+              + (" within the memory budget" if goal.budget_bytes is not None else "") + ", at each one's last precision "
               "(time: median and 95 % interval; error: value and the reference's noise band):", "",
               "| configuration | frame ms [interval] | error ± band | memory | precision |",
               "|---|---|---|---|---|"]
@@ -67,7 +70,7 @@ def write_report(out, result, search, goal, metric, costs, title):
         m = ok[k]
         lines.append(f"| {k}{' **(recommended)**' if k == rec else ''} | {m.time:.4g} [{m.time_low:.4g}, "
                      f"{m.time_high:.4g}] | {m.error:.4g} ± {m.error_band:.2g} | {fmt_bytes(m.memory)} | "
-                     f"level {m.level} |")
+                     f"{'verify' if m.level >= 3 else f'level {m.level}'} |")
     lines += ["", "## Pruned, and why", "",
               "| configuration | stage | why |", "|---|---|---|"]
     for k, s in sorted(search.states.items(), key=lambda kv: (kv[1].stage, kv[0])):
