@@ -172,6 +172,37 @@ class ExactModels(unittest.TestCase):
             Search([], Goal(budget_ms=1), 3, Model())
 
 
+class OptimisticBriefMeasurement(unittest.TestCase):
+    def test_a_recommendation_failing_verification_revives_what_it_beat(self):
+        """The brief measurement of the true optimum's better neighbour is optimistic (within
+        the budget); at a normal run's precision it is over. What it beat or dominated comes
+        back, and the search ends at the true optimum."""
+        goal = Goal(budget_ms=40)
+        cands = space(structures=("fast",))
+        truth = exhaustive(cands, goal)
+        liar = "fast-n32-r128"  # truly 1.0 * (16 + 32 * 4 * 0.25) = 48 ms > 40
+
+        class Liar(Model):
+            def __call__(self, candidates, level, stage):
+                out = super().__call__(candidates, level, stage)
+                if liar in out and level < 2:
+                    m = out[liar]
+                    m.time, m.time_low, m.time_high = 30.0, 29.0, 31.0
+                return out
+
+        model, events = Liar(), []
+        search = Search(cands, goal, 3, model, events.append)
+        outcome = search.run()
+        self.assertEqual(outcome.recommended, liar)  # what the brief measurements say
+        # verification (as ldmbench_advise.py does it): the normal-precision measurement
+        search.states[liar].measurement = model([search.states[liar].candidate], 2, "verify")[liar]
+        search.states[liar].measurement.level = 3
+        self.assertFalse(search.recheck(liar, "verify"))
+        outcome = search.run(level=2)
+        self.assertEqual(outcome.recommended, truth.key)
+        self.assertTrue(any(e["event"] == "revived" for e in events))
+
+
 class NoisyModels(unittest.TestCase):
     def test_noisy_measurements_find_a_tied_optimum(self):
         """With noise, the recommendation is the true optimum or tied with it within the

@@ -156,6 +156,7 @@ class State:
     candidate: Candidate
     measurement: Optional[Measurement] = None
     pruned: Optional[str] = None   # why, when dropped
+    pruned_by: Optional[str] = None  # the candidate that beat or dominated it (revived if that one fails)
     stage: str = ""                # where it was dropped or last measured
     history: List[Measurement] = field(default_factory=list)
 
@@ -182,11 +183,20 @@ class Search:
         self.stage_count = 0
 
     # ---- bookkeeping
-    def prune(self, key, why, stage):
+    def prune(self, key, why, stage, by=None):
         s = self.states[key]
         if s.pruned is None:
-            s.pruned, s.stage = why, stage
+            s.pruned, s.stage, s.pruned_by = why, stage, by
             self.log({"event": "pruned", "config_id": key, "why": why, "stage": stage})
+
+    def _revive_dependents(self, key, stage):
+        """`key` turned out outside a budget: what was dropped only because it beat or
+        dominated them comes back (measured again at the race's current level)."""
+        for s in self.states.values():
+            if s.pruned_by == key:
+                s.pruned, s.pruned_by, s.stage = None, None, stage
+                self.log({"event": "revived", "config_id": s.candidate.key, "stage": stage,
+                          "why": f"{key}, which had beaten or dominated it, is outside the budgets"})
 
     def alive(self):
         return [s for s in self.states.values() if s.pruned is None]
@@ -239,10 +249,10 @@ class Search:
             for s in same:
                 if goal.minimize == "error" and c.covers(s.candidate):
                     self.prune(s.candidate.key, f"dominated (lattice): {c.key} meets the "
-                                                "budgets with no more error", stage)
+                                                "budgets with no more error", stage, by=c.key)
                 if goal.minimize == "time" and s.candidate.covers(c):
                     self.prune(s.candidate.key, f"dominated (lattice): {c.key} meets the "
-                                                "error bound and is no slower", stage)
+                                                "error bound and is no slower", stage, by=c.key)
 
     def _apply_own(self, key, m, stage):
         """What one measurement says of its own candidate; True when it stays."""
@@ -256,7 +266,14 @@ class Search:
         elif self.goal.error_verdict(m) == NO:
             self.prune(key, f"error: {m.error:.4g} (band {m.error_band:.2g}) > bound "
                             f"{self.goal.max_error}", stage)
+        if self.states[key].pruned is not None:
+            self._revive_dependents(key, stage)
         return self.states[key].pruned is None
+
+    def recheck(self, key, stage):
+        """A measurement taken outside the search (verification) judged like the race's; True
+        when the candidate stays."""
+        return self.states[key].pruned is None and self._apply_own(key, self.states[key].measurement, stage)
 
     @staticmethod
     def _middle(states):
@@ -309,6 +326,8 @@ class Search:
         for s in self.alive():
             self._apply_own(s.candidate.key, s.measurement, stage)
         alive = self.alive()
+        if any(s.measurement is None for s in alive):  # revived unmeasured: measure first
+            return alive, None, False
         sure = [s for s in alive if goal.verdict(s.measurement) == YES]
         if not sure:
             return alive, None, False
@@ -317,7 +336,7 @@ class Search:
             if s is not best and beats(goal, best.measurement, s.measurement):
                 self.prune(s.candidate.key, f"beaten: {best.candidate.key} meets the budgets with "
                                             f"{'less time' if goal.minimize == 'time' else 'less error'}"
-                                            " beyond the bands", stage)
+                                            " beyond the bands", stage, by=best.candidate.key)
         alive = self.alive()
         settled = all(goal.verdict(s.measurement) == YES and
                       primary_tied(goal, s.measurement, best.measurement) for s in alive)
@@ -335,11 +354,19 @@ class Search:
                 self.prune(s.candidate.key, f"halved: ranked {i + 1} of {len(order)} by "
                                             f"{goal.minimize} at this precision", stage)
 
-    def race(self):
-        level = 0
+    def _stale(self, level):
+        return [s.candidate.key for s in self.alive() if s.measurement is None or s.measurement.level < level]
+
+    def race(self, level=0):
         while True:
             stage = f"race-{level}"
+            stale = self._stale(level)
+            if stale:  # revived, or never measured: measured at this level first
+                self.log({"event": "stage", "stage": stage, "level": level, "measured": stale})
+                self._measure(stale, level, stage)
             alive, best, settled = self.race_round(stage)
+            if self._stale(level):
+                continue
             if not alive:
                 return Outcome(None, [], [], "every candidate was pruned")
             if len(alive) == 1 and best is not None:
@@ -362,10 +389,14 @@ class Search:
                 goal.verdict(s.measurement) == YES and primary_tied(goal, s.measurement, best.measurement)]
         return Outcome(best.candidate.key, ties, [s.candidate.key for s in self.alive()], why)
 
-    def run(self):
-        self.census_stage()
-        self.explore()
-        outcome = self.race()
+    def run(self, level=None):
+        """The search; with `level`, the race resumed at that level (after a verification
+        found the recommendation outside the budgets)."""
+        if level is None:
+            self.census_stage()
+            self.explore()
+            level = 0
+        outcome = self.race(level)
         self.log({"event": "outcome", "recommended": outcome.recommended, "ties": outcome.ties,
                   "why": outcome.why})
         return outcome
