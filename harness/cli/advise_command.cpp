@@ -139,8 +139,8 @@ Runner add_advise_command(CLI::App& app) {
   cmd->add_option("--cache-dir", o->cache_dir, "Reference cache folder (default: results/cache/references)");
   cmd->add_option("--reference-max-spp", o->reference_max_spp,
                   "Cap of the references' samples per pixel per half, every stage");
-  cmd->add_option("--levels", o->levels, "Precision levels of the race, 1 to 3 (default 3)")
-      ->check(CLI::Range(1, 3));
+  cmd->add_option("--levels", o->levels, "Precision levels of the race before verification, 1 or 2 (default 2)")
+      ->check(CLI::Range(1, 2));
   cmd->add_flag("--overwrite", o->overwrite, "Replace an earlier advise of another question in --out");
   return [o]() {
     check_options(*o);

@@ -25,7 +25,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "report"))
 
 from ldmadvise.measure import CENSUS, LEVELS, VERIFY, MeasureError, StageRunner, measurement_of  # noqa: E402
-from ldmadvise.search import YES, Goal, Search, choose_best  # noqa: E402
+from ldmadvise.search import YES, Goal, Search, choose_best, primary_tied  # noqa: E402
 from ldmadvise.space import (SpaceError, candidate_assignments, candidate_of, load_space,  # noqa: E402
                              sweep_file)
 from ldmadvise.report import fmt_bytes, write_report  # noqa: E402
@@ -188,7 +188,7 @@ def main(argv):
         while outcome.recommended:
             # Verify; a recommendation the normal-precision run finds outside the budgets is
             # dropped (what it had beaten comes back) and the race resumes at its top level.
-            keys = [outcome.recommended] + outcome.ties[:2]
+            keys = [outcome.recommended] + outcome.ties[:1]
             stage = "verify" if attempt == 1 else f"verify-{attempt}"
             verified, vfolder, vrows = runner.run_stage(keys, VERIFY, stage)
             for k, m in verified.items():  # the report shows each at its last precision
@@ -214,9 +214,13 @@ def main(argv):
         if pool:
             recommended = choose_best(goal, pool, lambda k: verified[k])
             rec_row = vrows[recommended]
+    # Ties as verified: those measured at normal precision that the bands cannot tell from
+    # the recommendation; the search's other ties (at its own precision) beside them.
+    verified_ties = [k for k, m in verified.items() if recommended and k != recommended and m.status == "ok"
+                     and goal.verdict(m) != "no" and primary_tied(goal, m, verified[recommended])]
     result = {"recommended": recommended, "search_recommended": outcome.recommended,
-              "ties": [k for k in outcome.ties if k != recommended] +
-                      ([outcome.recommended] if recommended and recommended != outcome.recommended else []),
+              "ties": verified_ties,
+              "search_ties_unverified": [k for k in outcome.ties if k not in verified],
               "why_stopped": outcome.why, "configurations": len(ids),
               "measured": sum(c["configurations"] for c in runner.costs),
               "wall_s_recorded": round(sum(c["wall_s_recorded"] or 0 for c in runner.costs), 2),
@@ -232,7 +236,7 @@ def main(argv):
                               "mse_over_noise": number_of(rec_row, "mse_over_noise"),
                               "bytes_allocated": m.memory, "within_budgets_surely": surely,
                               "wall_s": vf}
-        answer = [f"Recommended: **{recommended}** ({'surely within' if surely else 'within, but not surely, '} "
+        answer = [f"Recommended: **{recommended}** ({'surely within' if surely else 'within, but not surely within,'} "
                   f"the budgets at a normal run's precision; record in {os.path.relpath(vfolder, a.out)}/run).",
                   "",
                   f"- frame time {m.time:.4g} ms, 95 % interval [{m.time_low:.4g}, {m.time_high:.4g}]"
@@ -242,7 +246,10 @@ def main(argv):
                   + (f" (bound {goal.max_error})" if goal.max_error is not None else ""),
                   f"- memory {m.memory} bytes ({fmt_bytes(m.memory)}), exact"
                   + (f" (budget {a.budget_mib} MiB)" if a.budget_mib else ""),
-                  "- tied with it (not separable within the intervals): " + (", ".join(result["ties"]) or "none"),
+                  "- tied with it at normal precision (not separable within the bands): "
+                  + (", ".join(result["ties"]) or "none")
+                  + (f"; tied at the search's precision, not verified: {', '.join(result['search_ties_unverified'])}"
+                     if result["search_ties_unverified"] else ""),
                   f"- surer: `--repetitions 3` on the verify run narrows the time interval for about 3 x "
                   f"{vf:.3g} s; halving the error band needs a reference with twice the samples "
                   f"(noise {ref_noise:.2g} now)."]
