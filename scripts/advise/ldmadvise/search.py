@@ -326,6 +326,12 @@ class Search:
         for s in self.alive():
             self._apply_own(s.candidate.key, s.measurement, stage)
         alive = self.alive()
+        # A candidate no longer surely within the budgets at this precision beat or dominated
+        # others on a premise that no longer holds: they come back.
+        for s in alive:
+            if s.measurement is not None and goal.verdict(s.measurement) != YES:
+                self._revive_dependents(s.candidate.key, stage)
+        alive = self.alive()
         if any(s.measurement is None for s in alive):  # revived unmeasured: measure first
             return alive, None, False
         sure = [s for s in alive if goal.verdict(s.measurement) == YES]
@@ -375,8 +381,13 @@ class Search:
                 return self._outcome(best, "the candidates left are tied and within the budgets")
             if level + 1 >= self.levels:
                 why = "the most precise level was reached"
-                return self._outcome(best, why) if best else Outcome(None, [], [s.candidate.key for s in alive],
-                                                                      why + "; none surely meets the budgets")
+                if best:
+                    return self._outcome(best, why)
+                # None surely within at the race's precision: the best of those that may be is
+                # verified (verification at normal precision decides).
+                maybe = choose_best(self.goal, alive, lambda s: s.measurement)
+                return self._outcome(maybe, why + "; none surely within the budgets, the best that may be "
+                                                  "goes to verification")
             self.halve(alive, best, stage)
             level += 1
             keys = [s.candidate.key for s in self.alive()]
