@@ -203,6 +203,22 @@ class OptimisticBriefMeasurement(unittest.TestCase):
         self.assertTrue(any(e["event"] == "revived" for e in events))
 
 
+class UncertainAtEveryLevel(unittest.TestCase):
+    def test_none_surely_within_sends_the_best_that_may_be_to_verification(self):
+        """Both candidates' intervals straddle the budget at every level: the search does
+        not give up; the one with less error goes to verification, which decides."""
+        b, c = Candidate("b-n8-r64", "b", 8, 64), Candidate("c-n8-r64", "c", 8, 64)
+        values = {"b": (20, 0.2), "c": (21, 0.3)}
+
+        def measure(cands, level, stage):
+            return {x.key: Measurement(values[x.group][0], 15, 25, values[x.group][1], 0.001, 100)
+                    for x in cands}
+
+        outcome = Search([b, c], Goal(budget_ms=22), 2, measure).run()
+        self.assertEqual(outcome.recommended, b.key)
+        self.assertIn("verification", outcome.why)
+
+
 class NoisyModels(unittest.TestCase):
     def test_noisy_measurements_find_a_tied_optimum(self):
         """With noise, the recommendation is the true optimum or tied with it within the
