@@ -62,6 +62,7 @@ int main(int argc, char** argv) {
       {"reference", ldm::cli::add_reference_command(app)},
       {"compare-images", ldm::cli::add_compare_command(app)},
       {"report", ldm::cli::add_report_command(app)},
+      {"advise", ldm::cli::add_advise_command(app)},
       {"compare", ldm::cli::add_compare_runs_command(app)},
       {"listing", ldm::cli::add_listing_commands(app)},
       {"view", ldm::cli::add_view_command(app, argv[0])},

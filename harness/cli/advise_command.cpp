@@ -1,0 +1,184 @@
+// `ldmbench advise --scene S [--pass ao|indirect] [--budget-ms T] [--budget-mib M]
+// [--max-error E | --min-mssim Q] [--structures ...] [--space FILE] --out DIR`: the
+// configuration of a space that meets the budgets with the least error (or the fastest
+// within the error bound), found by an adaptive search and verified at a normal run's
+// precision (docs/guide/advise.md). The search is the Python script
+// scripts/advise/ldmbench_advise.py, which measures through `ldmbench sweep` stages; this
+// command checks what it can first (bad budgets and options exit 2 with nothing written
+// and no Python started), then runs it with this binary and the axis registry.
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <optional>
+#include <sstream>
+
+#include "harness/app/axis_registry.h"
+#include "harness/app/run_command.h"
+#include "harness/cli/commands.h"
+#include "harness/util/error.h"
+#include "harness/util/process.h"
+#include "ldm_impls/ldm_structure.h"
+
+namespace ldm::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr const char* kScriptEnv = "LDMBENCH_ADVISE_SCRIPT";
+constexpr const char* kPythonEnv = "LDMBENCH_PYTHON";
+constexpr const char* kScriptName = "ldmbench_advise.py";
+constexpr const char* kPythonProbe =
+    "import importlib.util, sys\n"
+    "missing = [m for m in ('matplotlib', 'numpy') if importlib.util.find_spec(m) is None]\n"
+    "sys.exit('No module named ' + ', '.join(missing) if missing else 0)\n";
+
+struct AdviseOptions {
+  std::string scene, pass = "ao", space, out, image_size = "128x128", cache_dir;
+  std::vector<std::string> structures;
+  std::optional<double> budget_ms, budget_mib, max_error, min_mssim;
+  std::optional<unsigned> reference_max_spp, levels;
+  bool overwrite = false;
+};
+
+std::string number(double v) {
+  std::ostringstream s;
+  s.precision(17);
+  s << v;
+  return s.str();
+}
+
+void check_positive(const char* name, const std::optional<double>& v) {
+  if (v && !(std::isfinite(*v) && *v > 0))
+    throw UserError(std::string(name) + " " + number(*v) + ": expected a positive finite number");
+}
+
+void check_options(const AdviseOptions& o) {
+  check_positive("--budget-ms", o.budget_ms);
+  check_positive("--budget-mib", o.budget_mib);
+  check_positive("--max-error", o.max_error);
+  if (o.min_mssim && !(std::isfinite(*o.min_mssim) && *o.min_mssim > 0 && *o.min_mssim <= 1))
+    throw UserError("--min-mssim " + number(*o.min_mssim) + ": expected a number in (0, 1]");
+  if (o.max_error && o.min_mssim) throw UserError("--max-error and --min-mssim: give one error bound, not both");
+  if (!o.budget_ms && !o.budget_mib && !o.max_error && !o.min_mssim)
+    throw UserError("no budget: give --budget-ms, --budget-mib, --max-error or --min-mssim");
+  const auto known = structure_names();
+  for (const std::string& s : o.structures)
+    if (std::find(known.begin(), known.end(), s) == known.end())
+      throw UserError("--structures: unknown structure \"" + s + "\" (`ldmbench structures` lists them)");
+  if (!o.space.empty() && !fs::is_regular_file(o.space))
+    throw UserError("--space: " + o.space + ": no such file");
+  if (fs::exists(o.out) && !fs::is_directory(o.out))
+    throw UserError("--out: '" + o.out + "' exists and is not a folder");
+}
+
+// The script: $LDMBENCH_ADVISE_SCRIPT, else installed beside the binary
+// (<bin>/advise/, <prefix>/share/ldmbench/advise/), else the source tree it was built from.
+std::string find_script() {
+  if (const char* env = std::getenv(kScriptEnv); env && *env) {
+    if (!fs::is_regular_file(env)) throw UserError(std::string(kScriptEnv) + "=" + env + ": no such file");
+    return env;
+  }
+  std::vector<fs::path> candidates;
+  if (const std::string exe = executable_path(); !exe.empty()) {
+    const fs::path bin = fs::path(exe).parent_path();
+    candidates.push_back(bin / "advise" / kScriptName);
+    candidates.push_back(bin.parent_path() / "share" / "ldmbench" / "advise" / kScriptName);
+  }
+  candidates.push_back(fs::path(LDM_SOURCE_DIR) / "scripts" / "advise" / kScriptName);
+  std::string tried;
+  for (const fs::path& c : candidates) {
+    if (fs::is_regular_file(c)) return c.string();
+    tried += "\n  " + c.string();
+  }
+  throw UserError(std::string("the advise script ") + kScriptName + " is not installed; looked in:" + tried +
+                  "\nset " + kScriptEnv + " to its path (scripts/advise/ in the sources)");
+}
+
+// A Python with numpy and matplotlib (the report's plot): $LDMBENCH_PYTHON, else python3
+// on PATH, else /usr/bin/python3.
+std::string find_python() {
+  std::vector<std::string> candidates;
+  if (const char* env = std::getenv(kPythonEnv); env && *env)
+    candidates = {env};
+  else
+    candidates = {"python3", "/usr/bin/python3"};
+  for (const std::string& python : candidates) {
+    const ProcessResult probe = run_process({python, "-c", kPythonProbe}, /*capture=*/true);
+    if (probe.started && probe.status == 0) return python;
+  }
+  throw UserError(std::string("ldmbench advise needs python3 with numpy and matplotlib; run "
+                              "scripts/setup.sh, or set ") + kPythonEnv);
+}
+
+}  // namespace
+
+Runner add_advise_command(CLI::App& app) {
+  auto o = std::make_shared<AdviseOptions>();
+  auto* cmd = app.add_subcommand(
+      "advise", "The structure and parameters that meet a scene's budgets with the least error (or the "
+                "fastest within an error bound): an adaptive search, verified at a normal run's precision");
+  cmd->add_option("--scene", o->scene, "Built-in scene, scene file or mesh file")->required();
+  cmd->add_option("--pass", o->pass, "The pass (ao or indirect)")
+      ->check(CLI::IsMember({"ao", "indirect"}));
+  cmd->add_option("--budget-ms", o->budget_ms, "Frame time budget [ms] (median frame time)");
+  cmd->add_option("--budget-mib", o->budget_mib, "Memory budget [MiB] (the structure's bytes allocated)");
+  cmd->add_option("--max-error", o->max_error,
+                  "Error bound (MSE against the reference): the fastest configuration within it is sought");
+  cmd->add_option("--min-mssim", o->min_mssim, "Error bound as a least MSSIM against the reference");
+  cmd->add_option("--structures", o->structures, "Only these structures (comma list)")->delimiter(',');
+  cmd->add_option("--space", o->space,
+                  "Space file: {\"axes\": {structures, views, r_ldm, trace, sizing, OWNER:KEY ...}} "
+                  "(default: every structure, N 8,16,32, R_LDM 64,128, fixed arrays' k 4,8,16)");
+  cmd->add_option("--image-size", o->image_size, "Output image WIDTHxHEIGHT");
+  cmd->add_option("--out", o->out, "Advise folder: new, empty, or an earlier advise of the same question "
+                                   "(resumed)")->required();
+  cmd->add_option("--cache-dir", o->cache_dir, "Reference cache folder (default: results/cache/references)");
+  cmd->add_option("--reference-max-spp", o->reference_max_spp,
+                  "Cap of the references' samples per pixel per half, every stage");
+  cmd->add_option("--levels", o->levels, "Precision levels of the race before verification, 1 or 2 (default 2)")
+      ->check(CLI::Range(1, 2));
+  cmd->add_flag("--overwrite", o->overwrite, "Replace an earlier advise of another question in --out");
+  return [o]() {
+    check_options(*o);
+    const std::string script = find_script();
+    const std::string python = find_python();
+    const std::string exe = executable_path();
+    if (exe.empty()) throw UserError("cannot find this ldmbench binary's path (/proc/self/exe)");
+    std::string scratch = (fs::temp_directory_path() / "ldmbench-advise-XXXXXX").string();
+    if (!mkdtemp(scratch.data())) throw UserError("cannot make a temporary folder for the axis registry");
+    const fs::path axes = fs::path(scratch) / "axes.json";
+    {
+      std::ofstream file(axes);
+      file << axes_json().dump() << "\n";
+      if (!file) throw UserError(axes.string() + ": cannot write the axis registry for advise");
+    }
+    std::vector<std::string> argv = {python, script, "--ldmbench", exe, "--axes", axes.string(),
+                                     "--scene", o->scene, "--pass", o->pass, "--out", o->out,
+                                     "--image-size", o->image_size};
+    if (o->budget_ms) argv.insert(argv.end(), {"--budget-ms", number(*o->budget_ms)});
+    if (o->budget_mib) argv.insert(argv.end(), {"--budget-mib", number(*o->budget_mib)});
+    if (o->max_error) argv.insert(argv.end(), {"--max-error", number(*o->max_error)});
+    if (o->min_mssim) argv.insert(argv.end(), {"--min-mssim", number(*o->min_mssim)});
+    if (!o->structures.empty()) {
+      std::string list;
+      for (const auto& s : o->structures) list += (list.empty() ? "" : ",") + s;
+      argv.insert(argv.end(), {"--structures", list});
+    }
+    if (!o->space.empty()) argv.insert(argv.end(), {"--space", o->space});
+    if (!o->cache_dir.empty()) argv.insert(argv.end(), {"--cache-dir", o->cache_dir});
+    if (o->reference_max_spp) argv.insert(argv.end(), {"--reference-max-spp", std::to_string(*o->reference_max_spp)});
+    if (o->levels) argv.insert(argv.end(), {"--levels", std::to_string(*o->levels)});
+    if (o->overwrite) argv.push_back("--overwrite");
+    const ProcessResult result = run_process(argv, /*capture=*/false, /*forward_stop=*/true);
+    std::error_code ignored;
+    fs::remove_all(scratch, ignored);
+    if (!result.started) throw UserError(python + ": cannot run: " + result.output);
+    return result.status;
+  };
+}
+
+}  // namespace ldm::cli

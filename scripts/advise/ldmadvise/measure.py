@@ -1,0 +1,116 @@
+"""Measuring candidates: each stage is an ordinary sweep file run by `ldmbench sweep` into
+its own folder under OUT/stages/ (resumable like any sweep: a rerun of advise regenerates
+the same file and the sweep skips what it recorded), read back from its records.csv."""
+import csv
+import json
+import math
+import os
+import subprocess
+import time
+
+from .search import Measurement
+from .space import sweep_file
+
+# Precision of the levels: brief first, a normal run's last (docs/guide/advise.md).
+LEVELS = [
+    {"name": "brief", "frames": 3, "warmup": 1, "target": 0, "spp": 16},
+    {"name": "closer", "frames": 8, "warmup": 1, "target": 0, "spp": 64},
+]
+# A third level at a normal run's precision would cost what verification costs; the
+# verification is that level (a failed one resumes the race at the top level above).
+# The census stage: one build per geometry, no time to speak of, no reference.
+CENSUS = {"name": "census", "frames": 1, "warmup": 0, "target": 0, "reference": False}
+# A normal `ldmbench run`: its frames, warm-up, time target and automatic reference.
+VERIFY = {"name": "verify", "frames": 5, "warmup": 2, "target": 0.03, "cap_s": 2, "spp": 0, "images": True}
+SWEEP_FINISHED = (0, 3)  # ok; finished with some records failed (those are pruned)
+
+
+class MeasureError(Exception):
+    pass
+
+
+def number(row, column):
+    try:
+        v = float(row.get(column, ""))
+    except ValueError:
+        return math.nan
+    return v
+
+
+def measurement_of(row, metric):
+    """One record as the search sees it (metric: mse, or mssim as 1 - MSSIM)."""
+    t = number(row, "frame_ms_median")
+    low, high = number(row, "frame_ms_ci_low"), number(row, "frame_ms_ci_high")
+    if not (math.isfinite(low) and math.isfinite(high)):  # too few frames for an interval
+        low, high = number(row, "frame_ms_min"), number(row, "frame_ms_max")
+    if metric == "mssim":
+        error = 1 - number(row, "mssim")
+        band = (1 - number(row, "ref_noise_mssim")) / 4
+    else:
+        error, band = number(row, "mse"), number(row, "ref_noise_mse")
+    status = row.get("status", "failed")
+    detail = row.get("status_detail", "")
+    if status == "ok" and row.get("degenerate"):
+        status, detail = "degenerate", row["degenerate"]
+    if status == "ok" and not all(math.isfinite(v) for v in (t, low, high, error)):
+        status, detail = "failed", "no frame time or error in the record"
+    depth = number(row, "max_depth_complexity")
+    memory = number(row, "bytes_allocated")
+    return Measurement(time=t, time_low=low, time_high=high, error=error,
+                       error_band=band if math.isfinite(band) and band >= 0 else 0.0,
+                       memory=int(memory) if math.isfinite(memory) else 0, status=status, detail=detail,
+                       max_depth=int(depth) if math.isfinite(depth) else None)
+
+
+def read_records(path):
+    with open(path, newline="", encoding="utf-8") as f:
+        return {row["config_id"]: row for row in csv.DictReader(f)}
+
+
+class StageRunner:
+    """Runs the stages of one advise into OUT/stages/NN-STAGE/ and keeps what they cost."""
+
+    def __init__(self, ldmbench, out, question, assignments, metric, cache_dir, log):
+        self.ldmbench, self.out, self.question = ldmbench, out, question
+        self.assignments, self.metric, self.cache_dir, self.log = assignments, metric, cache_dir, log
+        self.count = 0
+        self.rows = {}      # (stage folder, config id) -> record row, for the report
+        self.costs = []     # per stage: name, configurations, wall seconds of this call
+
+    def run_stage(self, keys, precision, stage):
+        self.count += 1
+        folder = os.path.join(self.out, "stages", f"{self.count:02d}-{stage}")
+        os.makedirs(folder, exist_ok=True)
+        spec = sweep_file(self.question, [self.assignments[k] for k in keys], precision,
+                          f"ldmbench advise, stage {stage}: {len(keys)} configurations at "
+                          f"{precision['name']} precision")
+        sweep_path = os.path.join(folder, "sweep.json")
+        text = json.dumps(spec, indent=1) + "\n"
+        if not os.path.exists(sweep_path) or open(sweep_path, encoding="utf-8").read() != text:
+            with open(sweep_path + ".tmp", "w", encoding="utf-8") as f:
+                f.write(text)
+            os.replace(sweep_path + ".tmp", sweep_path)
+        run = os.path.join(folder, "run")
+        argv = [self.ldmbench, "sweep", sweep_path, "--out", run]
+        if self.cache_dir:
+            argv += ["--cache-dir", self.cache_dir]
+        start = time.monotonic()
+        with open(os.path.join(folder, "sweep.log"), "a", encoding="utf-8") as log:
+            status = subprocess.call(argv, stdout=log, stderr=subprocess.STDOUT)
+        seconds = time.monotonic() - start
+        if status not in SWEEP_FINISHED:
+            raise MeasureError(f"stage {stage}: `{' '.join(argv)}` exited {status} "
+                               f"(its output: {os.path.join(folder, 'sweep.log')})")
+        rows = read_records(os.path.join(run, "records.csv"))
+        missing = [k for k in keys if k not in rows]
+        if missing:
+            raise MeasureError(f"stage {stage}: {run}/records.csv lacks {', '.join(missing)}")
+        recorded = sum(number(rows[k], "wall_seconds") for k in keys)
+        self.costs.append({"stage": stage, "folder": folder, "configurations": len(keys),
+                           "precision": precision["name"], "wall_s_this_call": round(seconds, 2),
+                           "wall_s_recorded": round(recorded, 2) if math.isfinite(recorded) else None})
+        self.log({"event": "measured", "stage": stage, "folder": folder, "configurations": len(keys),
+                  "wall_s": round(seconds, 2)})
+        for k in keys:
+            self.rows[(folder, k)] = rows[k]
+        return {k: measurement_of(rows[k], self.metric) for k in keys}, folder, rows

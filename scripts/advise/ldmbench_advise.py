@@ -1,0 +1,282 @@
+#!/usr/bin/env python3
+"""ldmbench advise: the configuration of structure and parameters that meets a scene's
+budgets with the least error (or the fastest within an error bound), found by an adaptive
+search and verified at a normal run's precision. `ldmbench advise` checks the options and
+runs this script; the search is ldmadvise/search.py, the strategy docs/guide/advise.md.
+
+Writes into OUT: advise.json (the question, the identity a rerun must match), advise.jsonl
+(the journal of every stage and pruning), stages/NN-STAGE/ (each stage's sweep file and run
+folder; a rerun resumes them), verify/ (the recommendation's records at normal precision),
+result.json and report/ (summary.md, front.png). Exit 0 with a recommendation, 1 when no
+configuration meets the budgets (or an error), 2 for bad options or an empty space with
+nothing written.
+"""
+import argparse
+import json
+import math
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "report"))
+
+from ldmadvise.measure import CENSUS, LEVELS, VERIFY, MeasureError, StageRunner, measurement_of  # noqa: E402
+from ldmadvise.search import YES, Goal, Search, choose_best, primary_tied  # noqa: E402
+from ldmadvise.space import (SpaceError, candidate_assignments, candidate_of, load_space,  # noqa: E402
+                             sweep_file)
+from ldmadvise.report import fmt_bytes, write_report  # noqa: E402
+
+EXIT_USAGE, EXIT_NONE = 2, 1
+QUESTION_FILE, JOURNAL_FILE, RESULT_FILE = "advise.json", "advise.jsonl", "result.json"
+
+
+def fail(message, status=EXIT_USAGE):
+    print(f"ldmbench advise: error: {message}", file=sys.stderr)
+    sys.exit(status)
+
+
+def parse_arguments(argv):
+    p = argparse.ArgumentParser(prog="ldmbench_advise.py", description=__doc__.split("\n")[0])
+    p.add_argument("--ldmbench", required=True, help="the ldmbench binary")
+    p.add_argument("--axes", required=True, help="the axis registry (ldmbench axes --json)")
+    p.add_argument("--scene", required=True)
+    p.add_argument("--pass", dest="pass_name", default="ao", choices=["ao", "indirect"])
+    p.add_argument("--budget-ms", type=float)
+    p.add_argument("--budget-mib", type=float)
+    p.add_argument("--max-error", type=float)
+    p.add_argument("--min-mssim", type=float)
+    p.add_argument("--structures", default="")
+    p.add_argument("--space")
+    p.add_argument("--image-size", default="128x128")
+    p.add_argument("--out", required=True)
+    p.add_argument("--cache-dir")
+    p.add_argument("--reference-max-spp", type=int)
+    p.add_argument("--levels", type=int, default=len(LEVELS), choices=range(1, len(LEVELS) + 1))
+    p.add_argument("--overwrite", action="store_true")
+    return p.parse_args(argv)
+
+
+def check_budgets(a):
+    for name, v in (("--budget-ms", a.budget_ms), ("--budget-mib", a.budget_mib), ("--max-error", a.max_error)):
+        if v is not None and not (math.isfinite(v) and v > 0):
+            fail(f"{name} {v}: expected a positive finite number")
+    if a.min_mssim is not None and not (math.isfinite(a.min_mssim) and 0 < a.min_mssim <= 1):
+        fail(f"--min-mssim {a.min_mssim}: expected a number in (0, 1]")
+    if a.max_error is not None and a.min_mssim is not None:
+        fail("--max-error and --min-mssim: give one error bound, not both")
+    if a.budget_ms is None and a.budget_mib is None and a.max_error is None and a.min_mssim is None:
+        fail("no budget: give --budget-ms, --budget-mib, --max-error or --min-mssim (else the answer "
+             "is simply the largest N and R_LDM of the space)")
+
+
+def goal_of(a):
+    max_error = a.max_error if a.min_mssim is None else 1 - a.min_mssim
+    return Goal(budget_ms=a.budget_ms, budget_bytes=int(a.budget_mib * 2**20) if a.budget_mib else None,
+                max_error=max_error)
+
+
+def dry_run_ids(ldmbench, spec):
+    """The configuration ids `ldmbench sweep --dry-run` gives the space, in order; its
+    refusal (exit 2, file and JSON path) as ours, with nothing written."""
+    with tempfile.TemporaryDirectory(prefix="ldmbench-advise-") as tmp:
+        path = os.path.join(tmp, "space-sweep.json")
+        with open(path, "w", encoding="utf-8") as f:
+            json.dump(spec, f)
+        r = subprocess.run([ldmbench, "sweep", path, "--dry-run"], capture_output=True, text=True)
+    if r.returncode != 0:
+        fail("the space does not make valid configurations: " + r.stderr.strip().replace(path, "space"))
+    return [line.split("\t")[1] for line in r.stdout.splitlines() if "\t" in line]
+
+
+def prepare_out(out, question, overwrite):
+    """A new or empty folder, or one holding this same question (resumed)."""
+    qpath = os.path.join(out, QUESTION_FILE)
+    if os.path.isdir(out) and os.listdir(out):
+        if not os.path.isfile(qpath):
+            fail(f"--out: '{out}' is not empty and holds no advise ({QUESTION_FILE}); choose another folder")
+        with open(qpath, encoding="utf-8") as f:
+            earlier = json.load(f)
+        if earlier != question:
+            if not overwrite:
+                fail(f"--out: '{out}' holds another advise (its {QUESTION_FILE} differs); choose another "
+                     "folder, or --overwrite to replace it")
+            shutil.rmtree(out)
+        else:
+            return True
+    elif os.path.exists(out) and not os.path.isdir(out):
+        fail(f"--out: '{out}' exists and is not a folder")
+    os.makedirs(out, exist_ok=True)
+    with open(qpath + ".tmp", "w", encoding="utf-8") as f:
+        json.dump(question, f, indent=1, sort_keys=True)
+    os.replace(qpath + ".tmp", qpath)
+    return False
+
+
+def main(argv):
+    a = parse_arguments(argv)
+    check_budgets(a)
+    with open(a.axes, encoding="utf-8") as f:
+        registry = json.load(f)
+    by_key = {axis["name"]: axis for axis in registry["axes"]}
+    names = set(by_key)
+    structures_known = by_key["structures"]["choices"]
+    passes_known = by_key["passes"]["choices"]
+    wanted = [s for s in a.structures.split(",") if s]
+    for s in wanted:
+        if s not in structures_known:
+            fail(f"--structures: unknown structure {s!r} (known: {', '.join(structures_known)})")
+    try:
+        axes = load_space(a.space, a.pass_name, wanted, structures_known, passes_known)
+        for key in axes:
+            if ":" in key and names and key not in names:
+                raise SpaceError(f"{a.space or 'the default space'}: axes.{key}: not a parameter "
+                                 "(`ldmbench axes` lists them)")
+        assignments = candidate_assignments(axes, a.pass_name)
+    except SpaceError as e:
+        fail(str(e))
+    if not assignments:
+        fail(f"{a.space or 'the default space'}: the space is empty")
+    question = {"scene": a.scene, "pass": a.pass_name, "image_size": a.image_size,
+                "reference_max_spp": a.reference_max_spp}
+    ids = dry_run_ids(a.ldmbench, sweep_file(question, assignments, LEVELS[0], "advise space"))
+    if len(ids) != len(assignments) or len(set(ids)) != len(ids):
+        fail(f"the space's {len(assignments)} assignments make {len(set(ids))} distinct configurations; "
+             "remove the axes that do not change the configuration")
+    by_id = dict(zip(ids, assignments))
+    defaults = {"views": 32, "r_ldm": 128}
+    candidates = [candidate_of(k, by_id[k], defaults) for k in ids]
+    goal = goal_of(a)
+    metric = "mssim" if a.min_mssim is not None else "mse"
+    identity = {"question": question, "goal": {"budget_ms": a.budget_ms, "budget_mib": a.budget_mib,
+                                                "max_error": a.max_error, "min_mssim": a.min_mssim},
+                "space": axes, "levels": a.levels, "configurations": ids}
+    resumed = prepare_out(a.out, identity, a.overwrite)
+
+    journal_path = os.path.join(a.out, JOURNAL_FILE)
+
+    def log(event):
+        event = dict(event, t=round(time.time(), 3))
+        with open(journal_path, "a", encoding="utf-8") as f:
+            f.write(json.dumps(event) + "\n")
+
+    log({"event": "resumed" if resumed else "started", "configurations": len(ids)})
+    start = time.monotonic()
+    runner = StageRunner(a.ldmbench, a.out, question, by_id, metric, a.cache_dir, log)
+
+    def measure(cands, level, stage):
+        results, _, _ = runner.run_stage([c.key for c in cands], LEVELS[level], stage)
+        return results
+
+    def census(geometries):
+        # Any structure counts the same fragments: a list where the space has one, else the
+        # longest fixed array, at each geometry.
+        picks = []
+        for g in geometries:
+            here = [c for c in candidates if (c.views, c.r_ldm) == g]
+            picks.append(min(here, key=lambda c: (c.k is not None, -(c.k or 0))).key)
+        results, _, _ = runner.run_stage(picks, CENSUS, "census")
+        return {g: results[k].max_depth for g, k in zip(geometries, picks) if results[k].max_depth is not None}
+
+    search = Search(candidates, goal, a.levels, measure, log, census)
+    try:
+        outcome = search.run()
+        verified, attempt = {}, 1
+        while outcome.recommended:
+            # Verify; a recommendation the normal-precision run finds outside the budgets is
+            # dropped (what it had beaten comes back) and the race resumes at its top level.
+            keys = [outcome.recommended] + outcome.ties[:1]
+            stage = "verify" if attempt == 1 else f"verify-{attempt}"
+            verified, vfolder, vrows = runner.run_stage(keys, VERIFY, stage)
+            for k, m in verified.items():  # the report shows each at its last precision
+                m.level = len(LEVELS)
+                search.states[k].measurement = m
+                search.states[k].history.append(m)
+            if any(m.status == "ok" and goal.verdict(m) != "no" for m in verified.values()):
+                break
+            for k in keys:
+                search.recheck(k, stage)
+            outcome = search.run(level=a.levels - 1)
+            attempt += 1
+    except MeasureError as e:
+        fail(str(e), EXIT_NONE)
+    elapsed = time.monotonic() - start
+
+    answer, recommended, rec_row = [], None, None
+    if outcome.recommended:
+        # The verified measurement decides: the best verified one within the budgets.
+        ok = [k for k, m in verified.items() if m.status == "ok" and goal.verdict(m) == YES]
+        maybe = [k for k, m in verified.items() if m.status == "ok" and goal.verdict(m) != "no"]
+        pool = ok or maybe
+        if pool:
+            recommended = choose_best(goal, pool, lambda k: verified[k])
+            rec_row = vrows[recommended]
+    # Ties as verified: those measured at normal precision that the bands cannot tell from
+    # the recommendation; the search's other ties (at its own precision) beside them.
+    verified_ties = [k for k, m in verified.items() if recommended and k != recommended and m.status == "ok"
+                     and goal.verdict(m) != "no" and primary_tied(goal, m, verified[recommended])]
+    result = {"recommended": recommended, "search_recommended": outcome.recommended,
+              "ties": verified_ties,
+              "search_ties_unverified": [k for k in outcome.ties if k not in verified],
+              "why_stopped": outcome.why, "configurations": len(ids),
+              "measured": sum(c["configurations"] for c in runner.costs),
+              "wall_s_recorded": round(sum(c["wall_s_recorded"] or 0 for c in runner.costs), 2),
+              "wall_s_this_call": round(elapsed, 2), "resumed": resumed,
+              "pruned": {k: s.pruned for k, s in search.states.items() if s.pruned}}
+    if recommended:
+        m = verified[recommended]
+        surely = goal.verdict(m) == YES
+        vf = number_of(rec_row, "wall_seconds")
+        ref_noise = number_of(rec_row, "ref_noise_mse")
+        result["verified"] = {"folder": vfolder, "frame_ms": m.time, "frame_ms_interval": [m.time_low, m.time_high],
+                              "error": m.error, "error_band": m.error_band, "metric": metric,
+                              "mse_over_noise": number_of(rec_row, "mse_over_noise"),
+                              "bytes_allocated": m.memory, "within_budgets_surely": surely,
+                              "wall_s": vf}
+        answer = [f"Recommended: **{recommended}** ({'surely within' if surely else 'within, but not surely within,'} "
+                  f"the budgets at a normal run's precision; record in {os.path.relpath(vfolder, a.out)}/run).",
+                  "",
+                  f"- frame time {m.time:.4g} ms, 95 % interval [{m.time_low:.4g}, {m.time_high:.4g}]"
+                  + (f" (budget {goal.budget_ms} ms)" if goal.budget_ms else ""),
+                  f"- error {metric} {m.error:.4g}, the reference's noise {m.error_band:.2g} "
+                  f"({number_of(rec_row, 'mse_over_noise'):.4g} x noise in MSE)"
+                  + (f" (bound {goal.max_error})" if goal.max_error is not None else ""),
+                  f"- memory {m.memory} bytes ({fmt_bytes(m.memory)}), exact"
+                  + (f" (budget {a.budget_mib} MiB)" if a.budget_mib else ""),
+                  "- tied with it at normal precision (not separable within the bands): "
+                  + (", ".join(result["ties"]) or "none")
+                  + (f"; tied at the search's precision, not verified: {', '.join(result['search_ties_unverified'])}"
+                     if result["search_ties_unverified"] else ""),
+                  f"- surer: `--repetitions 3` on the verify run narrows the time interval for about 3 x "
+                  f"{vf:.3g} s; halving the error band needs a reference with twice the samples "
+                  f"(noise {ref_noise:.2g} now)."]
+    else:
+        answer = ["No configuration of the space meets the budgets "
+                  f"({outcome.why}); see the pruned table for each one's reason."]
+    result["answer_lines"] = answer
+    title = f"ldmbench advise: {a.scene}, {a.pass_name}" + \
+            (f", {a.budget_ms} ms" if a.budget_ms else "") + (f", {a.budget_mib} MiB" if a.budget_mib else "") + \
+            (f", error <= {goal.max_error:g}" if goal.max_error is not None else "")
+    folder = write_report(a.out, result, search, goal, metric, runner.costs, title)
+    with open(os.path.join(a.out, RESULT_FILE + ".tmp"), "w", encoding="utf-8") as f:
+        json.dump(result, f, indent=1, default=str)
+    os.replace(os.path.join(a.out, RESULT_FILE + ".tmp"), os.path.join(a.out, RESULT_FILE))
+    log({"event": "finished", "recommended": recommended, "wall_s": round(elapsed, 2)})
+    print("\n".join(answer))
+    print(f"measured {result['measured']} configurations in {len(runner.costs)} stages of {len(ids)} in the space; "
+          f"recorded wall time {result['wall_s_recorded']} s; report: {folder}/summary.md")
+    return 0 if recommended else EXIT_NONE
+
+
+def number_of(row, column):
+    try:
+        return float(row.get(column, "nan"))
+    except (TypeError, ValueError):
+        return math.nan
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

@@ -1,0 +1,199 @@
+#!/usr/bin/env python3
+"""advise against an exhaustive sweep of the same space (issue 24's proof).
+
+For each scene: the whole space measured at a normal run's precision (`ldmbench sweep`, the
+sweep file advise's own verification precision makes, with the same config ids), then for
+two budgets `ldmbench advise` on the same space, each with its own reference cache (nobody
+inherits another's references). Budgets are placed inside the space's range so that they
+bind: the frame time at the 40th and 70th percentile of the exhaustive run's configurations,
+the second with the median memory as a memory budget too. Checks, per advise:
+  - on the front: the recommendation is on the exhaustive run's time/error Pareto front (the
+    tie rules of the report: time intervals, error bands), or tied with a member in both;
+  - the same answer: the exhaustive run's own best within the budgets, or tied with it;
+  - cost: advise's wall time is at most a third of the exhaustive sweep's.
+Writes OUT/comparison.json and OUT/comparison.md; exit 1 when a check fails.
+
+Usage: advise_vs_exhaustive.py --ldmbench BIN --space FILE --out DIR [--scene S]...
+         [--image-size 128x128] [--reference-max-spp 256]
+"""
+import argparse
+import json
+import math
+import os
+import subprocess
+import sys
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "advise"))
+
+from ldmadvise.measure import VERIFY, measurement_of, read_records  # noqa: E402
+from ldmadvise.search import YES, Goal, choose_best, error_tied, pareto_front, time_tied  # noqa: E402
+from ldmadvise.space import candidate_assignments, load_space, sweep_file  # noqa: E402
+
+STRUCTURES = ["psppsll", "ppsll", "dfbuffer", "habuffer", "ppfla", "psppfla"]
+
+
+def timed(argv, log_path):
+    start = time.monotonic()
+    with open(log_path, "a", encoding="utf-8") as log:
+        status = subprocess.call(argv, stdout=log, stderr=subprocess.STDOUT)
+    return status, time.monotonic() - start
+
+
+def percentile(values, q):
+    v = sorted(values)
+    return v[min(len(v) - 1, max(0, int(round(q * (len(v) - 1)))))]
+
+
+def exhaustive(a, scene, folder):
+    axes = load_space(a.space, "ao", [], STRUCTURES, ["ao"])
+    assignments = candidate_assignments(axes, "ao")
+    question = {"scene": scene, "pass": "ao", "image_size": a.image_size,
+                "reference_max_spp": a.reference_max_spp}
+    precision = dict(VERIFY, images=False)
+    spec = sweep_file(question, assignments, precision, f"exhaustive sweep of {a.space} on {scene}")
+    os.makedirs(folder, exist_ok=True)
+    path = os.path.join(folder, "sweep.json")
+    with open(path, "w", encoding="utf-8") as f:
+        json.dump(spec, f, indent=1)
+    run = os.path.join(folder, "run")
+    done = os.path.join(folder, "wall_s.txt")
+    if os.path.exists(done) and os.path.exists(os.path.join(run, "records.csv")):
+        seconds = float(open(done).read())  # measured earlier: a rerun keeps it
+    else:
+        status, seconds = timed([a.ldmbench, "sweep", path, "--out", run, "--cache-dir",
+                                 os.path.join(folder, "cache")], os.path.join(folder, "sweep.log"))
+        if status not in (0, 3):
+            sys.exit(f"exhaustive sweep of {scene} failed ({status}); see {folder}/sweep.log")
+        open(done, "w").write(f"{seconds:.2f}\n")
+    return read_records(os.path.join(run, "records.csv")), seconds
+
+
+def advise(a, scene, budget, folder):
+    argv = [a.ldmbench, "advise", "--scene", scene, "--space", a.space, "--image-size", a.image_size,
+            "--out", os.path.join(folder, "advice"), "--cache-dir", os.path.join(folder, "cache")]
+    if a.reference_max_spp:
+        argv += ["--reference-max-spp", str(a.reference_max_spp)]
+    for k, v in budget.items():
+        argv += [f"--{k.replace('_', '-')}", f"{v:g}"]
+    done = os.path.join(folder, "wall_s.txt")
+    os.makedirs(folder, exist_ok=True)
+    if os.path.exists(done):
+        seconds = float(open(done).read())
+    else:
+        status, seconds = timed(argv, os.path.join(folder, "advise.log"))
+        if status not in (0, 1):
+            sys.exit(f"advise on {scene} failed ({status}); see {folder}/advise.log")
+        open(done, "w").write(f"{seconds:.2f}\n")
+    with open(os.path.join(folder, "advice", "result.json"), encoding="utf-8") as f:
+        return json.load(f), seconds, " ".join(argv)
+
+
+def compare(rows, result, goal):
+    ms = {k: measurement_of(r, "mse") for k, r in rows.items()}
+    # the front among the configurations within the memory budget (exact: a hard filter)
+    ok = {k: m for k, m in ms.items() if m.status == "ok" and goal.memory_fits(m)}
+    front = pareto_front(goal, ok)
+    rec = result.get("recommended")
+    within = [k for k, m in ok.items() if goal.verdict(m) == YES]
+    best = choose_best(goal, within, lambda k: ok[k]) if within else None
+    out = {"front": front, "exhaustive_best": best, "recommended": rec}
+    if rec is None:
+        out.update(on_front=False, same_answer=best is None)
+        return out
+    m = ok.get(rec)
+    tied_member = [k for k in front if m is not None and time_tied(m, ok[k]) and error_tied(m, ok[k])]
+    # advise's own tie set: the recommendation and the configurations it could not separate
+    # from it at normal precision (a tie, not a loss, when the exhaustive run ordered them)
+    tie_set_on_front = [k for k in result.get("ties", []) if k in front]
+    out["on_front"] = rec in front
+    out["tied_front_members"] = tied_member
+    out["tie_set_on_front"] = tie_set_on_front
+    out["on_front_or_tied"] = rec in front or bool(tied_member) or bool(tie_set_on_front)
+    # the question asks for the least error: an answer tied with the best on error is the same
+    out["same_answer"] = best is not None and (rec == best or error_tied(m, ok[best]))
+    out["exhaustive_of_recommended"] = {"frame_ms": m.time, "interval": [m.time_low, m.time_high],
+                                        "mse": m.error, "band": m.error_band, "bytes": m.memory}
+    if best:
+        b = ok[best]
+        out["exhaustive_of_best"] = {"frame_ms": b.time, "interval": [b.time_low, b.time_high],
+                                     "mse": b.error, "band": b.error_band, "bytes": b.memory}
+    return out
+
+
+def front_text(c):
+    if c.get("on_front"):
+        return "yes"
+    if c.get("tied_front_members"):
+        return "tied with " + ", ".join(c["tied_front_members"])
+    if c.get("tie_set_on_front"):
+        return "its tie " + ", ".join(c["tie_set_on_front"]) + " is"
+    return "NO"
+
+
+def label_of(scene):
+    return os.path.splitext(os.path.basename(scene))[0]
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p.add_argument("--ldmbench", required=True)
+    p.add_argument("--space", required=True)
+    p.add_argument("--out", required=True)
+    p.add_argument("--scene", action="append")
+    p.add_argument("--image-size", default="128x128")
+    p.add_argument("--reference-max-spp", type=int, default=256)
+    a = p.parse_args()
+    scenes = a.scene or ["cornell", "atrium"]
+    report = {"space": a.space, "image_size": a.image_size, "reference_max_spp": a.reference_max_spp,
+              "scenes": {}}
+    lines = ["# advise against an exhaustive sweep", "",
+             f"Space `{os.path.basename(a.space)}`, {a.image_size} images, references capped at "
+             f"{a.reference_max_spp} samples per pixel per half (both sides).", "",
+             "| scene | budget | exhaustive: configs, wall s | advise: measured, wall s | ratio | "
+             "recommended | on front (or tied) | = exhaustive's best (or tied) |",
+             "|---|---|---|---|---|---|---|---|"]
+    failures = []
+    for scene in scenes:
+        base = os.path.join(a.out, label_of(scene))
+        rows, ex_seconds = exhaustive(a, scene, os.path.join(base, "exhaustive"))
+        ok_rows = [r for r in rows.values() if r["status"] == "ok"]
+        times = [float(r["frame_ms_median"]) for r in ok_rows]
+        mems = [float(r["bytes_allocated"]) for r in ok_rows]
+        budgets = [{"budget_ms": round(percentile(times, 0.4), 1)},
+                   {"budget_ms": round(percentile(times, 0.7), 1),
+                    "budget_mib": round(percentile(mems, 0.5) / 2**20, 3)}]
+        entry = {"exhaustive": {"configurations": len(rows), "wall_s": round(ex_seconds, 2)}, "advise": []}
+        for i, budget in enumerate(budgets):
+            result, seconds, command = advise(a, scene, budget, os.path.join(base, f"advise-{i + 1}"))
+            goal = Goal(budget_ms=budget.get("budget_ms"),
+                        budget_bytes=int(budget["budget_mib"] * 2**20) if "budget_mib" in budget else None)
+            c = compare(rows, result, goal)
+            ratio = seconds / ex_seconds
+            c.update(budget=budget, wall_s=round(seconds, 2), ratio=round(ratio, 3), command=command,
+                     measured=result.get("measured"), why_stopped=result.get("why_stopped"))
+            entry["advise"].append(c)
+            passed = c.get("on_front_or_tied") and ratio <= 1 / 3
+            if not passed:
+                failures.append(f"{scene} {budget}")
+            btext = ", ".join(f"{k.replace('budget_', '')} {v}" for k, v in budget.items())
+            lines.append(f"| {label_of(scene)} | {btext} | {len(rows)}, {ex_seconds:.0f} | {c['measured']}, {seconds:.0f} | "
+                         f"{ratio:.2f} | {c['recommended']} | {front_text(c)} | "
+                         f"{'yes' if c.get('same_answer') else 'no'} ({c['exhaustive_best']}) |")
+        report["scenes"][label_of(scene)] = entry
+    lines += ["", "Measured counts advise's stage measurements (a configuration measured at two levels "
+                  "counts twice). Ratio: advise's wall time over the exhaustive sweep's, each one command "
+                  "timed end to end with its own reference cache.",
+              "", "All checks passed." if not failures else "FAILED: " + "; ".join(failures), ""]
+    os.makedirs(a.out, exist_ok=True)
+    with open(os.path.join(a.out, "comparison.json"), "w", encoding="utf-8") as f:
+        json.dump(report, f, indent=1)
+    with open(os.path.join(a.out, "comparison.md"), "w", encoding="utf-8") as f:
+        f.write("\n".join(lines))
+    print("\n".join(lines))
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

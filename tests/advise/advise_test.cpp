@@ -1,0 +1,147 @@
+// `ldmbench advise` (issue 24): the search on synthetic models (Python's unittest,
+// tests/advise/test_search.py), the refusals of bad budgets and empty spaces, and a small
+// advise end to end on the Cornell box: answered, verified with its record, reported,
+// journaled, and resumed by a rerun without measuring again.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "support/test_support.h"
+
+namespace ldm {
+namespace {
+
+namespace fs = std::filesystem;
+using test::ldmbench;
+using test::Outcome;
+
+size_t count_records(const fs::path& path) {
+  std::ifstream in(path);
+  size_t n = 0;
+  for (std::string line; std::getline(in, line);) n += line.rfind("{\"record\":", 0) == 0;
+  return n;
+}
+
+// Records in every stage's records.jsonl (a resumed sweep adds a "run" line, no record).
+size_t measured_records(const fs::path& out) {
+  size_t n = 0;
+  if (!fs::exists(out / "stages")) return 0;
+  for (const auto& stage : fs::directory_iterator(out / "stages"))
+    if (fs::exists(stage.path() / "run" / "records.jsonl")) n += count_records(stage.path() / "run" / "records.jsonl");
+  return n;
+}
+
+TEST(AdviseSearch, SearchOnSyntheticModels) {
+  const Outcome o = test::run_shell(std::string(LDM_PYTHON) + " " + LDM_TEST_SOURCE_DIR + "/advise/test_search.py");
+  EXPECT_EQ(o.status, 0) << o.output;
+  EXPECT_NE(o.output.find("OK"), std::string::npos) << o.output;
+}
+
+TEST(AdviseCli, RefusesBadBudgetsAndEmptySpacesWithNothingWritten) {
+  const fs::path dir = test::make_temp_dir("advise-refusals");
+  std::ofstream(dir / "empty.json") << R"({"axes": {"structures": "ppfla", "views": []}})";
+  std::ofstream(dir / "fixed.json") << R"({"axes": {"image_size": "32x32"}})";
+  std::ofstream(dir / "owner.json") << R"({"axes": {"nosuch:k": [1]}})";
+  std::ofstream(dir / "broken.json") << "{\"axes\": {\n  \"views\": [4,\n}";
+  std::ofstream(dir / "outside.json") << R"({"axes": {"structures": "psppsll"}})";
+  const std::string out = (dir / "out").string();
+  const struct {
+    std::string args, message;
+  } cases[] = {
+      {"--budget-ms -1", "--budget-ms -1: expected a positive finite number"},
+      {"--budget-ms 0", "--budget-ms 0: expected a positive finite number"},
+      {"--budget-mib nan", "--budget-mib nan: expected a positive finite number"},
+      {"", "no budget"},
+      {"--max-error 0.1 --min-mssim 0.9", "give one error bound, not both"},
+      {"--min-mssim 1.5", "--min-mssim 1.5: expected a number in (0, 1]"},
+      {"--budget-ms 10 --structures nosuch", "unknown structure \"nosuch\""},
+      {"--budget-ms 10 --space " + (dir / "missing.json").string(), "no such file"},
+      {"--budget-ms 10 --space " + (dir / "empty.json").string(), "axes.views: no values"},
+      {"--budget-ms 10 --space " + (dir / "fixed.json").string(), "axes.image_size: fixed by the question"},
+      {"--budget-ms 10 --space " + (dir / "owner.json").string(), "axes.nosuch:k: unknown owner"},
+      {"--budget-ms 10 --space " + (dir / "broken.json").string(), "line 3 column 1"},
+      {"--budget-ms 10 --structures ppfla --space " + (dir / "outside.json").string(),
+       "none of --structures ppfla is in the space"},
+      {"--budget-ms 10 --scene nosuchscene", "'nosuchscene' is neither a built-in scene"},
+  };
+  for (const auto& c : cases) {
+    const std::string scene = c.args.find("--scene") == std::string::npos ? "--scene cornell " : "";
+    const Outcome o = ldmbench("advise " + scene + c.args + " --out " + out);
+    EXPECT_EQ(o.status, 2) << c.args << "\n" << o.output;
+    EXPECT_NE(o.output.find(c.message), std::string::npos) << c.args << "\n" << o.output;
+    EXPECT_FALSE(fs::exists(out)) << c.args;
+  }
+}
+
+// A small space on the Cornell box at 32x32: answered and verified, then rerun (resumed:
+// nothing measured again), then asked another question in the same folder (refused), then
+// an infeasible memory budget (no recommendation, exit 1, every candidate's reason).
+TEST(AdviseEndToEnd, SmallAdviseOnTheCornellBox) {
+  const fs::path dir = test::make_temp_dir("advise-e2e");
+  std::ofstream(dir / "space.json")
+      << R"({"axes": {"structures": ["psppsll", "habuffer", "ppfla"], "views": [2, 4, 8], "r_ldm": [16, 32],
+                      "ppfla:k": [2, 8]}})";
+  const fs::path out = dir / "advice";
+  const std::string common = "advise --scene cornell --space " + (dir / "space.json").string() +
+                             " --image-size 32x32 --reference-max-spp 16 --levels 2 --cache-dir " +
+                             (dir / "cache").string();
+  const std::string question = common + " --budget-ms 1000 --budget-mib 0.25 --out " + out.string();
+  const Outcome first = ldmbench(question);
+  ASSERT_EQ(first.status, 0) << first.output;
+  EXPECT_NE(first.output.find("Recommended: **cornell-"), std::string::npos) << first.output;
+
+  const auto result = nlohmann::json::parse(test::read_text((out / "result.json").string()));
+  const std::string recommended = result["recommended"];
+  EXPECT_LE(result["verified"]["bytes_allocated"].get<double>(), 0.25 * 1048576);
+  EXPECT_TRUE(result["verified"]["within_budgets_surely"].get<bool>()) << result.dump(1);
+  // cheap first: fewer configurations measured briefly than the space holds
+  const size_t space_size = result["configurations"];
+  EXPECT_EQ(space_size, 24u);  // psppsll 6, habuffer 6, ppfla 2 x 6
+  EXPECT_FALSE(result["pruned"].empty());
+  // the lossy k = 2 arrays never recommended; every pruned candidate says why
+  EXPECT_EQ(recommended.find("k=2"), std::string::npos);
+  for (const auto& [key, why] : result["pruned"].items()) EXPECT_FALSE(why.get<std::string>().empty()) << key;
+  // verified with its record written at a normal run's precision
+  const fs::path verify = result["verified"]["folder"].get<std::string>();
+  const std::string records = test::read_text((verify / "run" / "records.csv").string());
+  EXPECT_NE(records.find(recommended), std::string::npos);
+  EXPECT_NE(test::read_text((verify / "sweep.json").string()).find("\"target\": 0.03"), std::string::npos);
+  // explained and journaled
+  const std::string summary = test::read_text((out / "report" / "summary.md").string());
+  for (const char* part : {"## Front found", "## Pruned, and why", "## Time spent", "(recommended)"})
+    EXPECT_NE(summary.find(part), std::string::npos) << part << "\n" << summary;
+  EXPECT_GT(fs::file_size(out / "report" / "front.png"), 1000u);
+  const std::string journal = test::read_text((out / "advise.jsonl").string());
+  EXPECT_NE(journal.find("\"event\": \"started\""), std::string::npos);
+  EXPECT_NE(journal.find("\"event\": \"pruned\""), std::string::npos);
+
+  // Resumed: the same question into the same folder measures nothing again.
+  const size_t before = measured_records(out);
+  const Outcome again = ldmbench(question);
+  ASSERT_EQ(again.status, 0) << again.output;
+  EXPECT_EQ(measured_records(out), before);
+  const auto result2 = nlohmann::json::parse(test::read_text((out / "result.json").string()));
+  EXPECT_EQ(result2["recommended"], recommended);
+  EXPECT_TRUE(result2["resumed"].get<bool>());
+
+  // Another question into that folder is refused, nothing changed.
+  const Outcome other = ldmbench(common + " --budget-ms 500 --out " + out.string());
+  EXPECT_EQ(other.status, 2) << other.output;
+  EXPECT_NE(other.output.find("holds another advise"), std::string::npos) << other.output;
+  EXPECT_EQ(measured_records(out), before);
+
+  // An infeasible budget: no recommendation, exit 1, a reason for every candidate.
+  const Outcome none =
+      ldmbench(common + " --structures psppsll --budget-mib 0.0001 --out " + (dir / "none").string());
+  EXPECT_EQ(none.status, 1) << none.output;
+  EXPECT_NE(none.output.find("No configuration of the space meets the budgets"), std::string::npos) << none.output;
+  const auto result3 = nlohmann::json::parse(test::read_text((dir / "none" / "result.json").string()));
+  EXPECT_TRUE(result3["recommended"].is_null());
+  EXPECT_EQ(result3["pruned"].size(), 6u);
+}
+
+}  // namespace
+}  // namespace ldm

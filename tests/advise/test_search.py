@@ -1,0 +1,283 @@
+#!/usr/bin/env python3
+"""The advise search (scripts/advise/ldmadvise/search.py) on synthetic cost and error
+models whose optimum is known: the recommendation, the ties, infeasible budgets, noisy
+measurements, and that the search measures less than the whole space. Run by
+tests/advise/advise_test.cpp (ctest advise.SearchOnSyntheticModels)."""
+import itertools
+import os
+import random
+import sys
+import unittest
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts", "advise"))
+
+from ldmadvise.search import Candidate, Goal, Measurement, Search, pareto_front  # noqa: E402
+from ldmadvise.space import (SpaceError, candidate_assignments, group_of, load_space,  # noqa: E402
+                             sweep_file)
+
+VIEWS, RES = [4, 8, 16, 32, 64], [32, 64, 128, 256]
+SPEED = {"fast": 1.0, "mid": 1.5, "slow": 2.5}   # frame time per unit of work
+MEMORY = {"fast": 40, "mid": 16, "slow": 8}       # bytes per LDM pixel
+
+
+def space(structures=("fast", "mid", "slow"), ks=()):
+    out = []
+    for s in structures:
+        for n, r in itertools.product(VIEWS, RES):
+            out.append(Candidate(f"{s}-n{n}-r{r}", s, n, r))
+    for k in ks:
+        for n, r in itertools.product(VIEWS, RES):
+            out.append(Candidate(f"fla{k}-n{n}-r{r}", f"fla{k}", n, r, k=k))
+    return out
+
+
+def true_time(c):
+    speed = SPEED.get(c.group, 1.2)
+    return speed * (c.views * 0.5 + c.views * (c.r_ldm / 64) ** 2 * 0.25)
+
+
+def true_error(c):
+    return 1.0 / c.views + 3.3 / c.r_ldm  # no two geometries err alike
+
+
+def true_memory(c):
+    per_pixel = MEMORY.get(c.group, 4 * (c.k or 1))
+    return c.views * c.r_ldm ** 2 * per_pixel
+
+
+class Model:
+    """measure(): the true values with noise that shrinks with the level (3 levels), the
+    time interval and error band covering the truth; counts what it measures."""
+
+    def __init__(self, noise=0.0, seed=1, depth=6, error_of=true_error):
+        self.noise, self.rng, self.depth, self.error_of = noise, random.Random(seed), depth, error_of
+        self.measured, self.calls = [], 0
+
+    def __call__(self, candidates, level, stage):
+        self.calls += 1
+        out = {}
+        for c in candidates:
+            self.measured.append((c.key, level))
+            scale = self.noise / (2 ** level)
+            t = true_time(c) * (1 + self.rng.uniform(-scale, scale))
+            half = true_time(c) * scale * 1.05 + 1e-9
+            e = self.error_of(c)
+            band = e * scale + 1e-12
+            e_obs = e + self.rng.uniform(-band, band) * 0.9
+            status = "lossy" if c.k is not None and c.k < self.depth else "ok"
+            out[c.key] = Measurement(time=t, time_low=t - half, time_high=t + half, error=e_obs,
+                                     error_band=band, memory=true_memory(c), status=status,
+                                     max_depth=self.depth)
+        return out
+
+
+def exhaustive(cands, goal):
+    """The truth: the least error (or time) among the configurations within the budgets."""
+    feasible = [c for c in cands if (goal.budget_ms is None or true_time(c) <= goal.budget_ms)
+                and (goal.budget_bytes is None or true_memory(c) <= goal.budget_bytes)
+                and (goal.max_error is None or true_error(c) <= goal.max_error)
+                and not (c.k is not None and c.k < 6)]
+    if not feasible:
+        return None
+    key = (lambda c: (true_time(c), true_error(c))) if goal.minimize == "time" else \
+        (lambda c: (true_error(c), true_time(c)))
+    return min(feasible, key=key)
+
+
+class ExactModels(unittest.TestCase):
+    def run_search(self, goal, cands=None, model=None, levels=3):
+        cands = cands or space()
+        model = model or Model()
+        events = []
+        outcome = Search(cands, goal, levels, model, events.append).run()
+        return outcome, model, events
+
+    def test_least_error_within_time_budget(self):
+        goal = Goal(budget_ms=40)
+        outcome, model, _ = self.run_search(goal)
+        truth = exhaustive(space(), goal)
+        self.assertEqual(outcome.recommended, truth.key)
+        # the structures erring alike at that geometry (and within the budget) are its ties
+        same = {c.key for c in space() if (c.views, c.r_ldm) == (truth.views, truth.r_ldm)
+                and true_time(c) <= goal.budget_ms} - {truth.key}
+        self.assertEqual(set(outcome.ties), same)
+        # cheap first: far fewer measurements than the space
+        self.assertLess(len({k for k, _ in model.measured}), len(space()) // 2)
+
+    def test_fastest_within_error_bound(self):
+        goal = Goal(max_error=0.2)
+        outcome, model, _ = self.run_search(goal)
+        self.assertEqual(outcome.recommended, exhaustive(space(), goal).key)
+
+    def test_memory_budget(self):
+        goal = Goal(budget_ms=200, budget_bytes=8 * 64 * 64 * 16)
+        outcome, _, events = self.run_search(goal)
+        truth = exhaustive(space(), goal)
+        self.assertEqual(outcome.recommended, truth.key)
+        self.assertTrue(any(e.get("why", "").startswith("memory") for e in events))
+
+    def test_infeasible_budget_recommends_nothing(self):
+        goal = Goal(budget_ms=0.01)
+        outcome, _, events = self.run_search(goal)
+        self.assertIsNone(outcome.recommended)
+        self.assertEqual(outcome.ties, [])
+        pruned = [e for e in events if e["event"] == "pruned"]
+        self.assertEqual(len(pruned), len(space()))  # every candidate pruned, each with a reason
+        self.assertTrue(all(e["why"] for e in pruned))
+
+    def test_lossy_fixed_arrays_pruned_by_census_or_status(self):
+        cands = space(structures=("slow",), ks=(2, 8))
+        goal = Goal(budget_ms=60)
+        outcome, model, events = self.run_search(goal, cands)
+        self.assertEqual(outcome.recommended, exhaustive(cands, goal).key)
+        why = {e["config_id"]: e["why"] for e in events if e["event"] == "pruned"}
+        for c in cands:
+            if c.k == 2:
+                self.assertIn("lossy", why[c.key])
+        census = [k for k, w in why.items() if "census" in w]
+        self.assertTrue(census, "the census prunes some short arrays without measuring them")
+        measured = {k for k, _ in model.measured}
+        self.assertTrue(all(k not in measured for k in census))
+
+    def test_census_stage_prunes_short_arrays_before_any_measurement(self):
+        cands = space(structures=("slow",), ks=(2, 8))
+        asked = []
+
+        def census(geometries):
+            asked.extend(geometries)
+            return {g: 6 for g in geometries}
+
+        model, events = Model(), []
+        outcome = Search(cands, Goal(budget_ms=60), 3, model, events.append, census).run()
+        self.assertEqual(sorted(asked), sorted({(c.views, c.r_ldm) for c in cands if c.k}))
+        measured = {k for k, _ in model.measured}
+        self.assertFalse([c.key for c in cands if c.k == 2 and c.key in measured])
+        self.assertEqual(outcome.recommended, exhaustive(cands, Goal(budget_ms=60)).key)
+
+    def test_ties_are_shown_as_ties(self):
+        # two structures with the same time and error: the answer names both
+        cands = space(structures=("fast",)) + [Candidate(c.key.replace("fast", "twin"), "twin", c.views, c.r_ldm)
+                                              for c in space(structures=("fast",))]
+        SPEED["twin"], MEMORY["twin"] = SPEED["fast"], MEMORY["fast"]
+        try:
+            goal = Goal(budget_ms=40)
+            outcome, _, _ = self.run_search(goal, cands)
+        finally:
+            del SPEED["twin"], MEMORY["twin"]
+        truth = exhaustive(space(structures=("fast",)), goal).key
+        self.assertEqual({outcome.recommended} | set(outcome.ties), {truth, truth.replace("fast", "twin")})
+
+    def test_empty_space_refused(self):
+        with self.assertRaises(ValueError):
+            Search([], Goal(budget_ms=1), 3, Model())
+
+
+class OptimisticBriefMeasurement(unittest.TestCase):
+    def test_a_recommendation_failing_verification_revives_what_it_beat(self):
+        """The brief measurement of the true optimum's better neighbour is optimistic (within
+        the budget); at a normal run's precision it is over. What it beat or dominated comes
+        back, and the search ends at the true optimum."""
+        goal = Goal(budget_ms=40)
+        cands = space(structures=("fast",))
+        truth = exhaustive(cands, goal)
+        liar = "fast-n32-r128"  # truly 1.0 * (16 + 32 * 4 * 0.25) = 48 ms > 40
+
+        class Liar(Model):
+            def __call__(self, candidates, level, stage):
+                out = super().__call__(candidates, level, stage)
+                if liar in out and level < 2:
+                    m = out[liar]
+                    m.time, m.time_low, m.time_high = 30.0, 29.0, 31.0
+                return out
+
+        model, events = Liar(), []
+        search = Search(cands, goal, 3, model, events.append)
+        outcome = search.run()
+        self.assertEqual(outcome.recommended, liar)  # what the brief measurements say
+        # verification (as ldmbench_advise.py does it): the normal-precision measurement
+        search.states[liar].measurement = model([search.states[liar].candidate], 2, "verify")[liar]
+        search.states[liar].measurement.level = 3
+        self.assertFalse(search.recheck(liar, "verify"))
+        outcome = search.run(level=2)
+        self.assertEqual(outcome.recommended, truth.key)
+        self.assertTrue(any(e["event"] == "revived" for e in events))
+
+
+class UncertainAtEveryLevel(unittest.TestCase):
+    def test_none_surely_within_sends_the_best_that_may_be_to_verification(self):
+        """Both candidates' intervals straddle the budget at every level: the search does
+        not give up; the one with less error goes to verification, which decides."""
+        b, c = Candidate("b-n8-r64", "b", 8, 64), Candidate("c-n8-r64", "c", 8, 64)
+        values = {"b": (20, 0.2), "c": (21, 0.3)}
+
+        def measure(cands, level, stage):
+            return {x.key: Measurement(values[x.group][0], 15, 25, values[x.group][1], 0.001, 100)
+                    for x in cands}
+
+        outcome = Search([b, c], Goal(budget_ms=22), 2, measure).run()
+        self.assertEqual(outcome.recommended, b.key)
+        self.assertIn("verification", outcome.why)
+
+
+class NoisyModels(unittest.TestCase):
+    def test_noisy_measurements_find_a_tied_optimum(self):
+        """With noise, the recommendation is the true optimum or tied with it within the
+        final bands, and surely within the budget; over several seeds."""
+        goal = Goal(budget_ms=40)
+        truth = exhaustive(space(), goal)
+        for seed in range(8):
+            model = Model(noise=0.3, seed=seed)
+            outcome = Search(space(), goal, 3, model).run()
+            self.assertIsNotNone(outcome.recommended, seed)
+            rec = next(c for c in space() if c.key == outcome.recommended)
+            self.assertLessEqual(true_time(rec), goal.budget_ms, seed)
+            # its error is the optimum's within the last level's band (noise 0.3 / 4)
+            self.assertLessEqual(true_error(rec), true_error(truth) * (1 + 2 * 0.3 / 4) + 1e-12, seed)
+
+    def test_more_precision_only_near_the_front(self):
+        goal = Goal(budget_ms=40)
+        model = Model(noise=0.3, seed=3)
+        Search(space(), goal, 3, model).run()
+        level0 = {k for k, lv in model.measured if lv == 0}
+        level2 = {k for k, lv in model.measured if lv == 2}
+        self.assertLess(len(level2), len(level0))
+
+
+class Front(unittest.TestCase):
+    def test_pareto_front_with_ties(self):
+        m = lambda t, e: Measurement(t, t - 0.5, t + 0.5, e, 0.01, 1)  # noqa: E731
+        ms = {"a": m(1, 1.0), "b": m(1.2, 1.0), "c": m(5, 0.5), "d": m(6, 0.9), "e": m(9, 0.1)}
+        # a and b tie in both; d is beaten by c in both
+        self.assertEqual(pareto_front(Goal(budget_ms=10), ms), ["a", "b", "c", "e"])
+
+
+class Space(unittest.TestCase):
+    def test_parameters_apply_to_their_owner_only(self):
+        axes = {"structures": ["psppsll", "ppfla"], "views": [8, 16], "r_ldm": 64, "ppfla:k": [4, 8]}
+        assignments = candidate_assignments(axes, "ao")
+        self.assertEqual(len(assignments), 2 + 4)
+        self.assertTrue(all("ppfla:k" not in a for a in assignments if a["structures"] == "psppsll"))
+        self.assertNotEqual(group_of(assignments[2]), group_of(assignments[3]))  # k=4 vs k=8 lattices
+
+    def test_question_axes_refused(self):
+        import json
+        import tempfile
+        with tempfile.NamedTemporaryFile("w", suffix=".json", delete=False) as f:
+            json.dump({"axes": {"image_size": "64x64"}}, f)
+        try:
+            with self.assertRaisesRegex(SpaceError, "axes.image_size: fixed by the question"):
+                load_space(f.name, "ao", [], ["psppsll"], ["ao"])
+        finally:
+            os.unlink(f.name)
+
+    def test_sweep_file_measures_exactly_the_subset(self):
+        q = {"scene": "cornell", "pass": "ao", "image_size": "32x32"}
+        a = [{"structures": "ppfla", "views": 8, "ppfla:k": 4}, {"structures": "psppsll", "views": 16}]
+        spec = sweep_file(q, a, {"name": "brief", "frames": 3, "warmup": 1, "target": 0, "spp": 16}, "t")
+        self.assertEqual(spec["axes"]["structures"], "ppfla")
+        self.assertEqual(spec["include"], [a[1]])
+        self.assertEqual(spec["settings"]["reference"]["spp"], 16)
+
+
+if __name__ == "__main__":
+    unittest.main(verbosity=1)
