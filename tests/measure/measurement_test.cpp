@@ -6,6 +6,7 @@
 #include <map>
 
 #include "harness/app/measurement.h"
+#include "harness/app/measurement_session.h"
 #include "harness/passes/pass.h"
 #include "harness/records/output_folder.h"
 #include "harness/scene/scene_loader.h"
@@ -135,18 +136,24 @@ TEST(Measurement, KeepsEveryFrameAndSplitsBuildFromThePass) {
   ASSERT_EQ(m.frames.size(), 3u);
   EXPECT_EQ(seen, 3);
   EXPECT_EQ(m.pass_subpasses, (std::vector<std::string>{"gbuffer", "ao"}));
-  for (const FrameTimes& frame : m.frames) {
-    std::map<std::string, double> t(frame.begin(), frame.end());
-    for (const char* name : {"raster_baseline", "raster_touch", "clear", "count", "prefix_sum",
-                             "construct", "sort", "readback", "gbuffer", "ao", "build", "frame"})
+  for (size_t i = 0; i < m.frames.size(); ++i) {
+    std::map<std::string, double> t(m.frames[i].begin(), m.frames[i].end());
+    for (const char* name : {"clear", "count", "prefix_sum", "construct", "sort", "readback",
+                             "gbuffer", "ao", "build", "frame"})
       EXPECT_TRUE(t.count(name)) << name;
+    // The raster yardsticks on every kBaselineFrameStride-th measured frame from the first.
+    const bool yardsticks = i % kBaselineFrameStride == 0;
+    EXPECT_EQ(t.count("raster_baseline"), yardsticks ? 1u : 0u) << "frame " << i;
+    EXPECT_EQ(t.count("raster_touch"), yardsticks ? 1u : 0u) << "frame " << i;
     EXPECT_DOUBLE_EQ(t["build"], t["clear"] + t["count"] + t["prefix_sum"] + t["construct"] +
                                      t["sort"] + t["readback"]);
     EXPECT_DOUBLE_EQ(t["frame"], t["build"] + t["gbuffer"] + t["ao"]);
     EXPECT_DOUBLE_EQ(t["pass"], t["frame"] - t["build"]);  // the pass's own, summed per frame
   }
   EXPECT_EQ(m.raster_touch_fragments, m.census.fragments);
-  EXPECT_EQ(m.summaries().front().samples, 3u);
+  const std::vector<TimingSummary> summaries = m.summaries();
+  EXPECT_EQ(find_summary(summaries, "build")->samples, 3u);
+  EXPECT_EQ(find_summary(summaries, "raster_baseline")->samples, 2u);  // frames 0 and 2
   // Every frame's every time, one CSV row each, in order.
   const std::string csv = frame_samples_csv(m);
   size_t rows = 0, expected_rows = 1;
