@@ -5,7 +5,8 @@
 
 Least-squares lines through (fragments, median) of the ok records of each structure (one
 scene, one N, several R_LDM), for the build, for the empty raster pass (raster_baseline: the
-geometry pass with nothing shaded) and for the build less that pass. Issue 21 asked what the
+geometry pass with nothing shaded), for the census shader's pass (raster_touch: every
+fragment shaded, one atomicAdd) and for the build less the latter. Issue 21 asked what the
 fixed per-build cost is: when the build's intercept is about raster_baseline's, it is the
 per-triangle work of rasterising the scene into the N views, which every renderer of these
 views pays, and the build less it is close to proportional to the fragments.
@@ -30,9 +31,10 @@ def main(path):
             continue
         build = group["build_ms_median"]
         raster = group["raster_baseline_ms_median"]
+        touch = group["raster_touch_ms_median"]
         row = {"structure": structure, "points": len(group)}
-        for name, values in (("build", build), ("raster_baseline", raster),
-                             ("build_minus_raster", build - raster)):
+        for name, values in (("build", build), ("raster_baseline", raster), ("raster_touch", touch),
+                             ("build_minus_touch", build - touch)):
             intercept, slope = fit(group["fragments"], values)
             row[f"{name}_intercept_ms"] = round(intercept, 1)
             row[f"{name}_ns_per_fragment"] = round(slope, 1)
