@@ -136,7 +136,9 @@ Runner add_advise_command(CLI::App& app) {
   cmd->add_option("--image-size", o->image_size, "Output image WIDTHxHEIGHT");
   cmd->add_option("--out", o->out, "Advise folder: new, empty, or an earlier advise of the same question "
                                    "(resumed)")->required();
-  cmd->add_option("--cache-dir", o->cache_dir, "Reference cache folder (default: results/cache/references)");
+  cmd->add_option("--cache-dir", o->cache_dir,
+                  "Reference cache folder (default: $XDG_CACHE_HOME/ldmbench/references, else "
+                  "~/.cache/ldmbench/references)");
   cmd->add_option("--reference-max-spp", o->reference_max_spp,
                   "Cap of the references' samples per pixel per half, every stage");
   cmd->add_option("--levels", o->levels, "Precision levels of the race before verification, 1 or 2 (default 2)")
