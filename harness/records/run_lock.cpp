@@ -147,7 +147,13 @@ RunFolderLock::RunFolderLock(const std::string& out_dir, const std::string& comm
     bool locked = ::flock(fd_, LOCK_EX | LOCK_NB) == 0;
     if (!locked) {
       const int e = errno;
-      const Holder holder = parse_holder(read_all(fd_));
+      Holder holder = parse_holder(read_all(fd_));
+      // The holder writes who it is just after it takes the lock: a refusal in between would
+      // name nobody. Give it a moment (at most about a second) to say so.
+      for (int waited = 0; e == EWOULDBLOCK && holder.pid <= 0 && waited < 100; ++waited) {
+        ::usleep(10000);
+        holder = parse_holder(read_all(fd_));
+      }
       const bool no_flock = e == ENOLCK || e == EOPNOTSUPP || e == ENOSYS || e == EINVAL;
       if (e != EWOULDBLOCK && !no_flock) {
         give_up();
