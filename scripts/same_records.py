@@ -12,7 +12,8 @@ missing or extra, a column missing, a value differing); 2 when a folder cannot b
 Columns left out, and why (everything else, present in either record, must be equal):
 - measured time (`ldmbench columns`, group time): the <subpass>_ms_* statistics,
   build_vs_raster*, fragments_per_second, time_half_width, time_target_met, wall_seconds,
-  ref_render_seconds, rtao_bvh_ms. Two runs never time alike. frames_measured and the
+  ref_render_seconds, rtao_bvh_ms, and the harness's own costs frames_timed_ms, verify_ms,
+  verify_warmup_ms, verify_share. Two runs never time alike. frames_measured and the
   interval's coverage stay compared: with settings.timing.target 0 (the CI sweep) they are
   the fixed frame count, not a measurement.
 - where and by which job it ran: host and the slurm_* columns (which node, job, array task
@@ -32,7 +33,8 @@ from pathlib import Path
 TIME_COLUMNS = re.compile(
     r"^(.+_ms_(median|ci_low|ci_high|rep_spread|min|max|stddev)"
     r"|build_vs_raster|build_vs_raster_touch|fragments_per_second|time_half_width"
-    r"|time_target_met|wall_seconds|ref_render_seconds|rtao_bvh_ms)$")
+    r"|time_target_met|wall_seconds|ref_render_seconds|rtao_bvh_ms"
+    r"|frames_timed_ms|verify_ms|verify_warmup_ms|verify_share)$")
 HOST_COLUMNS = re.compile(r"^(host|slurm_.+)$")
 HISTORY_COLUMNS = {"ref_from_cache"}
 FILE_COLUMNS = re.compile(r"^(.+_(exr|png)|frame_samples_csv)$")
