@@ -19,6 +19,7 @@
 #include "harness/app/axis_registry.h"
 #include "harness/app/run_command.h"
 #include "harness/cli/commands.h"
+#include "harness/cli/python_tool.h"
 #include "harness/util/error.h"
 #include "harness/util/process.h"
 #include "ldm_impls/ldm_structure.h"
@@ -28,13 +29,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr const char* kScriptEnv = "LDMBENCH_ADVISE_SCRIPT";
-constexpr const char* kPythonEnv = "LDMBENCH_PYTHON";
-constexpr const char* kScriptName = "ldmbench_advise.py";
-constexpr const char* kPythonProbe =
-    "import importlib.util, sys\n"
-    "missing = [m for m in ('matplotlib', 'numpy') if importlib.util.find_spec(m) is None]\n"
-    "sys.exit('No module named ' + ', '.join(missing) if missing else 0)\n";
+// The search and its report's plot (numpy, matplotlib).
+const PythonTool& advise_tool() {
+  static const PythonTool tool{"advise", "advise", "ldmbench_advise.py", "LDMBENCH_ADVISE_SCRIPT",
+                               {"matplotlib", "numpy"}, "python3-matplotlib python3-numpy"};
+  return tool;
+}
 
 struct AdviseOptions {
   std::string scene, pass = "ao", space, out, image_size = "128x128", cache_dir;
@@ -75,45 +75,6 @@ void check_options(const AdviseOptions& o) {
     throw UserError("--out: '" + o.out + "' exists and is not a folder");
 }
 
-// The script: $LDMBENCH_ADVISE_SCRIPT, else installed beside the binary
-// (<bin>/advise/, <prefix>/share/ldmbench/advise/), else the source tree it was built from.
-std::string find_script() {
-  if (const char* env = std::getenv(kScriptEnv); env && *env) {
-    if (!fs::is_regular_file(env)) throw UserError(std::string(kScriptEnv) + "=" + env + ": no such file");
-    return env;
-  }
-  std::vector<fs::path> candidates;
-  if (const std::string exe = executable_path(); !exe.empty()) {
-    const fs::path bin = fs::path(exe).parent_path();
-    candidates.push_back(bin / "advise" / kScriptName);
-    candidates.push_back(bin.parent_path() / "share" / "ldmbench" / "advise" / kScriptName);
-  }
-  candidates.push_back(fs::path(LDM_SOURCE_DIR) / "scripts" / "advise" / kScriptName);
-  std::string tried;
-  for (const fs::path& c : candidates) {
-    if (fs::is_regular_file(c)) return c.string();
-    tried += "\n  " + c.string();
-  }
-  throw UserError(std::string("the advise script ") + kScriptName + " is not installed; looked in:" + tried +
-                  "\nset " + kScriptEnv + " to its path (scripts/advise/ in the sources)");
-}
-
-// A Python with numpy and matplotlib (the report's plot): $LDMBENCH_PYTHON, else python3
-// on PATH, else /usr/bin/python3.
-std::string find_python() {
-  std::vector<std::string> candidates;
-  if (const char* env = std::getenv(kPythonEnv); env && *env)
-    candidates = {env};
-  else
-    candidates = {"python3", "/usr/bin/python3"};
-  for (const std::string& python : candidates) {
-    const ProcessResult probe = run_process({python, "-c", kPythonProbe}, /*capture=*/true);
-    if (probe.started && probe.status == 0) return python;
-  }
-  throw UserError(std::string("ldmbench advise needs python3 with numpy and matplotlib; run "
-                              "scripts/setup.sh, or set ") + kPythonEnv);
-}
-
 }  // namespace
 
 Runner add_advise_command(CLI::App& app) {
@@ -146,8 +107,8 @@ Runner add_advise_command(CLI::App& app) {
   cmd->add_flag("--overwrite", o->overwrite, "Replace an earlier advise of another question in --out");
   return [o]() {
     check_options(*o);
-    const std::string script = find_script();
-    const std::string python = find_python();
+    const std::string script = find_tool_script(advise_tool());
+    const std::string python = find_tool_python(advise_tool());
     const std::string exe = executable_path();
     if (exe.empty()) throw UserError("cannot find this ldmbench binary's path (/proc/self/exe)");
     std::string scratch = (fs::temp_directory_path() / "ldmbench-advise-XXXXXX").string();

@@ -16,6 +16,7 @@
 #include "harness/app/axis_registry.h"
 #include "harness/app/run_command.h"
 #include "harness/cli/commands.h"
+#include "harness/cli/python_tool.h"
 #include "harness/compare/run_comparison.h"
 #include "harness/records/columns.h"
 #include "harness/records/journal.h"
@@ -30,16 +31,14 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr const char* kScriptEnv = "LDMBENCH_REPORT_SCRIPT";
-constexpr const char* kPythonEnv = "LDMBENCH_PYTHON";
-constexpr const char* kScriptName = "ldmbench_report.py";
 constexpr const char* kManifest = "manifest.json";  // what marks a folder as a report
-constexpr const char* kPythonModules = "matplotlib, pandas, numpy";
-// Finds the modules without importing them (an import of matplotlib takes a second).
-constexpr const char* kPythonProbe =
-    "import importlib.util, sys\n"
-    "missing = [m for m in ('matplotlib', 'pandas', 'numpy') if importlib.util.find_spec(m) is None]\n"
-    "sys.exit('No module named ' + ', '.join(missing) if missing else 0)\n";
+
+const PythonTool& report_tool() {
+  static const PythonTool tool{"report", "report", "ldmbench_report.py", "LDMBENCH_REPORT_SCRIPT",
+                               {"matplotlib", "pandas", "numpy"},
+                               "python3-matplotlib python3-pandas"};
+  return tool;
+}
 
 struct ReportOptions {
   std::vector<std::string> runs, axes, formats;
@@ -153,54 +152,6 @@ std::string default_out(const std::vector<std::string>& runs) {
   return (fs::path(records_file_of(runs[0])).parent_path() / "report").string();
 }
 
-// The script: $LDMBENCH_REPORT_SCRIPT, else installed beside the binary
-// (<bin>/report/, <prefix>/share/ldmbench/report/), else the source tree it was built from.
-std::string find_script() {
-  if (const char* env = std::getenv(kScriptEnv); env && *env) {
-    if (!fs::is_regular_file(env))
-      throw UserError(std::string(kScriptEnv) + "=" + env + ": no such file");
-    return env;
-  }
-  std::vector<fs::path> candidates;
-  if (const std::string exe = executable_path(); !exe.empty()) {
-    const fs::path bin = fs::path(exe).parent_path();
-    candidates.push_back(bin / "report" / kScriptName);
-    candidates.push_back(bin.parent_path() / "share" / "ldmbench" / "report" / kScriptName);
-  }
-  candidates.push_back(fs::path(LDM_SOURCE_DIR) / "scripts" / "report" / kScriptName);
-  std::string tried;
-  for (const fs::path& c : candidates) {
-    if (fs::is_regular_file(c)) return c.string();
-    tried += "\n  " + c.string();
-  }
-  throw UserError(std::string("the report script ") + kScriptName + " is not installed; looked in:" +
-                  tried + "\nset " + kScriptEnv + " to its path (scripts/report/ in the sources)");
-}
-
-// A Python that imports the plotting packages: $LDMBENCH_PYTHON, else python3 on PATH,
-// else /usr/bin/python3 (Debian's, where scripts/setup.sh installs them).
-std::string find_python() {
-  std::vector<std::string> candidates;
-  if (const char* env = std::getenv(kPythonEnv); env && *env)
-    candidates = {env};
-  else
-    candidates = {"python3", "/usr/bin/python3"};
-  std::string tried;
-  for (const std::string& python : candidates) {
-    const ProcessResult probe =
-        run_process({python, "-c", kPythonProbe}, /*capture=*/true);
-    if (probe.started && probe.status == 0) return python;
-    std::string why = probe.output;
-    if (const size_t last = why.find_last_not_of("\n"); last != std::string::npos)
-      why = why.substr(why.rfind('\n', last) + 1, last - why.rfind('\n', last));
-    tried += "\n  " + python + ": " +
-             (probe.started ? (why.empty() ? "exit " + std::to_string(probe.status) : why)
-                            : "cannot run (" + probe.output + ")");
-  }
-  throw UserError(std::string("ldmbench report needs python3 with ") + kPythonModules + "; tried:" +
-                  tried + "\nrun scripts/setup.sh (Debian: python3-matplotlib python3-pandas), "
-                  "or set " + kPythonEnv + " to a python that has them");
-}
 
 }  // namespace
 
@@ -229,8 +180,8 @@ Runner add_report_command(CLI::App& app) {
     for (const std::string& run : o->runs) check_run(run);
     const std::string out = o->out.empty() ? default_out(o->runs) : o->out;
     check_out_folder(out, o->runs);
-    const std::string script = find_script();
-    const std::string python = find_python();
+    const std::string script = find_tool_script(report_tool());
+    const std::string python = find_tool_python(report_tool());
     // The axes the report groups and labels by: the registry's declarations, as JSON.
     std::string scratch = (std::filesystem::temp_directory_path() / "ldmbench-report-XXXXXX").string();
     if (!mkdtemp(scratch.data())) throw UserError("cannot make a temporary folder for the report's axis registry");

@@ -50,80 +50,84 @@ void shift_view_eyes(const LdmFixture& f, float shift) {
   glMemoryBarrier(GL_ALL_BARRIER_BITS);
 }
 
-TEST_P(Verification, SamplesOfIdenticalBuildsFindNothingAndCoverEveryPixelOncePerStride) {
-  const LdmFixture f("cornell", 8, 32);
-  const auto s = f.build(structure());
-  const LdmInspector inspector(*s, *f.inputs);
-  BuildHealth health(f.census);
-  constexpr uint32_t kStride = 4;
-  BuildVerifier verifier(*s, inspector, health, VerifyMode::Sampled, kStride);
-  verifier.verify(false);  // the first build: in full
-  for (uint32_t i = 0; i < kStride; ++i) {
-    s->build(*f.inputs, nullptr);
-    verifier.verify(false);
+// One structure built on the Cornell box (N 8, R_LDM 32: 128 blocks), its first build
+// verified; `rebuild()` builds again and verifies that build.
+struct CheckedBuilds {
+  CheckedBuilds(const std::string& structure, VerifyMode mode, uint32_t stride = 4)
+      : f("cornell", 8, 32),
+        s(f.build(structure)),
+        inspector(*s, *f.inputs),
+        health(f.census),
+        verifier(*s, inspector, health, mode, stride) {
+    verifier.verify(false);  // the first build: in full
   }
-  EXPECT_EQ(health.status(), BuildStatus::Ok) << health.detail();
-  EXPECT_EQ(health.checksum_changes(), 0u);
-  EXPECT_EQ(verifier.counts().full, 1u);
-  EXPECT_EQ(verifier.counts().sampled, kStride);
+  // `storage_changed`: as after a rebuild or reallocation by the sizing policy.
+  void rebuild(bool storage_changed = false) {
+    s->build(*f.inputs, nullptr);
+    verifier.verify(storage_changed);
+  }
+  void change_the_next_build() { shift_view_eyes(f, 0.01f * f.views.views[0].depth_range); }
+
+  const LdmFixture f;
+  const std::unique_ptr<LdmStructure> s;
+  const LdmInspector inspector;
+  BuildHealth health;
+  BuildVerifier verifier;
+};
+
+TEST_P(Verification, SamplesOfIdenticalBuildsFindNothingAndCoverEveryPixelOncePerStride) {
+  constexpr uint32_t kStride = 4;
+  CheckedBuilds c(structure(), VerifyMode::Sampled, kStride);
+  for (uint32_t i = 0; i < kStride; ++i) c.rebuild();
+  EXPECT_EQ(c.health.status(), BuildStatus::Ok) << c.health.detail();
+  EXPECT_EQ(c.health.checksum_changes(), 0u);
+  EXPECT_EQ(c.verifier.counts().full, 1u);
+  EXPECT_EQ(c.verifier.counts().sampled, kStride);
   // Phases 0 .. stride-1 visit every block exactly once.
-  EXPECT_EQ(verifier.counts().sampled_pixels, f.views.total_pixels());
-  EXPECT_EQ(verifier.last_stats().fragments_stored + verifier.last_stats().fragments_lost,
-            f.census.total_fragments);
+  EXPECT_EQ(c.verifier.counts().sampled_pixels, c.f.views.total_pixels());
+  EXPECT_EQ(c.verifier.last_stats().fragments_stored + c.verifier.last_stats().fragments_lost,
+            c.f.census.total_fragments);
 }
 
 TEST_P(Verification, AChangedBuildIsCaughtByOneSample) {
-  const LdmFixture f("cornell", 8, 32);
-  const auto s = f.build(structure());
-  const LdmInspector inspector(*s, *f.inputs);
-  BuildHealth health(f.census);
-  BuildVerifier verifier(*s, inspector, health, VerifyMode::Sampled, 4);
-  verifier.verify(false);
-  ASSERT_EQ(health.status(), BuildStatus::Ok) << health.detail();
-  shift_view_eyes(f, 0.01f * f.views.views[0].depth_range);
-  s->build(*f.inputs, nullptr);
-  verifier.verify(false);
-  EXPECT_EQ(verifier.counts().full, 1u) << "the changed build must be judged by its sample";
-  EXPECT_EQ(verifier.counts().sampled, 1u);
-  EXPECT_EQ(health.checksum_changes(), 1u);
-  EXPECT_EQ(health.status(), BuildStatus::Invalid);
-  EXPECT_NE(health.detail().find("sampled 64-pixel blocks differ"), std::string::npos)
-      << health.detail();
+  CheckedBuilds c(structure(), VerifyMode::Sampled);
+  ASSERT_EQ(c.health.status(), BuildStatus::Ok) << c.health.detail();
+  c.change_the_next_build();
+  c.rebuild();
+  EXPECT_EQ(c.verifier.counts().full, 1u) << "the changed build must be judged by its sample";
+  EXPECT_EQ(c.verifier.counts().sampled, 1u);
+  EXPECT_EQ(c.health.checksum_changes(), 1u);
+  EXPECT_EQ(c.health.status(), BuildStatus::Invalid);
+  EXPECT_NE(c.health.detail().find("sampled 64-pixel blocks differ"), std::string::npos)
+      << c.health.detail();
 }
 
 TEST_P(Verification, EveryChecksEachBuildInFullAndCatchesTheSameChange) {
-  const LdmFixture f("cornell", 8, 32);
-  const auto s = f.build(structure());
-  const LdmInspector inspector(*s, *f.inputs);
-  BuildHealth health(f.census);
-  BuildVerifier verifier(*s, inspector, health, VerifyMode::Every);
-  verifier.verify(false);
-  s->build(*f.inputs, nullptr);
-  verifier.verify(false);
-  EXPECT_EQ(health.status(), BuildStatus::Ok) << health.detail();
-  shift_view_eyes(f, 0.01f * f.views.views[0].depth_range);
-  s->build(*f.inputs, nullptr);
-  verifier.verify(false);
-  EXPECT_EQ(verifier.counts().full, 3u);
-  EXPECT_EQ(verifier.counts().sampled, 0u);
-  EXPECT_EQ(health.checksum_changes(), 1u);
-  EXPECT_EQ(health.status(), BuildStatus::Invalid);
+  CheckedBuilds c(structure(), VerifyMode::Every);
+  c.rebuild();
+  EXPECT_EQ(c.health.status(), BuildStatus::Ok) << c.health.detail();
+  c.change_the_next_build();
+  c.rebuild();
+  EXPECT_EQ(c.verifier.counts().full, 3u);
+  EXPECT_EQ(c.verifier.counts().sampled, 0u);
+  EXPECT_EQ(c.health.checksum_changes(), 1u);
+  EXPECT_EQ(c.health.status(), BuildStatus::Invalid);
 }
 
+// A build on new storage is checked in full, and its block hashes replace the old ones: the
+// samples after it compare with it. (Here its lists really differ, so the full check counts
+// one change; samples against stale hashes would count one more per build.)
 TEST_P(Verification, ANewStorageIsCheckedInFullAndBecomesTheReference) {
-  const LdmFixture f("cornell", 8, 32);
-  const auto s = f.build(structure());
-  const LdmInspector inspector(*s, *f.inputs);
-  BuildHealth health(f.census);
-  BuildVerifier verifier(*s, inspector, health, VerifyMode::Sampled, 4);
-  verifier.verify(false);
-  s->build(*f.inputs, nullptr);
-  verifier.verify(true);  // as after a rebuild or reallocation by the sizing policy
-  s->build(*f.inputs, nullptr);
-  verifier.verify(false);
-  EXPECT_EQ(verifier.counts().full, 2u);
-  EXPECT_EQ(verifier.counts().sampled, 1u);
-  EXPECT_EQ(health.status(), BuildStatus::Ok) << health.detail();
+  CheckedBuilds c(structure(), VerifyMode::Sampled);
+  c.change_the_next_build();
+  c.rebuild(/*storage_changed=*/true);
+  EXPECT_EQ(c.verifier.counts().full, 2u);
+  EXPECT_EQ(c.health.checksum_changes(), 1u);
+  c.rebuild();
+  c.rebuild();
+  EXPECT_EQ(c.verifier.counts().full, 2u);
+  EXPECT_EQ(c.verifier.counts().sampled, 2u);
+  EXPECT_EQ(c.health.checksum_changes(), 1u) << "a sample compared with the first build's hashes";
 }
 
 TEST(VerifyMode, NamesRoundTripAndBadOnesAreRefusedByName) {
