@@ -159,6 +159,33 @@ TEST(Cli, RecordsCarryTheSizingPolicyAndWhatItCost) {
   EXPECT_EQ(ids.size(), 8u) << "every policy is its own configuration";
 }
 
+// Issue 21: what a run costs beside its measured frames is in every record and at the end of
+// the run: the build checks (sampled: one full check, the first build; --verify every: all
+// of them), the baselines' frames, the measured frames' timed work.
+TEST(Cli, RecordsSayWhatTheBuildChecksAndBaselinesCost) {
+  const fs::path dir = fs::path(test::make_temp_dir("ldm-cli"));
+  for (const std::string mode : {"sampled", "every"}) {
+    const fs::path out = dir / mode;
+    const Outcome o = ldmbench("run --scene cornell -N 4 -R 32 --width 32 --height 32 --frames 5 "
+                               "--warmup 2 --time-target 0 --no-reference --no-images --verify " +
+                               mode + " --out " + out.string());
+    ASSERT_EQ(o.status, 0) << o.output;
+    EXPECT_NE(o.output.find("harness cost: "), std::string::npos) << o.output;
+    const auto r = nlohmann::json::parse(read_text(out / "records.json"))["records"][0];
+    EXPECT_EQ(r["verify_mode"], mode);
+    const int64_t full = r["verify_full_checks"], sampled = r["verify_sampled_checks"];
+    EXPECT_EQ(full + sampled, 7) << "every build is checked, warm-up included";
+    // Sampled: only the first build in full, as no build here lands on new storage.
+    ASSERT_EQ(r["sizing_reallocations"].get<int64_t>(), 0);
+    EXPECT_EQ(full, mode == "every" ? 7 : 1);
+    EXPECT_EQ(r["baseline_frames"].get<int64_t>(), 3) << "measured frames 0, 2 and 4";
+    const double timed = r["frames_timed_ms"], frame = r["frame_ms_median"];
+    EXPECT_GE(timed, 5 * r["frame_ms_min"].get<double>());
+    EXPECT_GT(timed, frame);
+    EXPECT_NEAR(r["verify_share"].get<double>(), r["verify_ms"].get<double>() / timed, 1e-12);
+  }
+}
+
 TEST(Cli, BadInputIsRejectedBeforeAnythingIsWritten) {
   const std::string dir = test::make_temp_dir("ldm-cli");
   const std::string missing = (fs::path(dir) / "nothere.json").string();
