@@ -23,8 +23,9 @@ packages=(
   # real-world models referenced by scenes/ (installed under /usr/share/assimp/models)
   assimp-testmodels
   libgtest-dev libgmock-dev libbenchmark-dev
-  # scripts/bundle.sh: RUNPATH $ORIGIN on the bundled binaries and libraries
-  patchelf
+  # scripts/bundle.sh: RUNPATH $ORIGIN on the bundled binaries and libraries, and xz for its
+  # packed libraries and tarball (priority standard: not on every minimal image)
+  patchelf xz-utils
   # distributions for the timing statistics (harness/stats: binomial, Student t, non-central t)
   libboost-math-dev
   # Google Benchmark's compare.py (/usr/share/benchmark/compare.py) for ldmbench_gbench JSON
