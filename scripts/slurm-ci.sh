@@ -12,6 +12,12 @@
 #    record: the merge after it must be partial (the check must see the difference), then
 #    resubmitting that task the documented way (LDM_SLURM_TASKS=1 scripts/slurm-sweep.sh ...)
 #    resumes it, and the new merge must equal the single run again.
+# 3. `ldmbench advise --launcher slurm --shards 2`: every stage a job array plus merge. The
+#    partition is held down while the first stage is queued, the advise is killed (its whole
+#    process group, SIGKILL) and rerun: the rerun must wait for the queued jobs (journal
+#    event "reattached") instead of submitting the stage again; the partition comes back up
+#    and the advise must answer. Its census stage must equal the same stage measured by an
+#    unsharded local advise, and every stage's merged records must name their array task.
 # Exit nonzero, with the daemons' and jobs' logs, on any mismatch, failed job or timeout.
 # LDM_SLURM_CI_DIR: scratch folder (default: a new one under /tmp, removed on success).
 set -euo pipefail
@@ -50,7 +56,7 @@ munged_pid=/run/munge/ldm-ci-munged.pid
 started_munged=0
 
 show_logs() {
-  for f in "$work"/log/*.log "$work"/runs/*/slurm-logs/*.out; do
+  for f in "$work"/log/*.log "$work"/runs/*/slurm-logs/*.out "$work"/advise/*/stages/*/shards-*/slurm-logs/*.out; do
     [ -f "$f" ] || continue
     echo "---- $f (last 40 lines)"
     tail -n 40 "$f"
@@ -239,5 +245,55 @@ expect_state "$merge" "COMPLETED 0:0"
 grep -q "resuming: [1-9]" "$killed/slurm-logs/ldmbench-shard-1-of-$shards-job-${array}_1.out" ||
   fail "the resubmitted task did not resume its shard"
 scripts/same_records.py "$whole" "$killed/merged" || fail "the merge after resubmitting differs from the single run"
+
+# 3. advise through Slurm, killed while its first stage is queued, rerun, reattached.
+advise_dir="$work/advise"
+mkdir -p "$advise_dir"
+cat >"$advise_dir/space.json" <<'EOF2'
+{"axes": {"structures": ["psppsll", "habuffer", "ppfla"], "views": [2, 4], "r_ldm": [16, 32], "ppfla:k": [2, 8]}}
+EOF2
+advise_args=(advise --scene cornell --space "$advise_dir/space.json" --image-size 32x32 --reference-max-spp 16
+  --cache-dir "$work/cache" --budget-ms 1000 --budget-mib 0.25)
+"$ldmbench" "${advise_args[@]}" --out "$advise_dir/local" >"$work/log/advise-local.log" 2>&1 ||
+  fail "the local advise failed ($(tail -n 3 "$work/log/advise-local.log"))"
+sharded="$advise_dir/slurm"
+export LDM_ADVISE_POLL_S=0.5
+unset LDM_SWEEP_ARGS   # advise adds its own --cache-dir to the jobs' sweeps
+scontrol update PartitionName=ci State=DOWN
+setsid "$ldmbench" "${advise_args[@]}" --launcher slurm --shards 2 --out "$sharded" >"$work/log/advise-killed.log" 2>&1 &
+advise_pid=$!
+deadline=$((SECONDS + 60))
+until grep -q '"event": "submitted"' "$sharded/advise.jsonl" 2>/dev/null; do
+  [ $SECONDS -lt $deadline ] || fail "advise submitted no stage within 60 s ($(tail -n 3 "$work/log/advise-killed.log"))"
+  kill -0 "$advise_pid" 2>/dev/null || fail "advise ended before submitting ($(tail -n 3 "$work/log/advise-killed.log"))"
+  sleep 0.2
+done
+kill -KILL -- "-$advise_pid"
+wait "$advise_pid" 2>/dev/null || true
+[ -n "$(squeue -h -o %i)" ] || fail "the killed advise's jobs are not queued"
+say "advise killed with its first stage queued ($(squeue -h -o '%i %j %T' | tr '\n' ' '))"
+"$ldmbench" "${advise_args[@]}" --launcher slurm --shards 2 --out "$sharded" >"$work/log/advise-slurm.log" 2>&1 &
+advise_pid=$!
+deadline=$((SECONDS + 60))
+until grep -q '"event": "reattached"' "$sharded/advise.jsonl"; do
+  [ $SECONDS -lt $deadline ] || fail "the rerun advise did not reattach to the queued jobs within 60 s"
+  kill -0 "$advise_pid" 2>/dev/null || fail "the rerun advise ended without reattaching ($(tail -n 3 "$work/log/advise-slurm.log"))"
+  sleep 0.2
+done
+scontrol update PartitionName=ci State=UP
+advise_status=0
+wait "$advise_pid" || advise_status=$?
+[ "$advise_status" = 0 ] || fail "the rerun advise exited $advise_status ($(tail -n 5 "$work/log/advise-slurm.log"))"
+grep -q "Recommended: " "$work/log/advise-slurm.log" || fail "the advise through Slurm recommended nothing"
+census_submissions=$(grep '"event": "submitted"' "$sharded/advise.jsonl" | grep -c '01-census' || true)
+[ "$census_submissions" = 1 ] || fail "the census stage was submitted $census_submissions times (1 expected)"
+census_local=$(ls -d "$advise_dir"/local/stages/01-census/run)
+census_slurm=$(ls -d "$sharded"/stages/01-census/shards-*/merged)
+scripts/same_records.py "$census_local" "$census_slurm" ||
+  fail "the census stage through Slurm differs from the local one"
+for merged in "$sharded"/stages/*/shards-*/merged; do
+  grep -q '"slurm_array_task_id"' "$merged/records.json" || fail "$merged: its records do not name their array task"
+done
+say "advise through Slurm: killed, reattached, answered ($(grep -c '"event": "submitted"' "$sharded/advise.jsonl") stages submitted)"
 
 say "passed in $((SECONDS - started)) s"

@@ -19,6 +19,8 @@
 #                     default all: resubmit the failed ones after a failure (the merge reruns)
 #   LDM_SWEEP_ARGS    more `ldmbench sweep` options for every task (--cache-dir, ...)
 #   SBATCH_ARGS       more sbatch options for both jobs (partition, account, time, ...)
+#   LDM_SLURM_JOBS_FILE  where to write the submitted job ids as JSON, {"array": ID,
+#                     "merge": ID} (what `ldmbench advise --launcher slurm` waits for)
 #SBATCH --job-name=ldmbench-sweep
 #SBATCH --cpus-per-task=2
 #SBATCH --time=04:00:00
@@ -73,5 +75,8 @@ array=${array%%;*}  # --parsable: "id" or "id;cluster"
 merge=$(sbatch --parsable ${SBATCH_ARGS:-} --dependency=afterany:"$array" --export=ALL,LDM_SLURM_MERGE=1 \
   --job-name=ldmbench-merge --output="$logs/ldmbench-merge-job-%j.out" "$0" "$sweep" "$shards" "$out")
 merge=${merge%%;*}
+if [ -n "${LDM_SLURM_JOBS_FILE:-}" ]; then
+  printf '{"array": "%s", "merge": "%s"}\n' "$array" "$merge" >"$LDM_SLURM_JOBS_FILE"
+fi
 echo "slurm-sweep: array job $array (tasks ${LDM_SLURM_TASKS:-0-$((shards - 1))} of $shards shards of $sweep" \
   "into $out/shard-*), merge job $merge into $out/merged after it; logs in $logs"

@@ -37,10 +37,11 @@ const PythonTool& advise_tool() {
 }
 
 struct AdviseOptions {
-  std::string scene, pass = "ao", space, out, image_size = "128x128", cache_dir;
+  std::string scene, pass = "ao", space, out, image_size = "128x128", cache_dir, launcher = "local";
   std::vector<std::string> structures;
   std::optional<double> budget_ms, budget_mib, max_error, min_mssim;
   std::optional<unsigned> reference_max_spp, levels;
+  unsigned shards = 1;
   bool overwrite = false;
 };
 
@@ -104,6 +105,15 @@ Runner add_advise_command(CLI::App& app) {
                   "Cap of the references' samples per pixel per half, every stage");
   cmd->add_option("--levels", o->levels, "Precision levels of the race before verification, 1 or 2 (default 2)")
       ->check(CLI::Range(1, 2));
+  cmd->add_option("--shards", o->shards,
+                  "Measure every stage in this many shards of its sweep (ldmbench sweep --shard), merged; "
+                  "with --launcher slurm each shard is an array task on a GPU node of its own")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--launcher", o->launcher,
+                  "local: the stages' sweeps (or their shards, one after another) on this machine; slurm: "
+                  "each stage a job array plus merge through scripts/slurm-sweep.sh, waited for "
+                  "(LDM_SLURM_GPUS, LDM_SLURM_GPU_ARGS, SBATCH_ARGS apply; docs/guide/advise.md)")
+      ->check(CLI::IsMember({"local", "slurm"}));
   cmd->add_flag("--overwrite", o->overwrite, "Replace an earlier advise of another question in --out");
   return [o]() {
     check_options(*o);
@@ -136,6 +146,7 @@ Runner add_advise_command(CLI::App& app) {
     if (o->reference_max_spp) argv.insert(argv.end(), {"--reference-max-spp", std::to_string(*o->reference_max_spp)});
     if (o->levels) argv.insert(argv.end(), {"--levels", std::to_string(*o->levels)});
     if (o->overwrite) argv.push_back("--overwrite");
+    argv.insert(argv.end(), {"--shards", std::to_string(o->shards), "--launcher", o->launcher});
     const ProcessResult result = run_process(argv, /*capture=*/false, /*forward_stop=*/true);
     std::error_code ignored;
     fs::remove_all(scratch, ignored);

@@ -24,6 +24,7 @@ import time
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "report"))
 
+from ldmadvise.launch import LocalShards, SingleProcess, SlurmShards  # noqa: E402
 from ldmadvise.measure import CENSUS, LEVELS, VERIFY, MeasureError, StageRunner, measurement_of  # noqa: E402
 from ldmadvise.search import YES, Goal, Search, choose_best, primary_tied  # noqa: E402
 from ldmadvise.space import (SpaceError, candidate_assignments, candidate_of, load_space,  # noqa: E402
@@ -31,6 +32,9 @@ from ldmadvise.space import (SpaceError, candidate_assignments, candidate_of, lo
 from ldmadvise.report import fmt_bytes, write_report  # noqa: E402
 
 EXIT_USAGE, EXIT_NONE = 2, 1
+# scripts/slurm-sweep.sh beside this script's folder (the source tree), or installed beside it.
+DEFAULT_SLURM_SCRIPT = next((p for p in (os.path.join(os.path.dirname(os.path.abspath(__file__)), d, "slurm-sweep.sh")
+                                         for d in ("..", ".")) if os.path.isfile(p)), "")
 QUESTION_FILE, JOURNAL_FILE, RESULT_FILE = "advise.json", "advise.jsonl", "result.json"
 
 
@@ -57,6 +61,9 @@ def parse_arguments(argv):
     p.add_argument("--reference-max-spp", type=int)
     p.add_argument("--levels", type=int, default=len(LEVELS), choices=range(1, len(LEVELS) + 1))
     p.add_argument("--overwrite", action="store_true")
+    p.add_argument("--shards", type=int, default=1)
+    p.add_argument("--launcher", default="local", choices=["local", "slurm"])
+    p.add_argument("--slurm-script", default=DEFAULT_SLURM_SCRIPT)
     return p.parse_args(argv)
 
 
@@ -68,6 +75,14 @@ def check_budgets(a):
         fail(f"--min-mssim {a.min_mssim}: expected a number in (0, 1]")
     if a.max_error is not None and a.min_mssim is not None:
         fail("--max-error and --min-mssim: give one error bound, not both")
+    if a.shards < 1:
+        fail(f"--shards {a.shards}: expected a positive count")
+    if a.launcher == "slurm":
+        if not a.slurm_script or not os.access(a.slurm_script, os.X_OK):
+            fail(f"--launcher slurm: the job script {a.slurm_script or 'slurm-sweep.sh'} is not found or not "
+                 "executable (--slurm-script names it)")
+        if shutil.which("sbatch") is None or shutil.which("squeue") is None:
+            fail("--launcher slurm: sbatch and squeue are not on PATH (Debian: slurm-client)")
     if a.budget_ms is None and a.budget_mib is None and a.max_error is None and a.min_mssim is None:
         fail("no budget: give --budget-ms, --budget-mib, --max-error or --min-mssim (else the answer "
              "is simply the largest N and R_LDM of the space)")
@@ -163,12 +178,14 @@ def main(argv):
         with open(journal_path, "a", encoding="utf-8") as f:
             f.write(json.dumps(event) + "\n")
 
-    log({"event": "resumed" if resumed else "started", "configurations": len(ids)})
+    earlier_events = read_journal(journal_path)
+    log({"event": "resumed" if resumed else "started", "configurations": len(ids),
+         "launcher": a.launcher, "shards": a.shards})
     start = time.monotonic()
-    runner = StageRunner(a.ldmbench, a.out, question, by_id, metric, a.cache_dir, log)
+    runner = StageRunner(launcher_of(a, earlier_events), a.out, question, by_id, metric, log)
 
     def measure(cands, level, stage):
-        results, _, _ = runner.run_stage([c.key for c in cands], LEVELS[level], stage)
+        results, _, _, _ = runner.run_stage([c.key for c in cands], LEVELS[level], stage)
         return results
 
     def census(geometries):
@@ -178,7 +195,7 @@ def main(argv):
         for g in geometries:
             here = [c for c in candidates if (c.views, c.r_ldm) == g]
             picks.append(min(here, key=lambda c: (c.k is not None, -(c.k or 0))).key)
-        results, _, _ = runner.run_stage(picks, CENSUS, "census")
+        results, _, _, _ = runner.run_stage(picks, CENSUS, "census")
         return {g: results[k].max_depth for g, k in zip(geometries, picks) if results[k].max_depth is not None}
 
     search = Search(candidates, goal, a.levels, measure, log, census)
@@ -190,7 +207,7 @@ def main(argv):
             # dropped (what it had beaten comes back) and the race resumes at its top level.
             keys = [outcome.recommended] + outcome.ties[:1]
             stage = "verify" if attempt == 1 else f"verify-{attempt}"
-            verified, vfolder, vrows = runner.run_stage(keys, VERIFY, stage)
+            verified, vfolder, vrows, vrecords = runner.run_stage(keys, VERIFY, stage)
             for k, m in verified.items():  # the report shows each at its last precision
                 m.level = len(LEVELS)
                 search.states[k].measurement = m
@@ -231,13 +248,13 @@ def main(argv):
         surely = goal.verdict(m) == YES
         vf = number_of(rec_row, "wall_seconds")
         ref_noise = number_of(rec_row, "ref_noise_mse")
-        result["verified"] = {"folder": vfolder, "frame_ms": m.time, "frame_ms_interval": [m.time_low, m.time_high],
+        result["verified"] = {"folder": vfolder, "records": vrecords, "frame_ms": m.time, "frame_ms_interval": [m.time_low, m.time_high],
                               "error": m.error, "error_band": m.error_band, "metric": metric,
                               "mse_over_noise": number_of(rec_row, "mse_over_noise"),
                               "bytes_allocated": m.memory, "within_budgets_surely": surely,
                               "wall_s": vf}
         answer = [f"Recommended: **{recommended}** ({'surely within' if surely else 'within, but not surely within,'} "
-                  f"the budgets at a normal run's precision; record in {os.path.relpath(vfolder, a.out)}/run).",
+                  f"the budgets at a normal run's precision; record in {os.path.relpath(vrecords, a.out)}).",
                   "",
                   f"- frame time {m.time:.4g} ms, 95 % interval [{m.time_low:.4g}, {m.time_high:.4g}]"
                   + (f" (budget {goal.budget_ms} ms)" if goal.budget_ms else ""),
@@ -269,6 +286,28 @@ def main(argv):
     print(f"measured {result['measured']} configurations in {len(runner.costs)} stages of {len(ids)} in the space; "
           f"recorded wall time {result['wall_s_recorded']} s; report: {folder}/summary.md")
     return 0 if recommended else EXIT_NONE
+
+
+def read_journal(path):
+    """The events of earlier calls of this advise (a Slurm stage still running is reattached)."""
+    events = []
+    if os.path.isfile(path):
+        with open(path, encoding="utf-8") as f:
+            for line in f:
+                try:
+                    events.append(json.loads(line))
+                except json.JSONDecodeError:
+                    pass  # a line cut short by a kill
+    return events
+
+
+def launcher_of(a, earlier_events):
+    if a.launcher == "slurm":
+        return SlurmShards(a.ldmbench, a.cache_dir, a.shards, a.slurm_script, earlier_events,
+                           poll_s=float(os.environ.get("LDM_ADVISE_POLL_S", "2")))
+    if a.shards > 1:
+        return LocalShards(a.ldmbench, a.cache_dir, a.shards)
+    return SingleProcess(a.ldmbench, a.cache_dir)
 
 
 def number_of(row, column):

@@ -118,6 +118,20 @@ TEST(AdviseEndToEnd, SmallAdviseOnTheCornellBox) {
   EXPECT_NE(journal.find("\"event\": \"started\""), std::string::npos);
   EXPECT_NE(journal.find("\"event\": \"pruned\""), std::string::npos);
 
+  // Sharded (--shards 2, local): every stage in two shards, merged; the census stage (the
+  // same configurations whatever the timings) equals the unsharded one in every column that
+  // is not time.
+  const fs::path sharded = dir / "sharded";
+  const Outcome in_shards = ldmbench(common + " --budget-ms 1000 --budget-mib 0.25 --shards 2 --out " + sharded.string());
+  ASSERT_EQ(in_shards.status, 0) << in_shards.output;
+  EXPECT_TRUE(fs::exists(sharded / "stages" / "01-census" / "shards-2" / "shard-1" / "records.csv"));
+  const Outcome same = test::run_shell(std::string(LDM_PYTHON) + " " + LDM_TEST_SOURCE_DIR + "/../scripts/same_records.py " +
+                                       (out / "stages" / "01-census" / "run").string() + " " +
+                                       (sharded / "stages" / "01-census" / "shards-2" / "merged").string());
+  EXPECT_EQ(same.status, 0) << same.output;
+  const auto result_sharded = nlohmann::json::parse(test::read_text((sharded / "result.json").string()));
+  EXPECT_NE(result_sharded["verified"]["records"].get<std::string>().find("shards-"), std::string::npos);
+
   // Resumed: the same question into the same folder measures nothing again.
   const size_t before = measured_records(out);
   const Outcome again = ldmbench(question);
@@ -141,6 +155,60 @@ TEST(AdviseEndToEnd, SmallAdviseOnTheCornellBox) {
   const auto result3 = nlohmann::json::parse(test::read_text((dir / "none" / "result.json").string()));
   EXPECT_TRUE(result3["recommended"].is_null());
   EXPECT_EQ(result3["pruned"].size(), 6u);
+}
+
+// Killed (SIGKILL, the whole process group) in the middle of a stage, after its sweep
+// recorded a configuration and before it recorded them all, then rerun: the rerun resumes
+// that stage's sweep (the recorded configurations are not measured again) and answers.
+TEST(AdviseEndToEnd, KilledMidStageResumes) {
+  const fs::path dir = test::make_temp_dir("advise-kill");
+  std::ofstream(dir / "space.json")
+      << R"({"axes": {"structures": ["psppsll", "habuffer", "ppfla"], "views": [2, 4, 8], "r_ldm": [16, 32],
+                      "ppfla:k": [8]}})";
+  const fs::path out = dir / "advice";
+  const std::string args = "advise --scene cornell --space " + (dir / "space.json").string() +
+                           " --image-size 32x32 --reference-max-spp 16 --cache-dir " + (dir / "cache").string() +
+                           " --budget-ms 1000 --budget-mib 0.25 --out " + out.string();
+  // The first exploration stage measures several configurations: stop the advise (SIGSTOP
+  // on its group) each time its sweep has a record, kill it when 1 <= records < all.
+  const fs::path stage = out / "stages" / "02-explore-0";
+  std::ofstream(dir / "kill.sh") << R"(set -u
+setsid "$1" $2 >"$3" 2>&1 &
+pid=$!
+journal="$4/run/records.jsonl"
+spec="$4/sweep.json"
+for i in $(seq 1 6000); do
+  kill -0 $pid 2>/dev/null || { echo "advise ended before it could be killed"; exit 1; }
+  if [ -f "$journal" ] && [ -f "$spec" ]; then
+    kill -STOP -- -$pid
+    have=$(grep -c '^{"record":' "$journal" || true)
+    total=$(sed -n 's/.*stage explore-0: \([0-9]*\) configurations.*/\1/p' "$spec")
+    if [ "$have" -ge 1 ] && [ "$have" -lt "${total:-0}" ]; then
+      kill -KILL -- -$pid; wait $pid 2>/dev/null
+      echo "killed after $have of $total"; exit 0
+    fi
+    kill -CONT -- -$pid
+  fi
+  sleep 0.01
+done
+echo "never in the middle of the stage"; kill -KILL -- -$pid; exit 1
+)";
+  const Outcome kill = test::run_shell("bash " + (dir / "kill.sh").string() + " " + LDM_BINARY_PATH + " '" + args +
+                                       "' " + (dir / "first.log").string() + " " + stage.string());
+  ASSERT_EQ(kill.status, 0) << kill.output << test::read_text((dir / "first.log").string());
+  EXPECT_FALSE(fs::exists(out / "result.json"));
+
+  const Outcome rerun = ldmbench(args);
+  ASSERT_EQ(rerun.status, 0) << rerun.output;
+  const std::string log = test::read_text((stage / "sweep.log").string());
+  // "killed after K of T": the rerun's sweep resumes exactly those K records.
+  const size_t after = kill.output.find("killed after ");
+  ASSERT_NE(after, std::string::npos) << kill.output;
+  const std::string recorded = kill.output.substr(after + 13, kill.output.find(' ', after + 13) - after - 13);
+  EXPECT_NE(log.find("resuming: " + recorded + " configuration"), std::string::npos) << kill.output << "\n" << log;
+  const auto result = nlohmann::json::parse(test::read_text((out / "result.json").string()));
+  EXPECT_TRUE(result["resumed"].get<bool>());
+  EXPECT_FALSE(result["recommended"].is_null());
 }
 
 }  // namespace

@@ -5,9 +5,9 @@ import csv
 import json
 import math
 import os
-import subprocess
 import time
 
+from .launch import LaunchError
 from .search import Measurement
 from .space import sweep_file
 
@@ -22,7 +22,6 @@ LEVELS = [
 CENSUS = {"name": "census", "frames": 1, "warmup": 0, "target": 0, "reference": False}
 # A normal `ldmbench run`: its frames, warm-up, time target and automatic reference.
 VERIFY = {"name": "verify", "frames": 5, "warmup": 2, "target": 0.03, "cap_s": 2, "spp": 0, "images": True}
-SWEEP_FINISHED = (0, 3)  # ok; finished with some records failed (those are pruned)
 
 
 class MeasureError(Exception):
@@ -68,16 +67,19 @@ def read_records(path):
 
 
 class StageRunner:
-    """Runs the stages of one advise into OUT/stages/NN-STAGE/ and keeps what they cost."""
+    """Runs the stages of one advise into OUT/stages/NN-STAGE/ (through `launcher`: one
+    process, local shards or a Slurm array; ldmadvise/launch.py) and keeps what they cost."""
 
-    def __init__(self, ldmbench, out, question, assignments, metric, cache_dir, log):
-        self.ldmbench, self.out, self.question = ldmbench, out, question
-        self.assignments, self.metric, self.cache_dir, self.log = assignments, metric, cache_dir, log
+    def __init__(self, launcher, out, question, assignments, metric, log):
+        self.launcher, self.out, self.question = launcher, out, question
+        self.assignments, self.metric, self.log = assignments, metric, log
         self.count = 0
         self.rows = {}      # (stage folder, config id) -> record row, for the report
         self.costs = []     # per stage: name, configurations, wall seconds of this call
 
     def run_stage(self, keys, precision, stage):
+        """The stage's measurements by key, its folder, its record rows and its records
+        folder (STAGE/run, or STAGE/shards-N/merged when sharded)."""
         self.count += 1
         folder = os.path.join(self.out, "stages", f"{self.count:02d}-{stage}")
         os.makedirs(folder, exist_ok=True)
@@ -90,27 +92,22 @@ class StageRunner:
             with open(sweep_path + ".tmp", "w", encoding="utf-8") as f:
                 f.write(text)
             os.replace(sweep_path + ".tmp", sweep_path)
-        run = os.path.join(folder, "run")
-        argv = [self.ldmbench, "sweep", sweep_path, "--out", run]
-        if self.cache_dir:
-            argv += ["--cache-dir", self.cache_dir]
         start = time.monotonic()
-        with open(os.path.join(folder, "sweep.log"), "a", encoding="utf-8") as log:
-            status = subprocess.call(argv, stdout=log, stderr=subprocess.STDOUT)
+        try:
+            run = self.launcher.run(folder, sweep_path, keys, stage, self.log)
+        except LaunchError as e:
+            raise MeasureError(str(e))
         seconds = time.monotonic() - start
-        if status not in SWEEP_FINISHED:
-            raise MeasureError(f"stage {stage}: `{' '.join(argv)}` exited {status} "
-                               f"(its output: {os.path.join(folder, 'sweep.log')})")
         rows = read_records(os.path.join(run, "records.csv"))
         missing = [k for k in keys if k not in rows]
         if missing:
             raise MeasureError(f"stage {stage}: {run}/records.csv lacks {', '.join(missing)}")
         recorded = sum(number(rows[k], "wall_seconds") for k in keys)
-        self.costs.append({"stage": stage, "folder": folder, "configurations": len(keys),
+        self.costs.append({"stage": stage, "folder": folder, "records": run, "configurations": len(keys),
                            "precision": precision["name"], "wall_s_this_call": round(seconds, 2),
                            "wall_s_recorded": round(recorded, 2) if math.isfinite(recorded) else None})
-        self.log({"event": "measured", "stage": stage, "folder": folder, "configurations": len(keys),
-                  "wall_s": round(seconds, 2)})
+        self.log({"event": "measured", "stage": stage, "folder": folder, "records": run,
+                  "configurations": len(keys), "wall_s": round(seconds, 2)})
         for k in keys:
             self.rows[(folder, k)] = rows[k]
-        return {k: measurement_of(rows[k], self.metric) for k in keys}, folder, rows
+        return {k: measurement_of(rows[k], self.metric) for k in keys}, folder, rows, run
