@@ -94,7 +94,8 @@ Runner add_advise_command(CLI::App& app) {
   cmd->add_option("--structures", o->structures, "Only these structures (comma list)")->delimiter(',');
   cmd->add_option("--space", o->space,
                   "Space file: {\"axes\": {structures, views, r_ldm, trace, sizing, OWNER:KEY ...}} "
-                  "(default: every structure, N 8,16,32, R_LDM 64,128, fixed arrays' k 4,8,16)");
+                  "(default: every structure, N 8,16,32, R_LDM 64,128, fixed arrays' k 4,8,16; indirect: N 8,16, "
+                  "R_LDM 32,64, k 4,8,16, indirect:r_light 32,64)");
   cmd->add_option("--image-size", o->image_size, "Output image WIDTHxHEIGHT");
   cmd->add_option("--out", o->out, "Advise folder: new, empty, or an earlier advise of the same question "
                                    "(resumed)")->required();

@@ -211,5 +211,29 @@ echo "never in the middle of the stage"; kill -KILL -- -$pid; exit 1
   EXPECT_FALSE(result["recommended"].is_null());
 }
 
+// The indirect-light pass end to end: a space with the pass's own parameter (R_light, the
+// photons emitted) besides the structures'; answered and verified, and the verified record
+// is an indirect-light record of the recommended configuration with its error measured.
+TEST(AdviseEndToEnd, IndirectLightOnTheCornellBox) {
+  const fs::path dir = test::make_temp_dir("advise-indirect");
+  std::ofstream(dir / "space.json")
+      << R"({"axes": {"structures": ["psppsll", "ppfla"], "views": [2, 4], "r_ldm": [16, 32], "ppfla:k": [8],
+                      "indirect:r_light": [8, 16]}})";
+  const fs::path out = dir / "advice";
+  const Outcome o = ldmbench("advise --scene cornell --pass indirect --space " + (dir / "space.json").string() +
+                             " --image-size 32x32 --reference-max-spp 16 --cache-dir " + (dir / "cache").string() +
+                             " --budget-ms 2000 --budget-mib 0.25 --out " + out.string());
+  ASSERT_EQ(o.status, 0) << o.output;
+  const auto result = nlohmann::json::parse(test::read_text((out / "result.json").string()));
+  EXPECT_EQ(result["configurations"].get<int>(), 16);  // 2 structures x 2 N x 2 R_LDM x 2 R_light
+  const std::string recommended = result["recommended"];
+  EXPECT_NE(recommended.find("-indirect-"), std::string::npos) << recommended;
+  EXPECT_GT(result["verified"]["error"].get<double>(), 0.0);
+  const std::string records =
+      test::read_text((fs::path(result["verified"]["records"].get<std::string>()) / "records.csv").string());
+  EXPECT_NE(records.find(recommended), std::string::npos);
+  EXPECT_NE(records.find("r_light"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace ldm

@@ -20,7 +20,9 @@ FIXED_ARRAYS = ("ppfla", "psppfla")
 
 DEFAULT_SPACE = {
     "ao": {"views": [8, 16, 32], "r_ldm": [64, 128], "ppfla:k": [4, 8, 16], "psppfla:k": [4, 8, 16]},
-    "indirect": {"views": [8, 16], "r_ldm": [32, 64], "ppfla:k": [4, 8, 16], "psppfla:k": [4, 8, 16]},
+    # indirect:r_light (the light map's resolution: photons emitted) trades time for error too.
+    "indirect": {"views": [8, 16], "r_ldm": [32, 64], "ppfla:k": [4, 8, 16], "psppfla:k": [4, 8, 16],
+                 "indirect:r_light": [32, 64]},
 }
 
 
