@@ -26,7 +26,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 
 from ldmadvise.launch import LocalShards, SingleProcess, SlurmShards  # noqa: E402
 from ldmadvise.measure import CENSUS, LEVELS, VERIFY, MeasureError, StageRunner, measurement_of  # noqa: E402
-from ldmadvise.search import YES, Goal, Search, choose_best, primary_tied  # noqa: E402
+from ldmadvise.search import YES, CensusPlan, Goal, Search, choose_best, primary_tied  # noqa: E402
 from ldmadvise.space import (SpaceError, candidate_assignments, candidate_of, load_space,  # noqa: E402
                              sweep_file)
 from ldmadvise.report import fmt_bytes, write_report  # noqa: E402
@@ -188,15 +188,19 @@ def main(argv):
         results, _, _, _ = runner.run_stage([c.key for c in cands], LEVELS[level], stage)
         return results
 
-    def census(geometries):
+    def census(cands):
         # Any structure counts the same fragments: a list where the space has one, else the
         # longest fixed array, at each geometry.
+        geometries = sorted({(c.views, c.r_ldm) for c in cands if c.k is not None})
+        if not geometries:
+            return CensusPlan()
         picks = []
         for g in geometries:
             here = [c for c in candidates if (c.views, c.r_ldm) == g]
             picks.append(min(here, key=lambda c: (c.k is not None, -(c.k or 0))).key)
         results, _, _, _ = runner.run_stage(picks, CENSUS, "census")
-        return {g: results[k].max_depth for g, k in zip(geometries, picks) if results[k].max_depth is not None}
+        return CensusPlan(depths={g: results[k].max_depth for g, k in zip(geometries, picks)
+                                  if results[k].max_depth is not None})
 
     search = Search(candidates, goal, a.levels, measure, log, census)
     try:

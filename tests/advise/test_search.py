@@ -11,7 +11,7 @@ import unittest
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts", "advise"))
 
-from ldmadvise.search import Candidate, Goal, Measurement, Search, pareto_front  # noqa: E402
+from ldmadvise.search import Candidate, CensusPlan, Goal, Measurement, Search, pareto_front  # noqa: E402
 from ldmadvise.space import (SpaceError, candidate_assignments, group_of, load_space,  # noqa: E402
                              sweep_file)
 
@@ -143,16 +143,39 @@ class ExactModels(unittest.TestCase):
         cands = space(structures=("slow",), ks=(2, 8))
         asked = []
 
-        def census(geometries):
-            asked.extend(geometries)
-            return {g: 6 for g in geometries}
+        def census(candidates):
+            asked.extend(candidates)
+            return CensusPlan(depths={(c.views, c.r_ldm): 6 for c in candidates})
 
         model, events = Model(), []
         outcome = Search(cands, Goal(budget_ms=60), 3, model, events.append, census).run()
-        self.assertEqual(sorted(asked), sorted({(c.views, c.r_ldm) for c in cands if c.k}))
+        self.assertEqual(sorted(c.key for c in asked), sorted(c.key for c in cands))
         measured = {k for k, _ in model.measured}
         self.assertFalse([c.key for c in cands if c.k == 2 and c.key in measured])
         self.assertEqual(outcome.recommended, exhaustive(cands, Goal(budget_ms=60)).key)
+
+    def test_census_memory_plan_prunes_over_budget_before_any_measurement(self):
+        # The plan's exact bytes drop every configuration over the budget unmeasured (the
+        # lattice rule alone would have measured some); a refused one is dropped with its reason.
+        cands = space()
+        goal = Goal(budget_ms=200, budget_bytes=8 * 64 * 64 * 16)
+        refused = cands[0].key
+
+        def census(candidates):
+            return CensusPlan(memory={c.key: true_memory(c) for c in candidates},
+                              refused={refused: "a buffer over the storage block"})
+
+        model, events = Model(), []
+        outcome = Search(cands, goal, 3, model, events.append, census).run()
+        over = {c.key for c in cands if true_memory(c) > goal.budget_bytes}
+        self.assertTrue(over)
+        measured = {k for k, _ in model.measured}
+        self.assertFalse(over & measured, "measured a configuration the plan puts over the budget")
+        self.assertNotIn(refused, measured)
+        why = {e["config_id"]: e["why"] for e in events if e["event"] == "pruned"}
+        self.assertTrue(all(why[k].startswith("memory (census)") for k in over if k != refused))
+        self.assertTrue(why[refused].startswith("refused (census)"))
+        self.assertEqual(outcome.recommended, exhaustive([c for c in cands if c.key != refused], goal).key)
 
     def test_ties_are_shown_as_ties(self):
         # two structures with the same time and error: the answer names both

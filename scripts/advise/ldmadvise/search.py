@@ -13,9 +13,10 @@ time and memory do not fall and AO error does not rise as N and R_LDM grow. So:
 
   1. explore (brief precision): per structure lattice, measure the middle undecided point;
      a point surely over a budget removes every larger point of its lattice, a point surely
-     within the budgets removes every smaller one (dominated: no less error); a census
-     (deepest LDM pixel, in every record) removes fixed arrays too short for that geometry
-     without building them. Repeat until every point is measured or removed: about
+     within the budgets removes every smaller one (dominated: no less error). Before it, the
+     census (`ldmbench sweep --memory-plan`: the fragments counted, each structure's storage
+     planned, nothing built or timed) removes every configuration whose exact allocation is
+     over the memory budget, and fixed arrays too short for that geometry (lossy). Repeat until every point is measured or removed: about
      log2 of the lattice's size per structure instead of all of it.
   2. race (successive halving): the survivors are measured again at rising precision (more
      frames, a reference with more samples, so smaller tie bands); at each level a
@@ -152,6 +153,16 @@ def choose_best(goal, items, measurement_of=lambda x: x):
 
 
 @dataclass
+class CensusPlan:
+    """What the census says before anything is built or measured: the deepest LDM pixel per
+    geometry (N, R_LDM), and per configuration the exact bytes its structure allocates for
+    this scene (`ldmbench sweep --memory-plan`), or why it cannot run at all."""
+    depths: Dict[tuple, int] = field(default_factory=dict)
+    memory: Dict[str, int] = field(default_factory=dict)
+    refused: Dict[str, str] = field(default_factory=dict)
+
+
+@dataclass
 class State:
     candidate: Candidate
     measurement: Optional[Measurement] = None
@@ -178,8 +189,9 @@ class Search:
         if not candidates:
             raise ValueError("empty space")
         self.goal, self.levels, self.measure, self.log = goal, levels, measure, log
-        self.census = census  # census([(N, R_LDM)]) -> {(N, R_LDM): deepest LDM pixel}
+        self.census = census  # census([Candidate]) -> CensusPlan
         self.states: Dict[str, State] = {c.key: State(c) for c in candidates}
+        self.planned_memory: Dict[str, int] = {}  # the census's exact bytes per configuration
         self.stage_count = 0
 
     # ---- bookkeeping
@@ -283,19 +295,24 @@ class Search:
 
     # ---- stages
     def census_stage(self):
-        """The census of every geometry that has fixed arrays (one unmeasured build each, no
-        reference): a fixed array shorter than the deepest pixel is lossy, known without
-        building it."""
-        geometries = sorted({(s.candidate.views, s.candidate.r_ldm) for s in self.alive()
-                             if s.candidate.k is not None})
-        if not geometries or self.census is None:
+        """The census of every candidate, before anything is built or measured: a
+        configuration that cannot run (refused), that allocates more than the memory budget,
+        or a fixed array shorter than the deepest pixel (lossy) is dropped here."""
+        if self.census is None:
             return
-        self.log({"event": "stage", "stage": "census", "geometries": [list(g) for g in geometries]})
-        depths = self.census(geometries)
-        for s in self.alive():
-            c = s.candidate
-            depth = depths.get((c.views, c.r_ldm))
-            if c.k is not None and depth is not None and c.k < depth:
+        cands = [s.candidate for s in self.alive()]
+        self.log({"event": "stage", "stage": "census", "configurations": len(cands)})
+        plan = self.census(cands)
+        self.planned_memory = dict(plan.memory)
+        for c in cands:
+            depth = plan.depths.get((c.views, c.r_ldm))
+            planned = plan.memory.get(c.key)
+            if c.key in plan.refused:
+                self.prune(c.key, f"refused (census): {plan.refused[c.key]}", "census")
+            elif planned is not None and self.goal.budget_bytes is not None and planned > self.goal.budget_bytes:
+                self.prune(c.key, f"memory (census): allocates {planned} bytes > budget "
+                                  f"{self.goal.budget_bytes}", "census")
+            elif c.k is not None and depth is not None and c.k < depth:
                 self.prune(c.key, f"lossy (census): the deepest LDM pixel holds {depth} fragments, "
                                   f"more than k = {c.k}", "census")
 
