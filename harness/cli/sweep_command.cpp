@@ -106,13 +106,12 @@ Runner add_sweep_command(CLI::App& app, const std::string& command_line,
                                   "List the configurations (index, id, image size, frames) and write nothing");
   sweep->add_flag(
            "--memory-plan", o->memory_plan,
-           "Measure nothing: print, per configuration, the bytes every buffer allocates (from the "
-           "fragment census and the structure's prepare(), no build; CSV on stdout and, with --out, "
-           "in DIR/memory-plan.csv): config_id, ..., bytes_allocated (as the record's), buffers, "
-           "k and lossy (fixed arrays: k < max_depth_complexity), exact (yes: every measured run "
-           "records these bytes: oracle, budget, census; no: previous_frame, planned as its first "
-           "frame grows it, which later builds may change by a few bytes), status (planned, or "
-           "refused with the reason, as a sweep's failed record: exit 3)")
+           "Measure nothing: per configuration, the bytes each buffer allocates, from the fragment "
+           "census and the structure's prepare() (no build), as CSV on stdout and, with --out, in "
+           "DIR/memory-plan.csv: bytes_allocated as the record's, buffers, k and lossy (fixed "
+           "arrays), exact (yes: oracle, budget, census; no: previous_frame, whose later builds may "
+           "change its first frame's storage by a few bytes), status planned or refused (exit 3, "
+           "as a sweep's failed configurations) (docs/guide/sweeps.md#memory-plan)")
       ->excludes(dry_run);
   sweep->add_option("--cache-dir", o->cache_dir,
                     "Reference cache folder (default: $XDG_CACHE_HOME/ldmbench/references, else "
