@@ -98,13 +98,13 @@ Runner add_sweep_command(CLI::App& app, const std::string& command_line,
                     "interleaved, balanced along every axis (docs/guide/sweeps.md); join slices "
                     "with `ldmbench merge`")
       ->capture_default_str();
-  sweep->add_flag("--redo-failed", o->redo_failed,
+  auto* redo_failed = sweep->add_flag("--redo-failed", o->redo_failed,
                   "Measure again the configurations the folder holds as failed (else kept)");
-  sweep->add_flag("--overwrite", o->overwrite,
+  auto* overwrite = sweep->add_flag("--overwrite", o->overwrite,
                   "Replace the records and images in --out when they belong to another sweep");
   auto* dry_run = sweep->add_flag("--dry-run", o->dry_run,
                                   "List the configurations (index, id, image size, frames) and write nothing");
-  sweep->add_flag(
+  auto* memory_plan = sweep->add_flag(
            "--memory-plan", o->memory_plan,
            "Measure nothing: per configuration, the bytes each buffer allocates, from the fragment "
            "census and the structure's prepare() (no build), as CSV on stdout and, with --out, in "
@@ -120,19 +120,22 @@ Runner add_sweep_command(CLI::App& app, const std::string& command_line,
       ->check(CLI::IsMember({"auto", "device", "surfaceless"}))
       ->capture_default_str();
   sweep->add_flag("--gl-debug", o->gl_debug, "Print OpenGL debug messages");
-  sweep->add_option("--repetitions", o->repetitions,
+  auto* repetitions = sweep->add_option("--repetitions", o->repetitions,
                     "Independent repetitions of every configuration (default: the file's "
                     "settings.timing.repetitions, else 1)")
       ->check(CLI::Range(1, 1000));
-  sweep->add_option("--isolation", o->isolation,
+  auto* isolation = sweep->add_option("--isolation", o->isolation,
                     "What keeps repetitions independent: context or process (default: the file's, "
                     "else context)")
       ->check(CLI::IsMember({"context", "process"}));
-  sweep->add_option("--step", o->step,
+  auto* step = sweep->add_option("--step", o->step,
                     "Measure only the next repetition of this configuration id and stop (the "
                     "children of --isolation process and `ldmbench interleave`)");
-  sweep->add_option("--interleaved-session", o->interleaved_session,
+  auto* session = sweep->add_option("--interleaved-session", o->interleaved_session,
                     "The `ldmbench interleave` session this run belongs to (recorded)");
+  // A memory plan measures nothing: options about measuring or resuming would be ignored.
+  for (CLI::Option* measuring : {redo_failed, overwrite, repetitions, isolation, step, session})
+    memory_plan->excludes(measuring);
 
   return [o, command_line, arguments]() {
     const Shard shard = parse_shard(o->shard);

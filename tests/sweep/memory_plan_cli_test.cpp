@@ -150,6 +150,9 @@ TEST(MemoryPlanCli, BadInputWritesNothingAndRefusalsAreRows) {
   const Outcome file_as_out = ldmbench("sweep " + sweep + " --memory-plan --out " + bad);
   EXPECT_EQ(file_as_out.status, 2) << file_as_out.output;
   EXPECT_EQ(ldmbench("sweep " + sweep + " --memory-plan --dry-run").status, 2);
+  // Options about measuring or resuming would be ignored: refused instead.
+  EXPECT_EQ(ldmbench("sweep " + sweep + " --memory-plan --repetitions 2").status, 2);
+  EXPECT_FALSE(fs::exists(out));
 
   const Outcome refused = ldmbench("sweep " + sweep + " --memory-plan --out " + out.string());
   EXPECT_EQ(refused.status, 3) << refused.output;  // as a sweep with failed configurations
