@@ -178,12 +178,6 @@ SweepPlan plan_sweep(const std::string& path, const RunSettings& base) {
       fail(file, where, e.what());
     }
   });
-  if (!axes_of(spec).count("scenes")) {
-    for (const auto& scene : base.scenes) {
-      scene_paths[scene] = scene;
-      plan.scenes.emplace(scene, load_scene(scene));
-    }
-  }
   const std::set<std::string> axes = axes_of(spec);
   if (axes.count("sizing_budget_mib") && !axes.count("sizing"))
     fail(file, "axes.sizing_budget_mib", "is used only by the budget sizing policy; add \"sizing\": \"budget\"");
@@ -223,6 +217,11 @@ SweepPlan plan_sweep(const std::string& path, const RunSettings& base) {
     }
   }
   if (plan.configurations.empty()) fail(file, "(top level)", "the sweep has no configuration (everything excluded)");
+  // A combination that names no scene runs the default one, also when only an include
+  // block names scenes (the main axes then have none): load every scene a configuration uses.
+  for (const auto& planned : plan.configurations)
+    if (!plan.scenes.count(planned.config.scene))
+      plan.scenes.emplace(planned.config.scene, load_scene(planned.config.scene));
   return plan;
 }
 

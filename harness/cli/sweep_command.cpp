@@ -1,11 +1,16 @@
 // `ldmbench sweep FILE`: the configurations of a sweep file (harness/app/sweep_plan.h),
-// measured by the same run_configurations() as `ldmbench run`, resumable, sharded.
+// measured by the same run_configurations() as `ldmbench run`, resumable, sharded; or, with
+// --memory-plan, only their memory, from the census (harness/app/memory_plan.h).
+#include <filesystem>
 #include <iostream>
 #include <memory>
 
+#include "harness/app/memory_plan.h"
 #include "harness/app/sweep_plan.h"
 #include "harness/cli/commands.h"
+#include "harness/gl/egl_context.h"
 #include "harness/util/error.h"
+#include "harness/util/files.h"
 
 namespace ldm::cli {
 namespace {
@@ -15,7 +20,10 @@ struct SweepOptions {
   std::string isolation, step, interleaved_session;
   int repetitions = 0;  // 0: the file's (settings.timing.repetitions)
   bool overwrite = false, redo_failed = false, dry_run = false, gl_debug = false;
+  bool memory_plan = false;
 };
+
+constexpr const char* kMemoryPlanFile = "memory-plan.csv";
 
 void list_configurations(const SweepPlan& plan, const Shard& shard, std::ostream& out) {
   const std::vector<size_t> members = shard_members(plan, shard);
@@ -28,6 +36,49 @@ void list_configurations(const SweepPlan& plan, const Shard& shard, std::ostream
       << plan.combinations << " combinations of the axes)";
   if (shard.count > 1) out << "; shard " << shard.text() << ": " << members.size();
   out << "\n";
+}
+
+// --out for a memory plan: a folder (made if missing), never a file. Checked before any GPU
+// work, so that bad input writes nothing.
+void check_memory_plan_folder(const std::string& out_dir) {
+  if (out_dir.empty()) return;
+  std::error_code error;
+  if (std::filesystem::exists(out_dir, error) && !std::filesystem::is_directory(out_dir, error))
+    throw UserError("--out " + out_dir + ": not a folder");
+}
+
+// Plans every configuration of the shard in order: one progress line each on stderr, the
+// CSV on stdout and, with --out, in <out>/memory-plan.csv (written whole or not at all).
+// Exit status as a sweep's: 3 when some configuration is refused (a sweep's "failed").
+int write_memory_plan(const SweepPlan& plan, const Shard& shard, const SweepOptions& o) {
+  check_memory_plan_folder(o.out_dir);
+  ContextOptions context = default_context_options();
+  context.platform = parse_egl_platform(o.platform);
+  context.debug_output = o.gl_debug;
+  auto gl = HeadlessContext::create(context);
+  MemoryPlanner planner(plan.scenes);
+  const std::vector<size_t> members = shard_members(plan, shard);
+  std::vector<MemoryPlanRow> rows;
+  bool any_refused = false;
+  for (size_t i = 0; i < members.size(); ++i) {
+    const MemoryPlanRow row = planner.plan(plan.configurations[members[i]]);
+    std::cerr << "[" << i + 1 << "/" << members.size() << "] " << row.config_id << ": "
+              << row.status;
+    if (row.status == "planned") std::cerr << ", " << row.bytes_allocated << " bytes";
+    else std::cerr << " (" << row.status_detail << ")";
+    std::cerr << "\n";
+    any_refused |= row.status == "refused";
+    rows.push_back(row);
+  }
+  const std::string csv = memory_plan_csv(rows);
+  std::cout << csv << std::flush;
+  if (!o.out_dir.empty()) {
+    std::filesystem::create_directories(o.out_dir);
+    const std::string path = (std::filesystem::path(o.out_dir) / kMemoryPlanFile).string();
+    write_text_atomically(path, csv);
+    std::cerr << "memory plan: " << path << "\n";
+  }
+  return any_refused ? kExitSomeFailed : kExitOk;
 }
 
 }  // namespace
@@ -47,12 +98,21 @@ Runner add_sweep_command(CLI::App& app, const std::string& command_line,
                     "interleaved, balanced along every axis (docs/guide/sweeps.md); join slices "
                     "with `ldmbench merge`")
       ->capture_default_str();
-  sweep->add_flag("--redo-failed", o->redo_failed,
+  auto* redo_failed = sweep->add_flag("--redo-failed", o->redo_failed,
                   "Measure again the configurations the folder holds as failed (else kept)");
-  sweep->add_flag("--overwrite", o->overwrite,
+  auto* overwrite = sweep->add_flag("--overwrite", o->overwrite,
                   "Replace the records and images in --out when they belong to another sweep");
-  sweep->add_flag("--dry-run", o->dry_run,
-                  "List the configurations (index, id, image size, frames) and write nothing");
+  auto* dry_run = sweep->add_flag("--dry-run", o->dry_run,
+                                  "List the configurations (index, id, image size, frames) and write nothing");
+  auto* memory_plan = sweep->add_flag(
+           "--memory-plan", o->memory_plan,
+           "Measure nothing: per configuration, the bytes each buffer allocates, from the fragment "
+           "census and the structure's prepare() (no build), as CSV on stdout and, with --out, in "
+           "DIR/memory-plan.csv: bytes_allocated as the record's, buffers, k and lossy (fixed "
+           "arrays), exact (yes: oracle, budget, census; no: previous_frame, whose later builds may "
+           "change its first frame's storage by a few bytes), status planned or refused (exit 3, "
+           "as a sweep's failed configurations) (docs/guide/sweeps.md#memory-plan)")
+      ->excludes(dry_run);
   sweep->add_option("--cache-dir", o->cache_dir,
                     "Reference cache folder (default: $XDG_CACHE_HOME/ldmbench/references, else "
                     "~/.cache/ldmbench/references)");
@@ -60,19 +120,22 @@ Runner add_sweep_command(CLI::App& app, const std::string& command_line,
       ->check(CLI::IsMember({"auto", "device", "surfaceless"}))
       ->capture_default_str();
   sweep->add_flag("--gl-debug", o->gl_debug, "Print OpenGL debug messages");
-  sweep->add_option("--repetitions", o->repetitions,
+  auto* repetitions = sweep->add_option("--repetitions", o->repetitions,
                     "Independent repetitions of every configuration (default: the file's "
                     "settings.timing.repetitions, else 1)")
       ->check(CLI::Range(1, 1000));
-  sweep->add_option("--isolation", o->isolation,
+  auto* isolation = sweep->add_option("--isolation", o->isolation,
                     "What keeps repetitions independent: context or process (default: the file's, "
                     "else context)")
       ->check(CLI::IsMember({"context", "process"}));
-  sweep->add_option("--step", o->step,
+  auto* step = sweep->add_option("--step", o->step,
                     "Measure only the next repetition of this configuration id and stop (the "
                     "children of --isolation process and `ldmbench interleave`)");
-  sweep->add_option("--interleaved-session", o->interleaved_session,
+  auto* session = sweep->add_option("--interleaved-session", o->interleaved_session,
                     "The `ldmbench interleave` session this run belongs to (recorded)");
+  // A memory plan measures nothing: options about measuring or resuming would be ignored.
+  for (CLI::Option* measuring : {redo_failed, overwrite, repetitions, isolation, step, session})
+    memory_plan->excludes(measuring);
 
   return [o, command_line, arguments]() {
     const Shard shard = parse_shard(o->shard);
@@ -86,6 +149,7 @@ Runner add_sweep_command(CLI::App& app, const std::string& command_line,
       list_configurations(plan, shard, std::cout);
       return kExitOk;
     }
+    if (o->memory_plan) return write_memory_plan(plan, shard, *o);
     bool references = false;
     for (const auto& planned : plan.configurations) references |= planned.settings.reference.enabled;
     if (references) check_cache_dir(o->cache_dir);
