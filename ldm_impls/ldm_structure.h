@@ -130,6 +130,11 @@ class LdmStructure {
   // True when build() counts its own fragments before storing them (the DF-buffer): under
   // the census policy it then sizes itself inside build() and no separate census runs.
   virtual bool counts_own_fragments() const { return false; }
+  // What a second build does to the storage before building, after a first build whose
+  // sizing held (the HA-buffer leaves previous_frame's guess and frees its third counter
+  // word). Only the memory plan calls it, for a run of more than one build, so that the plan
+  // is the storage such a run records (harness/app/memory_plan.h); builds do it themselves.
+  virtual void settle_after_first_build() {}
   // Changes whenever resize() changed query_defines(): passes recompile their programs.
   uint64_t storage_generation() const { return storage_generation_; }
 

@@ -66,18 +66,6 @@ MemoryPlanRow refused(MemoryPlanRow row, const std::string& why) {
 
 }  // namespace
 
-bool memory_plan_exact(SizingPolicy policy) {
-  switch (policy) {
-    case SizingPolicy::Oracle:
-    case SizingPolicy::Budget:
-    case SizingPolicy::Census: return true;
-    // The storage the first frame leaves, which later builds may still change by their own
-    // bookkeeping: the HA-buffer frees its guess's third counter word (4 bytes) at its
-    // second build when the guess held, so a run of more than one build records 4 bytes less.
-    case SizingPolicy::PreviousFrame: return false;
-  }
-  return false;
-}
 
 Record MemoryPlanRow::to_record() const {
   Record r;
@@ -105,10 +93,6 @@ Record MemoryPlanRow::to_record() const {
     r.put("k", std::monostate{});
     r.put("lossy", std::monostate{});
   }
-  if (status == "planned")
-    r.set("exact", exact ? "yes" : "no");
-  else
-    r.put("exact", std::monostate{});
   r.set("status", status);
   r.set("status_detail", status_detail);
   return r;
@@ -141,7 +125,7 @@ MemoryPlanRow MemoryPlanner::plan(const PlannedConfiguration& planned) {
                                                        : sizing_policy_name(config.sizing.policy);
   try {
     if (config.structure == kNoStructure) return plan_peer(config, planned.settings, row);
-    return plan_structure(config, row);
+    return plan_structure(config, planned.settings, row);
   } catch (const std::exception& e) {
     // As a sweep records a configuration that throws as failed and goes on.
     return refused(row, e.what());
@@ -164,16 +148,18 @@ const LdmSetup& MemoryPlanner::setup_for(const Configuration& config) {
   return *setups_.emplace(key, std::move(setup)).first->second;
 }
 
-MemoryPlanRow MemoryPlanner::plan_structure(const Configuration& config, MemoryPlanRow row) {
+MemoryPlanRow MemoryPlanner::plan_structure(const Configuration& config, const RunSettings& settings,
+                                            MemoryPlanRow row) {
   const LdmSetup& setup = setup_for(config);
   const FragmentCensus& census = setup.census;
   row.fragments = census.total_fragments;
   row.max_depth_complexity = census.max_depth_complexity;
-  row.exact = memory_plan_exact(config.sizing.policy);
   try {
     // What MeasurementSession does before its first frame, then what that frame grows.
     std::unique_ptr<LdmStructure> structure = setup.prepare(config.structure, config.params);
     grow_as_first_frame(*structure, setup.sizing, census);
+    // A run of more than one build records the storage its later builds keep.
+    if (settings.warmup + settings.frames > 1) structure->settle_after_first_build();
     row.buffers = structure->memory();
     // The policy's own buffers (the census policy's counts), as the record sums them.
     const SizingDriver sizer(*structure, *setup.inputs);
@@ -200,7 +186,6 @@ MemoryPlanRow MemoryPlanner::plan_peer(const Configuration& config, const RunSet
   pass->prepare({scene, gpu_scene, nullptr, nullptr, settings.width, settings.height});
   row.buffers = pass->memory();
   row.bytes_allocated = sum_allocated(row.buffers);
-  row.exact = true;
   row.status = "planned";
   return row;
 }

@@ -39,20 +39,18 @@ struct MemoryPlanRow {
   // A fixed array's k (0: not a fixed array) and whether it drops fragments (k < deepest).
   uint32_t k = 0;
   bool lossy = false;
-  bool exact = false;  // whether every measured run records exactly these bytes (memory_plan_exact)
   std::string status;  // planned, refused, not_applicable
   std::string status_detail;
 
   Record to_record() const;
 };
 
-// Whether the bytes planned under `policy` are those every measured run records. oracle
-// and budget size everything in prepare(); census grows once, in the first frame, to what
-// the timed census counts, which on a static scene is what the untimed census counted, so
-// the plan grows it to the same needs the same way. previous_frame grows the same way (its
-// first build's counters count the census's fragments), but is not exact: a structure's
-// bookkeeping may still change after the first build (memory_plan.cpp says which).
-bool memory_plan_exact(SizingPolicy policy);
+// The bytes planned are those a measured run of the configuration records, under every
+// sizing policy: oracle and budget size everything in prepare(); census and previous_frame
+// grow once, in the first frame, to what the timed census or the first build's counters
+// count, which on a static scene is what the untimed census counted, so the plan grows the
+// storage to the same needs the same way; for a run of more than one build it then settles
+// it as the second build does (LdmStructure::settle_after_first_build()).
 
 // Plans configuration after configuration, reusing one census (scene upload, views,
 // census) for every configuration that shares its geometry and sizing plan: a sweep over
@@ -69,7 +67,7 @@ class MemoryPlanner {
   MemoryPlanRow plan(const PlannedConfiguration& planned);
 
  private:
-  MemoryPlanRow plan_structure(const Configuration& config, MemoryPlanRow row);
+  MemoryPlanRow plan_structure(const Configuration& config, const RunSettings& settings, MemoryPlanRow row);
   MemoryPlanRow plan_peer(const Configuration& config, const RunSettings& settings, MemoryPlanRow row);
   const LdmSetup& setup_for(const Configuration& config);
 

@@ -109,8 +109,7 @@ Runner add_sweep_command(CLI::App& app, const std::string& command_line,
            "Measure nothing: per configuration, the bytes each buffer allocates, from the fragment "
            "census and the structure's prepare() (no build), as CSV on stdout and, with --out, in "
            "DIR/memory-plan.csv: bytes_allocated as the record's, buffers, k and lossy (fixed "
-           "arrays), exact (yes: oracle, budget, census; no: previous_frame, whose later builds may "
-           "change its first frame's storage by a few bytes), status planned or refused (exit 3, "
+           "arrays), status planned or refused (exit 3, "
            "as a sweep's failed configurations) (docs/guide/sweeps.md#memory-plan)")
       ->excludes(dry_run);
   sweep->add_option("--cache-dir", o->cache_dir,

@@ -198,6 +198,10 @@ void HaBuffer::resize(const SizingNeeds& needs) {
   allocate_table(table_size_for(needs));
 }
 
+void HaBuffer::settle_after_first_build() {
+  if (guessing_) leave_guess();  // as build() does once the guess has had its one build
+}
+
 uint64_t HaBuffer::stop_ticket() const {
   // More fragments than |H| * load_factor need a table larger than |H| (table_size_for()), so
   // with load_factor <= 1 a build that reaches this many is rebuilt whatever it stores.

@@ -62,6 +62,7 @@ class HaBuffer final : public LdmStructure {
   SizingNeeds needed() override;
   bool fits(const SizingNeeds& needs) const override;
   void resize(const SizingNeeds& needs) override;
+  void settle_after_first_build() override;
   std::vector<std::string> query_sources() const override;
   ShaderDefines query_defines() const override;
   void bind_for_query() const override;
