@@ -12,12 +12,13 @@
 #    record: the merge after it must be partial (the check must see the difference), then
 #    resubmitting that task the documented way (LDM_SLURM_TASKS=1 scripts/slurm-sweep.sh ...)
 #    resumes it, and the new merge must equal the single run again.
-# 3. `ldmbench advise --launcher slurm --shards 2`: every stage a job array plus merge. The
-#    partition is held down while the first stage is queued, the advise is killed (its whole
-#    process group, SIGKILL) and rerun: the rerun must wait for the queued jobs (journal
-#    event "reattached") instead of submitting the stage again; the partition comes back up
-#    and the advise must answer. Its census stage must equal the same stage measured by an
-#    unsharded local advise, and every stage's merged records must name their array task.
+# 3. `ldmbench advise --launcher slurm --shards 2`: the memory plan a Slurm job, every
+#    measured stage a job array plus merge. Jobs are submitted held; with the first stage's
+#    array still held, the advise is killed (its whole process group, SIGKILL) and rerun:
+#    the rerun must wait for the queued jobs (journal event "reattached") instead of
+#    submitting the stage again; released, the advise must answer. Its memory plan must
+#    equal an unsharded local advise's, and every stage's merged records must name their
+#    array task.
 # Exit nonzero, with the daemons' and jobs' logs, on any mismatch, failed job or timeout.
 # LDM_SLURM_CI_DIR: scratch folder (default: a new one under /tmp, removed on success).
 set -euo pipefail
@@ -246,7 +247,10 @@ grep -q "resuming: [1-9]" "$killed/slurm-logs/ldmbench-shard-1-of-$shards-job-${
   fail "the resubmitted task did not resume its shard"
 scripts/same_records.py "$whole" "$killed/merged" || fail "the merge after resubmitting differs from the single run"
 
-# 3. advise through Slurm, killed while its first stage is queued, rerun, reattached.
+# 3. advise through Slurm, killed while its first measured stage is queued, rerun, reattached.
+# Every job is submitted held (sbatch --hold) and released from here: the memory plan's job
+# at once, the first stage's array only after the advise has been killed and its rerun has
+# reattached to it, so that the kill always lands while that stage is queued.
 advise_dir="$work/advise"
 mkdir -p "$advise_dir"
 cat >"$advise_dir/space.json" <<'EOF2'
@@ -257,20 +261,26 @@ advise_args=(advise --scene cornell --space "$advise_dir/space.json" --image-siz
 "$ldmbench" "${advise_args[@]}" --out "$advise_dir/local" >"$work/log/advise-local.log" 2>&1 ||
   fail "the local advise failed ($(tail -n 3 "$work/log/advise-local.log"))"
 sharded="$advise_dir/slurm"
-export LDM_ADVISE_POLL_S=0.5
+export LDM_ADVISE_POLL_S=0.5 SBATCH_ARGS="--cpus-per-task=1 --hold"
 unset LDM_SWEEP_ARGS   # advise adds its own --cache-dir to the jobs' sweeps
-scontrol update PartitionName=ci State=DOWN
+release_held() {       # the held jobs (named NAME, or all), released
+  local id
+  for id in $(squeue -h -t PD ${1:+-n "$1"} -o '%F %r' | awk '$2 == "JobHeldUser" {print $1}' | sort -u); do
+    scontrol release "$id" 2>/dev/null || true
+  done
+}
 setsid "$ldmbench" "${advise_args[@]}" --launcher slurm --shards 2 --out "$sharded" >"$work/log/advise-killed.log" 2>&1 &
 advise_pid=$!
-deadline=$((SECONDS + 60))
+deadline=$((SECONDS + 120))
 until grep -q '"event": "submitted"' "$sharded/advise.jsonl" 2>/dev/null; do
-  [ $SECONDS -lt $deadline ] || fail "advise submitted no stage within 60 s ($(tail -n 3 "$work/log/advise-killed.log"))"
+  [ $SECONDS -lt $deadline ] || fail "advise submitted no stage within 120 s ($(tail -n 3 "$work/log/advise-killed.log"))"
   kill -0 "$advise_pid" 2>/dev/null || fail "advise ended before submitting ($(tail -n 3 "$work/log/advise-killed.log"))"
+  release_held ldmbench-plan
   sleep 0.2
 done
 kill -KILL -- "-$advise_pid"
 wait "$advise_pid" 2>/dev/null || true
-[ -n "$(squeue -h -o %i)" ] || fail "the killed advise's jobs are not queued"
+[ -n "$(squeue -h -n ldmbench-sweep -o %i)" ] || fail "the killed advise's stage is not queued"
 say "advise killed with its first stage queued ($(squeue -h -o '%i %j %T' | tr '\n' ' '))"
 "$ldmbench" "${advise_args[@]}" --launcher slurm --shards 2 --out "$sharded" >"$work/log/advise-slurm.log" 2>&1 &
 advise_pid=$!
@@ -280,17 +290,22 @@ until grep -q '"event": "reattached"' "$sharded/advise.jsonl"; do
   kill -0 "$advise_pid" 2>/dev/null || fail "the rerun advise ended without reattaching ($(tail -n 3 "$work/log/advise-slurm.log"))"
   sleep 0.2
 done
-scontrol update PartitionName=ci State=UP
+deadline=$((SECONDS + timeout_s))
+while kill -0 "$advise_pid" 2>/dev/null; do
+  [ $SECONDS -lt $deadline ] || fail "the rerun advise did not finish within ${timeout_s} s"
+  release_held
+  sleep 0.2
+done
 advise_status=0
 wait "$advise_pid" || advise_status=$?
 [ "$advise_status" = 0 ] || fail "the rerun advise exited $advise_status ($(tail -n 5 "$work/log/advise-slurm.log"))"
 grep -q "Recommended: " "$work/log/advise-slurm.log" || fail "the advise through Slurm recommended nothing"
-census_submissions=$(grep '"event": "submitted"' "$sharded/advise.jsonl" | grep -c '01-census' || true)
-[ "$census_submissions" = 1 ] || fail "the census stage was submitted $census_submissions times (1 expected)"
-census_local=$(ls -d "$advise_dir"/local/stages/01-census/run)
-census_slurm=$(ls -d "$sharded"/stages/01-census/shards-*/merged)
-scripts/same_records.py "$census_local" "$census_slurm" ||
-  fail "the census stage through Slurm differs from the local one"
+first_stage=$(grep -m1 '"event": "submitted"' "$sharded/advise.jsonl" | sed -E 's/.*"stage": "([^"]*)".*/\1/')
+submissions=$(grep '"event": "submitted"' "$sharded/advise.jsonl" | grep -c "\"stage\": \"$first_stage\"" || true)
+[ "$submissions" = 1 ] || fail "stage $first_stage was submitted $submissions times (1 expected)"
+ls "$sharded"/stages/01-census/plan-job-*.out >/dev/null 2>&1 || fail "the memory plan did not run as a Slurm job"
+cmp -s "$advise_dir/local/stages/01-census/plan/memory-plan.csv" "$sharded/stages/01-census/plan/memory-plan.csv" ||
+  fail "the memory plan through Slurm differs from the local one"
 for merged in "$sharded"/stages/*/shards-*/merged; do
   grep -q '"slurm_array_task_id"' "$merged/records.json" || fail "$merged: its records do not name their array task"
 done

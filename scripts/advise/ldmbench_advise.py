@@ -189,18 +189,21 @@ def main(argv):
         return results
 
     def census(cands):
-        # Any structure counts the same fragments: a list where the space has one, else the
-        # longest fixed array, at each geometry.
-        geometries = sorted({(c.views, c.r_ldm) for c in cands if c.k is not None})
-        if not geometries:
-            return CensusPlan()
-        picks = []
-        for g in geometries:
-            here = [c for c in candidates if (c.views, c.r_ldm) == g]
-            picks.append(min(here, key=lambda c: (c.k is not None, -(c.k or 0))).key)
-        results, _, _, _ = runner.run_stage(picks, CENSUS, "census")
-        return CensusPlan(depths={g: results[k].max_depth for g, k in zip(geometries, picks)
-                                  if results[k].max_depth is not None})
+        # The memory plan of every candidate: the fragments counted, each structure's storage
+        # planned by its own prepare(), nothing built or timed (ldmbench sweep --memory-plan).
+        rows = runner.plan_stage([c.key for c in cands])
+        plan = CensusPlan()
+        for c in cands:
+            row = rows[c.key]
+            if row.get("status") == "refused":
+                plan.refused[c.key] = row.get("status_detail") or "refused"
+                continue
+            depth, planned = number_of(row, "max_depth_complexity"), number_of(row, "bytes_allocated")
+            if math.isfinite(depth):
+                plan.depths[(c.views, c.r_ldm)] = int(depth)
+            if math.isfinite(planned):
+                plan.memory[c.key] = int(planned)
+        return plan
 
     search = Search(candidates, goal, a.levels, measure, log, census)
     try:
@@ -243,7 +246,9 @@ def main(argv):
               "ties": verified_ties,
               "search_ties_unverified": [k for k in outcome.ties if k not in verified],
               "why_stopped": outcome.why, "configurations": len(ids),
-              "measured": sum(c["configurations"] for c in runner.costs),
+              "measured": sum(c["configurations"] for c in runner.costs if not c.get("planned_only")),
+              "planned": sum(c["configurations"] for c in runner.costs if c.get("planned_only")),
+              "plan_differs": search.plan_differences,
               "wall_s_recorded": round(sum(c["wall_s_recorded"] or 0 for c in runner.costs), 2),
               "wall_s_this_call": round(elapsed, 2), "resumed": resumed,
               "pruned": {k: s.pruned for k, s in search.states.items() if s.pruned}}
@@ -287,7 +292,8 @@ def main(argv):
     os.replace(os.path.join(a.out, RESULT_FILE + ".tmp"), os.path.join(a.out, RESULT_FILE))
     log({"event": "finished", "recommended": recommended, "wall_s": round(elapsed, 2)})
     print("\n".join(answer))
-    print(f"measured {result['measured']} configurations in {len(runner.costs)} stages of {len(ids)} in the space; "
+    print(f"planned {result['planned']} and measured {result['measured']} configurations in {len(runner.costs)} "
+          f"stages, of {len(ids)} in the space; "
           f"recorded wall time {result['wall_s_recorded']} s; report: {folder}/summary.md")
     return 0 if recommended else EXIT_NONE
 

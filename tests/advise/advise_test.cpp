@@ -101,6 +101,11 @@ TEST(AdviseEndToEnd, SmallAdviseOnTheCornellBox) {
   const size_t space_size = result["configurations"];
   EXPECT_EQ(space_size, 24u);  // psppsll 6, habuffer 6, ppfla 2 x 6
   EXPECT_FALSE(result["pruned"].empty());
+  // the census plans every configuration's memory without building it, and every brief
+  // measurement allocated exactly what it planned
+  EXPECT_EQ(result["planned"].get<size_t>(), space_size);
+  EXPECT_TRUE(fs::exists(out / "stages" / "01-census" / "plan" / "memory-plan.csv"));
+  EXPECT_TRUE(result["plan_differs"].empty()) << result["plan_differs"].dump();
   // the lossy k = 2 arrays never recommended; every pruned candidate says why
   EXPECT_EQ(recommended.find("k=2"), std::string::npos);
   for (const auto& [key, why] : result["pruned"].items()) EXPECT_FALSE(why.get<std::string>().empty()) << key;
@@ -118,16 +123,18 @@ TEST(AdviseEndToEnd, SmallAdviseOnTheCornellBox) {
   EXPECT_NE(journal.find("\"event\": \"started\""), std::string::npos);
   EXPECT_NE(journal.find("\"event\": \"pruned\""), std::string::npos);
 
-  // Sharded (--shards 2, local): every stage in two shards, merged; the census stage (the
-  // same configurations whatever the timings) equals the unsharded one in every column that
-  // is not time.
+  // Sharded (--shards 2, local): every measured stage in two shards, merged; the census's
+  // plan and the first exploration stage (the same configurations whatever the timings)
+  // equal the unsharded ones, the stage in every column that is not time.
   const fs::path sharded = dir / "sharded";
   const Outcome in_shards = ldmbench(common + " --budget-ms 1000 --budget-mib 0.25 --shards 2 --out " + sharded.string());
   ASSERT_EQ(in_shards.status, 0) << in_shards.output;
-  EXPECT_TRUE(fs::exists(sharded / "stages" / "01-census" / "shards-2" / "shard-1" / "records.csv"));
+  EXPECT_EQ(test::read_text((sharded / "stages" / "01-census" / "plan" / "memory-plan.csv").string()),
+            test::read_text((out / "stages" / "01-census" / "plan" / "memory-plan.csv").string()));
+  EXPECT_TRUE(fs::exists(sharded / "stages" / "02-explore-0" / "shards-2" / "shard-1" / "records.csv"));
   const Outcome same = test::run_shell(std::string(LDM_PYTHON) + " " + LDM_TEST_SOURCE_DIR + "/../scripts/same_records.py " +
-                                       (out / "stages" / "01-census" / "run").string() + " " +
-                                       (sharded / "stages" / "01-census" / "shards-2" / "merged").string());
+                                       (out / "stages" / "02-explore-0" / "run").string() + " " +
+                                       (sharded / "stages" / "02-explore-0" / "shards-2" / "merged").string());
   EXPECT_EQ(same.status, 0) << same.output;
   const auto result_sharded = nlohmann::json::parse(test::read_text((sharded / "result.json").string()));
   EXPECT_NE(result_sharded["verified"]["records"].get<std::string>().find("shards-"), std::string::npos);
@@ -155,6 +162,10 @@ TEST(AdviseEndToEnd, SmallAdviseOnTheCornellBox) {
   const auto result3 = nlohmann::json::parse(test::read_text((dir / "none" / "result.json").string()));
   EXPECT_TRUE(result3["recommended"].is_null());
   EXPECT_EQ(result3["pruned"].size(), 6u);
+  // over the budget by the census's plan: nothing measured
+  EXPECT_EQ(result3["measured"].get<int>(), 0) << result3.dump(1);
+  for (const auto& [key, why] : result3["pruned"].items())
+    EXPECT_EQ(why.get<std::string>().rfind("memory (census)", 0), 0u) << key << ": " << why;
 }
 
 // Killed (SIGKILL, the whole process group) in the middle of a stage, after its sweep

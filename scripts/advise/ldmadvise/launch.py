@@ -13,6 +13,7 @@ submission's job ids; a rerun while they are still queued or running waits for t
 import csv
 import json
 import os
+import shlex
 import subprocess
 import time
 
@@ -57,6 +58,33 @@ class SingleProcess:
         run = os.path.join(folder, "run")
         self.call(self.sweep_argv(sweep_path, run), os.path.join(folder, "sweep.log"), f"stage {stage}")
         return run
+
+    def plan_argv(self, sweep_path, folder):
+        return [self.ldmbench, "sweep", sweep_path, "--memory-plan", "--out", os.path.join(folder, "plan")]
+
+    def plan(self, folder, sweep_path, keys, stage, log):
+        """The stage's memory plan (`ldmbench sweep --memory-plan`: census and storage, nothing
+        built or timed) in STAGE/plan/memory-plan.csv; kept when a rerun finds it whole."""
+        csv_path = os.path.join(folder, "plan", "memory-plan.csv")
+        if not complete(csv_path, keys):
+            self.run_plan(folder, sweep_path, stage)
+        if not complete(csv_path, keys):
+            raise LaunchError(f"stage {stage}: {csv_path} lacks configurations "
+                              f"(see {os.path.join(folder, 'plan.log')})")
+        return csv_path
+
+    def run_plan(self, folder, sweep_path, stage):
+        self.call(self.plan_argv(sweep_path, folder), os.path.join(folder, "plan.log"), f"stage {stage}")
+
+
+def gpu_arguments():
+    """The GPU options scripts/slurm-sweep.sh gives its tasks (LDM_SLURM_GPUS, LDM_SLURM_GPU_ARGS)."""
+    gpus = os.environ.get("LDM_SLURM_GPUS", "1")
+    if gpus == "0":
+        return []
+    if gpus != "1":
+        raise LaunchError(f"LDM_SLURM_GPUS must be 1 or 0, not '{gpus}'")
+    return os.environ.get("LDM_SLURM_GPU_ARGS", "--gres=gpu:1 --exclusive").split()
 
 
 def shard_count(wanted, keys):
@@ -135,6 +163,17 @@ class SlurmShards(SingleProcess):
             if self.timeout_s and time.monotonic() - start > self.timeout_s:
                 raise LaunchError(f"stage {stage}: jobs {', '.join(ids)} still queued after {self.timeout_s} s")
             time.sleep(self.poll_s)
+
+    def run_plan(self, folder, sweep_path, stage):
+        """On a GPU node too (the storage block that refuses a buffer is the device's): one job,
+        waited for (sbatch --wait), with the shards' GPU and sbatch options."""
+        argv = ["sbatch", "--wait", "--parsable", "--job-name=ldmbench-plan",
+                "--output=" + os.path.abspath(os.path.join(folder, "plan-job-%j.out"))]
+        argv += gpu_arguments() + os.environ.get("SBATCH_ARGS", "").split()
+        command = " ".join(shlex.quote(a) for a in self.plan_argv(os.path.abspath(sweep_path),
+                                                                   os.path.abspath(folder)))
+        argv += ["--wrap", command + "; s=$?; [ $s -eq 3 ] && exit 0; exit $s"]
+        self.call(argv, os.path.join(folder, "plan.log"), f"stage {stage} (the memory plan as a Slurm job)")
 
     def earlier_submission(self, folder):
         for event in reversed(self.journal):

@@ -18,8 +18,12 @@ LEVELS = [
 ]
 # A third level at a normal run's precision would cost what verification costs; the
 # verification is that level (a failed one resumes the race at the top level above).
-# The census stage: one build per geometry, no time to speak of, no reference.
-CENSUS = {"name": "census", "frames": 1, "warmup": 0, "target": 0, "reference": False}
+# The census stage's sweep file, run as `ldmbench sweep --memory-plan` (nothing built). Its
+# builds per run are the brief level's: the plan is the storage a run of more than one build
+# records, as every level and the verification are (a run of one build can differ by a
+# guess's counter word: docs/guide/sweeps.md#memory-plan).
+CENSUS = {"name": "census", "frames": LEVELS[0]["frames"], "warmup": LEVELS[0]["warmup"], "target": 0,
+          "reference": False}
 # A normal `ldmbench run`: its frames, warm-up, time target and automatic reference.
 VERIFY = {"name": "verify", "frames": 5, "warmup": 2, "target": 0.03, "cap_s": 2, "spp": 0, "images": True}
 
@@ -77,9 +81,7 @@ class StageRunner:
         self.rows = {}      # (stage folder, config id) -> record row, for the report
         self.costs = []     # per stage: name, configurations, wall seconds of this call
 
-    def run_stage(self, keys, precision, stage):
-        """The stage's measurements by key, its folder, its record rows and its records
-        folder (STAGE/run, or STAGE/shards-N/merged when sharded)."""
+    def _stage_folder(self, keys, precision, stage):
         self.count += 1
         folder = os.path.join(self.out, "stages", f"{self.count:02d}-{stage}")
         os.makedirs(folder, exist_ok=True)
@@ -92,6 +94,30 @@ class StageRunner:
             with open(sweep_path + ".tmp", "w", encoding="utf-8") as f:
                 f.write(text)
             os.replace(sweep_path + ".tmp", sweep_path)
+        return folder, sweep_path
+
+    def plan_stage(self, keys, stage="census"):
+        """The memory plan of `keys` (census and storage, nothing built): its rows by key."""
+        folder, sweep_path = self._stage_folder(keys, CENSUS, stage)
+        start = time.monotonic()
+        try:
+            path = self.launcher.plan(folder, sweep_path, keys, stage, self.log)
+        except LaunchError as e:
+            raise MeasureError(str(e))
+        seconds = time.monotonic() - start
+        rows = read_records(path)
+        self.costs.append({"stage": stage, "folder": folder, "records": path, "configurations": len(keys),
+                           "planned_only": True,
+                           "precision": "memory plan (nothing built)", "wall_s_this_call": round(seconds, 2),
+                           "wall_s_recorded": round(seconds, 2)})
+        self.log({"event": "planned", "stage": stage, "folder": folder, "configurations": len(keys),
+                  "refused": sum(rows[k].get("status") == "refused" for k in keys), "wall_s": round(seconds, 2)})
+        return {k: rows[k] for k in keys}
+
+    def run_stage(self, keys, precision, stage):
+        """The stage's measurements by key, its folder, its record rows and its records
+        folder (STAGE/run, or STAGE/shards-N/merged when sharded)."""
+        folder, sweep_path = self._stage_folder(keys, precision, stage)
         start = time.monotonic()
         try:
             run = self.launcher.run(folder, sweep_path, keys, stage, self.log)

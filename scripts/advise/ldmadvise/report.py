@@ -88,8 +88,11 @@ def write_report(out, result, search, goal, metric, costs, title):
         lines.append(f"| {c['stage']} | {c['configurations']} | {c['precision']} | {c['wall_s_this_call']} | "
                      f"{c['wall_s_recorded']} |")
     total = sum(c["wall_s_recorded"] or 0 for c in costs)
-    lines += ["", f"Configurations measured: {sum(c['configurations'] for c in costs)} in {len(costs)} stages "
-                  f"(of {len(search.states)} in the space); recorded wall time {total:.1f} s.", ""]
+    measured = [c for c in costs if not c.get("planned_only")]
+    planned = sum(c["configurations"] for c in costs if c.get("planned_only"))
+    lines += ["", f"Configurations measured: {sum(c['configurations'] for c in measured)} in {len(measured)} stages "
+                  f"(of {len(search.states)} in the space; {planned} planned by the census without building); "
+                  f"recorded wall time {total:.1f} s.", ""]
     with open(os.path.join(folder, "summary.md"), "w", encoding="utf-8") as f:
         f.write("\n".join(lines))
     return folder

@@ -192,6 +192,7 @@ class Search:
         self.census = census  # census([Candidate]) -> CensusPlan
         self.states: Dict[str, State] = {c.key: State(c) for c in candidates}
         self.planned_memory: Dict[str, int] = {}  # the census's exact bytes per configuration
+        self.plan_differences: Dict[str, list] = {}  # key -> [planned, measured] where they differ
         self.stage_count = 0
 
     # ---- bookkeeping
@@ -224,6 +225,12 @@ class Search:
             self.states[k].measurement = m
             self.states[k].history.append(m)
             self.states[k].stage = stage
+            planned = self.planned_memory.get(k)
+            if planned is not None and m.status == "ok" and m.memory != planned:
+                # The plan pruned on these bytes: a difference is journaled, never hidden.
+                self.plan_differences[k] = [planned, m.memory]
+                self.log({"event": "plan_differs", "config_id": k, "stage": stage,
+                          "planned_bytes": planned, "measured_bytes": m.memory})
         return results
 
     # ---- rules
