@@ -26,9 +26,14 @@ for scene in cornell atrium teapots; do
     mkdir -p "$dest/report"
     cp "$advice/wall_s.txt" "$advice/advice/result.json" "$advice/advice/advise.json" "$advice/advice/advise.jsonl" "$dest/"
     cp "$advice/advice/report/summary.md" "$advice/advice/report/front.png" "$dest/report/"
+    rm -rf "$dest/stages"
     for stage in "$advice/advice/stages"/*; do
       mkdir -p "$dest/stages/$(basename "$stage")"
-      cp "$stage/sweep.json" "$stage/run/records.csv" "$dest/stages/$(basename "$stage")/"
+      cp "$stage/sweep.json" "$dest/stages/$(basename "$stage")/"
+      # the census's memory plan, or the stage's records (sharded: the merged ones)
+      for f in "$stage/plan/memory-plan.csv" "$stage/run/records.csv" "$stage"/shards-*/merged/records.csv; do
+        [ -f "$f" ] && cp "$f" "$dest/stages/$(basename "$stage")/"
+      done
     done
   done
 done
