@@ -32,7 +32,7 @@ for scene in cornell atrium teapots; do
       cp "$stage/sweep.json" "$dest/stages/$(basename "$stage")/"
       # the census's memory plan, or the stage's records (sharded: the merged ones)
       for f in "$stage/plan/memory-plan.csv" "$stage/run/records.csv" "$stage"/shards-*/merged/records.csv; do
-        [ -f "$f" ] && cp "$f" "$dest/stages/$(basename "$stage")/"
+        if [ -f "$f" ]; then cp "$f" "$dest/stages/$(basename "$stage")/"; fi
       done
     done
   done

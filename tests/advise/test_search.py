@@ -195,6 +195,40 @@ class ExactModels(unittest.TestCase):
             Search([], Goal(budget_ms=1), 3, Model())
 
 
+class RevivedCandidatesAreMeasuredAgain(unittest.TestCase):
+    def test_a_revived_candidate_is_remeasured_before_it_is_compared(self):
+        # A was dominated by C at the brief level; C turns out over the time budget at level 1,
+        # so A comes back. A's brief error is biased up by its noisier reference (beyond its
+        # band): compared as it is with B's level-1 error, A would be "beaten". It must be
+        # measured at level 1 first, where it ties B's error and is faster.
+        a = Candidate("s-n8-r64", "s", 8, 64)
+        b = Candidate("w-n8-r64", "w", 8, 64)
+        c = Candidate("s-n8-r128", "s", 8, 128)
+        truth = {a.key: (15.0, 0.10), b.key: (24.0, 0.10), c.key: (30.0, 0.08)}
+        asked = []
+
+        def measure(cands, level, stage):
+            out = {}
+            for x in cands:
+                asked.append((x.key, level))
+                t, e = truth[x.key]
+                out[x.key] = Measurement(time=t, time_low=t - 0.2, time_high=t + 0.2,
+                                         error=e + (0.02 if level == 0 else 0.0), error_band=0.001, memory=1)
+            return out
+
+        search = Search([a, b, c], Goal(budget_ms=28), 2, measure)
+        for key, level in ((a.key, 0), (b.key, 1), (c.key, 1)):
+            m = measure([search.states[key].candidate], level, "setup")[key]
+            m.level = level
+            search.states[key].measurement = m
+        search.states[a.key].pruned, search.states[a.key].pruned_by = "dominated (lattice)", c.key
+        asked.clear()
+        outcome = search.race(level=1)
+        self.assertIn((a.key, 1), asked)
+        self.assertEqual(outcome.recommended, a.key)
+        self.assertEqual(outcome.ties, [b.key])
+
+
 class OptimisticBriefMeasurement(unittest.TestCase):
     def test_a_recommendation_failing_verification_revives_what_it_beat(self):
         """The brief measurement of the true optimum's better neighbour is optimistic (within

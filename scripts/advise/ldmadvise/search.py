@@ -344,8 +344,8 @@ class Search:
                     self._apply_lattice(c, m, stage)
             wave += 1
 
-    def race_round(self, stage):
-        """Drops what the current measurements settle; returns how the race stands."""
+    def race_round(self, stage, level=0):
+        """Drops what the current measurements at `level` settle; returns how the race stands."""
         goal = self.goal
         for s in self.alive():
             self._apply_own(s.candidate.key, s.measurement, stage)
@@ -356,7 +356,11 @@ class Search:
             if s.measurement is not None and goal.verdict(s.measurement) != YES:
                 self._revive_dependents(s.candidate.key, stage)
         alive = self.alive()
-        if any(s.measurement is None for s in alive):  # revived unmeasured: measure first
+        # Revived, unmeasured or measured at a lower level: measured at this level first. Errors
+        # against references of different precision are not comparable (a noisier reference
+        # adds its own variance to the MSE, more than its band), nor are intervals of
+        # different frame counts.
+        if any(s.measurement is None or s.measurement.level < level for s in alive):
             return alive, None, False
         sure = [s for s in alive if goal.verdict(s.measurement) == YES]
         if not sure:
@@ -394,7 +398,7 @@ class Search:
             if stale:  # revived, or never measured: measured at this level first
                 self.log({"event": "stage", "stage": stage, "level": level, "measured": stale})
                 self._measure(stale, level, stage)
-            alive, best, settled = self.race_round(stage)
+            alive, best, settled = self.race_round(stage, level)
             if self._stale(level):
                 continue
             if not alive:
