@@ -1,7 +1,8 @@
 """How a stage's sweep file is measured: in one `ldmbench sweep` process, in shards run one
 after another here (`--shards N`), or in shards as a Slurm job array (`--launcher slurm`,
 through scripts/slurm-sweep.sh: every shard on a GPU node of its own, then `ldmbench merge`).
-Each launcher returns the folder whose records.csv holds the stage's records.
+Each launcher returns the folder whose records.csv holds the stage's records, and runs the
+census's memory plan (`ldmbench sweep --memory-plan`) where the stages run.
 
 Sharded stages keep their shards in STAGE/shards-N/ (shard-I, merged, slurm-logs), N the
 shards actually used (never more than the stage's configurations), so a rerun with another
@@ -35,7 +36,6 @@ def complete(records_csv, keys):
 
 class SingleProcess:
     """The stage as one `ldmbench sweep` into STAGE/run (the default)."""
-    name = "local"
 
     def __init__(self, ldmbench, cache_dir):
         self.ldmbench, self.cache_dir = ldmbench, cache_dir
@@ -120,7 +120,6 @@ class SlurmShards(SingleProcess):
     """The stage as a Slurm job array of N shards plus the merge job (scripts/slurm-sweep.sh),
     waited for here. The environment's LDM_SLURM_GPUS, LDM_SLURM_GPU_ARGS and SBATCH_ARGS
     reach the jobs as they reach slurm-sweep.sh; LDM_SWEEP_ARGS gets --cache-dir added."""
-    name = "slurm"
     RESUBMISSIONS = 2   # a failed shard is resubmitted (it resumes) this often, then the stage fails
 
     def __init__(self, ldmbench, cache_dir, shards, script, journal, poll_s=2.0, timeout_s=None):
