@@ -109,7 +109,7 @@ Runner add_advise_command(CLI::App& app) {
   cmd->add_option("--shards", o->shards,
                   "Measure every stage in this many shards of its sweep (ldmbench sweep --shard), merged; "
                   "with --launcher slurm each shard is an array task on a GPU node of its own")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1u, 4096u));
   cmd->add_option("--launcher", o->launcher,
                   "local: the stages' sweeps (or their shards, one after another) on this machine; slurm: "
                   "each stage a job array plus merge through scripts/slurm-sweep.sh, waited for "

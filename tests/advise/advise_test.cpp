@@ -66,6 +66,8 @@ TEST(AdviseCli, RefusesBadBudgetsAndEmptySpacesWithNothingWritten) {
       {"--budget-ms 10 --structures ppfla --space " + (dir / "outside.json").string(),
        "none of --structures ppfla is in the space"},
       {"--budget-ms 10 --scene nosuchscene", "'nosuchscene' is neither a built-in scene"},
+      {"--budget-ms 10 --shards 0", "--shards: Value 0 not in range 1 to 4096"},
+      {"--budget-ms 10 --launcher pbs", "--launcher: pbs not in {local,slurm}"},
   };
   for (const auto& c : cases) {
     const std::string scene = c.args.find("--scene") == std::string::npos ? "--scene cornell " : "";
