@@ -96,15 +96,19 @@ class StageRunner:
             os.replace(sweep_path + ".tmp", sweep_path)
         return folder, sweep_path
 
+    def _launch(self, action, folder, sweep_path, keys, stage):
+        """The launcher's plan or run of a stage, and the wall seconds it took here."""
+        start = time.monotonic()
+        try:
+            result = action(folder, sweep_path, keys, stage, self.log)
+        except LaunchError as e:
+            raise MeasureError(str(e))
+        return result, time.monotonic() - start
+
     def plan_stage(self, keys, stage="census"):
         """The memory plan of `keys` (census and storage, nothing built): its rows by key."""
         folder, sweep_path = self._stage_folder(keys, CENSUS, stage)
-        start = time.monotonic()
-        try:
-            path = self.launcher.plan(folder, sweep_path, keys, stage, self.log)
-        except LaunchError as e:
-            raise MeasureError(str(e))
-        seconds = time.monotonic() - start
+        path, seconds = self._launch(self.launcher.plan, folder, sweep_path, keys, stage)
         rows = read_records(path)
         self.costs.append({"stage": stage, "folder": folder, "records": path, "configurations": len(keys),
                            "planned_only": True,
@@ -118,12 +122,7 @@ class StageRunner:
         """The stage's measurements by key, its folder, its record rows and its records
         folder (STAGE/run, or STAGE/shards-N/merged when sharded)."""
         folder, sweep_path = self._stage_folder(keys, precision, stage)
-        start = time.monotonic()
-        try:
-            run = self.launcher.run(folder, sweep_path, keys, stage, self.log)
-        except LaunchError as e:
-            raise MeasureError(str(e))
-        seconds = time.monotonic() - start
+        run, seconds = self._launch(self.launcher.run, folder, sweep_path, keys, stage)
         rows = read_records(os.path.join(run, "records.csv"))
         missing = [k for k in keys if k not in rows]
         if missing:
