@@ -57,7 +57,8 @@ munged_pid=/run/munge/ldm-ci-munged.pid
 started_munged=0
 
 show_logs() {
-  for f in "$work"/log/*.log "$work"/runs/*/slurm-logs/*.out "$work"/advise/*/stages/*/shards-*/slurm-logs/*.out; do
+  for f in "$work"/log/*.log "$work"/runs/*/slurm-logs/*.out "$work"/advise/*/stages/*/shards-*/slurm-logs/*.out \
+    "$work"/advise/*/stages/*/plan/slurm-logs/*.out; do
     [ -f "$f" ] || continue
     echo "---- $f (last 40 lines)"
     tail -n 40 "$f"
@@ -303,7 +304,8 @@ grep -q "Recommended: " "$work/log/advise-slurm.log" || fail "the advise through
 first_stage=$(grep -m1 '"event": "submitted"' "$sharded/advise.jsonl" | sed -E 's/.*"stage": "([^"]*)".*/\1/')
 submissions=$(grep '"event": "submitted"' "$sharded/advise.jsonl" | grep -c "\"stage\": \"$first_stage\"" || true)
 [ "$submissions" = 1 ] || fail "stage $first_stage was submitted $submissions times (1 expected)"
-ls "$sharded"/stages/01-census/plan-job-*.out >/dev/null 2>&1 || fail "the memory plan did not run as a Slurm job"
+ls "$sharded"/stages/01-census/plan/slurm-logs/ldmbench-plan-job-*.out >/dev/null 2>&1 ||
+  fail "the memory plan did not run as a Slurm job"
 cmp -s "$advise_dir/local/stages/01-census/plan/memory-plan.csv" "$sharded/stages/01-census/plan/memory-plan.csv" ||
   fail "the memory plan through Slurm differs from the local one"
 for merged in "$sharded"/stages/*/shards-*/merged; do

@@ -21,6 +21,10 @@
 #   SBATCH_ARGS       more sbatch options for both jobs (partition, account, time, ...)
 #   LDM_SLURM_JOBS_FILE  where to write the submitted job ids as JSON, {"array": ID,
 #                     "merge": ID} (what `ldmbench advise --launcher slurm` waits for)
+#   LDM_SLURM_PLAN    1: instead of the array, one job, waited for (sbatch --wait), runs
+#                     `ldmbench sweep FILE --memory-plan --out OUT` on a GPU node with the
+#                     same GPU options (advise's census: the storage block that refuses a
+#                     buffer is the GPU's); exits with its status, 3 (refused rows) as 0
 #SBATCH --job-name=ldmbench-sweep
 #SBATCH --cpus-per-task=2
 #SBATCH --time=04:00:00
@@ -35,6 +39,12 @@ if [ "${LDM_SLURM_MERGE:-0}" = 1 ]; then
   shard_dirs=()
   for ((i = 0; i < shards; i++)); do shard_dirs+=("$out/shard-$i"); done
   exec "$ldmbench" merge --overwrite "$out/merged" "${shard_dirs[@]}"
+fi
+if [ "${LDM_SLURM_PLAN_JOB:-0}" = 1 ]; then
+  status=0
+  "$ldmbench" sweep "$sweep" --memory-plan --out "$out" || status=$?
+  [ "$status" -eq 0 ] || [ "$status" -eq 3 ] || exit "$status"
+  exit 0
 fi
 if [ -n "${SLURM_ARRAY_TASK_ID:-}" ]; then
   # One array task: its shard. Exit 3 (some configurations failed, recorded) is a result.
@@ -67,6 +77,11 @@ case "${LDM_SLURM_GPUS:-1}" in
 esac
 logs="$out/slurm-logs"
 mkdir -p "$logs"  # Slurm opens the logs but makes no folder
+if [ "${LDM_SLURM_PLAN:-0}" = 1 ]; then
+  # shellcheck disable=SC2086
+  exec sbatch --wait --parsable $gpu_args ${SBATCH_ARGS:-} --job-name=ldmbench-plan \
+    --export=ALL,LDM_SLURM_PLAN_JOB=1 --output="$logs/ldmbench-plan-job-%j.out" "$0" "$sweep" 1 "$out"
+fi
 # shellcheck disable=SC2086  # SBATCH_ARGS and gpu_args are split on purpose
 array=$(sbatch --parsable $gpu_args ${SBATCH_ARGS:-} --array="${LDM_SLURM_TASKS:-0-$((shards - 1))}" \
   --output="$logs/ldmbench-shard-%a-of-$shards-job-%A_%a.out" "$0" "$sweep" "$shards" "$out")

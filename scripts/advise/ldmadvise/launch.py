@@ -14,7 +14,6 @@ submission's job ids; a rerun while they are still queued or running waits for t
 import csv
 import json
 import os
-import shlex
 import subprocess
 import time
 
@@ -48,9 +47,9 @@ class SingleProcess:
             argv += ["--cache-dir", self.cache_dir]
         return argv
 
-    def call(self, argv, log_path, what):
+    def call(self, argv, log_path, what, env=None):
         with open(log_path, "a", encoding="utf-8") as log:
-            status = subprocess.call(argv, stdout=log, stderr=subprocess.STDOUT)
+            status = subprocess.call(argv, stdout=log, stderr=subprocess.STDOUT, env=env)
         if status not in SWEEP_FINISHED:
             raise LaunchError(f"{what}: `{' '.join(argv)}` exited {status} (its output: {log_path})")
 
@@ -75,16 +74,6 @@ class SingleProcess:
 
     def run_plan(self, folder, sweep_path, stage):
         self.call(self.plan_argv(sweep_path, folder), os.path.join(folder, "plan.log"), f"stage {stage}")
-
-
-def gpu_arguments():
-    """The GPU options scripts/slurm-sweep.sh gives its tasks (LDM_SLURM_GPUS, LDM_SLURM_GPU_ARGS)."""
-    gpus = os.environ.get("LDM_SLURM_GPUS", "1")
-    if gpus == "0":
-        return []
-    if gpus != "1":
-        raise LaunchError(f"LDM_SLURM_GPUS must be 1 or 0, not '{gpus}'")
-    return os.environ.get("LDM_SLURM_GPU_ARGS", "--gres=gpu:1 --exclusive").split()
 
 
 def shard_count(wanted, keys):
@@ -122,9 +111,9 @@ class SlurmShards(SingleProcess):
     reach the jobs as they reach slurm-sweep.sh; LDM_SWEEP_ARGS gets --cache-dir added."""
     RESUBMISSIONS = 2   # a failed shard is resubmitted (it resumes) this often, then the stage fails
 
-    def __init__(self, ldmbench, cache_dir, shards, script, journal, poll_s=2.0, timeout_s=None):
+    def __init__(self, ldmbench, cache_dir, shards, script, journal, poll_s=2.0):
         super().__init__(ldmbench, cache_dir)
-        self.shards, self.script, self.poll_s, self.timeout_s = shards, script, poll_s, timeout_s
+        self.shards, self.script, self.poll_s = shards, script, poll_s
         self.journal = journal  # the events of earlier calls: submissions to reattach to
 
     def submit(self, sweep_path, n, base, tasks=None):
@@ -155,24 +144,20 @@ class SlurmShards(SingleProcess):
             raise LaunchError(f"squeue -j {','.join(job_ids)} exited {r.returncode}: {r.stderr.strip()}")
         return {line.strip() for line in r.stdout.splitlines() if line.strip()} & set(job_ids)
 
-    def wait(self, jobs, stage):
+    def wait(self, jobs):
+        """Until neither job is pending or running (however long the queue takes: a killed
+        advise reattaches when rerun)."""
         ids = [str(jobs["array"]), str(jobs["merge"])]
-        start = time.monotonic()
         while self.queued(ids):
-            if self.timeout_s and time.monotonic() - start > self.timeout_s:
-                raise LaunchError(f"stage {stage}: jobs {', '.join(ids)} still queued after {self.timeout_s} s")
             time.sleep(self.poll_s)
 
     def run_plan(self, folder, sweep_path, stage):
-        """On a GPU node too (the storage block that refuses a buffer is the device's): one job,
-        waited for (sbatch --wait), with the shards' GPU and sbatch options."""
-        argv = ["sbatch", "--wait", "--parsable", "--job-name=ldmbench-plan",
-                "--output=" + os.path.abspath(os.path.join(folder, "plan-job-%j.out"))]
-        argv += gpu_arguments() + os.environ.get("SBATCH_ARGS", "").split()
-        command = " ".join(shlex.quote(a) for a in self.plan_argv(os.path.abspath(sweep_path),
-                                                                   os.path.abspath(folder)))
-        argv += ["--wrap", command + "; s=$?; [ $s -eq 3 ] && exit 0; exit $s"]
-        self.call(argv, os.path.join(folder, "plan.log"), f"stage {stage} (the memory plan as a Slurm job)")
+        """On a GPU node too (the storage block that refuses a buffer is the GPU's): one job
+        through slurm-sweep.sh (LDM_SLURM_PLAN=1), with the shards' GPU and sbatch options,
+        waited for; its log in STAGE/plan/slurm-logs/."""
+        env = dict(os.environ, LDMBENCH=self.ldmbench, LDM_SLURM_PLAN="1")
+        self.call([self.script, os.path.abspath(sweep_path), "1", os.path.abspath(os.path.join(folder, "plan"))],
+                  os.path.join(folder, "plan.log"), f"stage {stage} (the memory plan as a Slurm job)", env)
 
     def earlier_submission(self, folder):
         for event in reversed(self.journal):
@@ -189,7 +174,7 @@ class SlurmShards(SingleProcess):
         if earlier and earlier.get("shards") == n and self.queued([str(earlier["array"]), str(earlier["merge"])]):
             log({"event": "reattached", "stage": stage, "folder": folder, "array": earlier["array"],
                  "merge": earlier["merge"]})
-            self.wait(earlier, stage)
+            self.wait(earlier)
         for attempt in range(self.RESUBMISSIONS + 1):
             if complete(records, keys):
                 return merged
@@ -200,7 +185,7 @@ class SlurmShards(SingleProcess):
                      "shards": n, "tasks": missing, **jobs}
             self.journal.append(event)
             log(event)
-            self.wait(jobs, stage)
+            self.wait(jobs)
         if complete(records, keys):
             return merged
         raise LaunchError(f"stage {stage}: {records} still lacks configurations after {self.RESUBMISSIONS} "
