@@ -105,15 +105,23 @@ grep -q '^| indirect | ok ' "$summary" || fail "the dry run's indirect step did 
 sed -n '/^| step/,/^$/p' "$summary"
 
 step "its time guard: a step over its share is stopped, one that cannot fit is skipped"
-"$moved/gpu-suite.sh" --dry-run --budget 25 --estimates gpu-tests=15,ao=3,indirect=100 --out "$work/guard" \
-  > "$work/guard.txt" 2>&1 || { cat "$work/guard.txt"; fail "gpu-suite.sh under a short budget failed"; }
+# Held steps wait 600 s before their work (--hold), so they outlast their 1 s and 3 s limits
+# on any machine; the indirect step's 1000 s estimate cannot fit a 300 s budget. Nothing here
+# depends on how fast the machine is.
+"$moved/gpu-suite.sh" --dry-run --budget 300 --estimates gpu-tests=1,ao=3,indirect=1000 \
+  --hold gpu-tests=600,ao=600 --out "$work/guard" > "$work/guard.txt" 2>&1 ||
+  { cat "$work/guard.txt"; fail "gpu-suite.sh under a short budget failed"; }
 summary="$(ls "$work"/guard/*/summary.md)"
-grep -q '^| ao | stopped ' "$summary" || fail "the AO step was not stopped at its 3 s limit ($summary)"
+grep -q '^| gpu-tests | stopped ' "$summary" || fail "the held test step was not stopped at its 1 s limit ($summary)"
+grep -q '^| ao | stopped | 3 | 3 ' "$summary" || fail "the held AO step was not stopped at its 3 s limit ($summary)"
 grep -q '^| indirect | skipped ' "$summary" || fail "the indirect step was not skipped ($summary)"
 step "bad arguments: exit 2, nothing written"
 rc=0; "$moved/gpu-suite.sh" --estimates foo=3 --out "$work/bad" 2> "$work/bad.txt" || rc=$?
 [ "$rc" = 2 ] && [ ! -e "$work/bad" ] && grep -q "no step 'foo'" "$work/bad.txt" ||
   fail "gpu-suite.sh --estimates foo=3: exit $rc, $(ls "$work/bad" 2>/dev/null | wc -l) files, '$(cat "$work/bad.txt")'"
+rc=0; "$moved/gpu-suite.sh" --hold ao=soon --out "$work/bad" 2> "$work/bad.txt" || rc=$?
+[ "$rc" = 2 ] && [ ! -e "$work/bad" ] && grep -q "not STEP=SECONDS" "$work/bad.txt" ||
+  fail "gpu-suite.sh --hold ao=soon: exit $rc, $(ls "$work/bad" 2>/dev/null | wc -l) files, '$(cat "$work/bad.txt")'"
 step "the full-size plan: its sweeps enumerate"
 "$moved/gpu-suite.sh" --plan --out "$work/plan" | tee "$work/plan.txt"
 grep -q -E 'ao [0-9]+ configurations x 3 repetitions at 1280x720' "$work/plan.txt" || fail "no full-size plan"

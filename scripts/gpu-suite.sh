@@ -17,6 +17,9 @@
 #   --estimates gpu-tests=S,ao=S,indirect=S
 #                     replace the steps' time estimates (seconds), e.g. by the times a
 #                     previous run's steps.tsv measured on this device
+#   --hold STEP=S,... make a step wait S seconds before it starts its work, inside its time
+#                     limit (for testing the time guard: a held step provably outlasts a
+#                     limit shorter than S, however fast the machine)
 #
 # Steps: 1 gpu-tests (the 64-bit HA-buffer keys, every structure's contention test, the
 # timestamp timer against the wall clock), 2 ao (AO on the Cornell box and the atrium, every
@@ -34,6 +37,7 @@ budget=450
 dry_run=0
 plan=0
 estimates=""
+holds=""
 while [ $# -gt 0 ]; do
   case "$1" in
     --out) out_root="${2:?--out needs a folder}"; shift 2 ;;
@@ -41,23 +45,31 @@ while [ $# -gt 0 ]; do
     --dry-run) dry_run=1; shift ;;
     --plan) plan=1; shift ;;
     --estimates) estimates="${2:?--estimates needs STEP=SECONDS,...}"; shift 2 ;;
-    -h|--help) sed -n '2,29p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    --hold) holds="${2:?--hold needs STEP=SECONDS,...}"; shift 2 ;;
+    -h|--help) sed -n '2,32p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "gpu-suite.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
 case "$budget" in ''|*[!0-9]*) echo "gpu-suite.sh: --budget '$budget' is not a whole number of seconds" >&2; exit 2 ;; esac
 # Checked before anything is written.
 override_tests=""; override_ao=""; override_indirect=""
-for pair in ${estimates//,/ }; do
-  seconds="${pair#*=}"
-  case "$seconds" in ''|*[!0-9]*) echo "gpu-suite.sh: --estimates '$pair': not STEP=SECONDS" >&2; exit 2 ;; esac
-  case "${pair%%=*}" in
-    gpu-tests) override_tests="$seconds" ;;
-    ao) override_ao="$seconds" ;;
-    indirect) override_indirect="$seconds" ;;
-    *) echo "gpu-suite.sh: --estimates '$pair': no step '${pair%%=*}' (gpu-tests, ao, indirect)" >&2; exit 2 ;;
-  esac
-done
+hold_tests=0; hold_ao=0; hold_indirect=0
+# STEP=SECONDS pairs of OPTION into the variables named PREFIX_tests, PREFIX_ao, PREFIX_indirect.
+parse_step_seconds() {  # OPTION PAIRS PREFIX
+  local pair seconds
+  for pair in ${2//,/ }; do
+    seconds="${pair#*=}"
+    case "$seconds" in ''|*[!0-9]*) echo "gpu-suite.sh: $1 '$pair': not STEP=SECONDS" >&2; exit 2 ;; esac
+    case "${pair%%=*}" in
+      gpu-tests) printf -v "$3_tests" '%s' "$seconds" ;;
+      ao) printf -v "$3_ao" '%s' "$seconds" ;;
+      indirect) printf -v "$3_indirect" '%s' "$seconds" ;;
+      *) echo "gpu-suite.sh: $1 '$pair': no step '${pair%%=*}' (gpu-tests, ao, indirect)" >&2; exit 2 ;;
+    esac
+  done
+}
+parse_step_seconds --estimates "$estimates" override
+parse_step_seconds --hold "$holds" hold
 start=$(date +%s)
 
 # Where the binaries are: the bundle's launchers, else a build of this source tree.
@@ -101,10 +113,11 @@ record_step() {  # name status estimate limit actual note
 # run, on llvmpipe with 2 cores. Earlier steps come first: a step starts if its estimate fits
 # in what is left, and may run until what is left less the estimates of the steps after it
 # (but at least its own estimate), so that its overrun cannot take their time.
-#   guarded NAME ESTIMATE RESERVE_AFTER COMMAND...
+#   guarded NAME ESTIMATE RESERVE_AFTER HOLD COMMAND...
+# (HOLD: seconds the step waits, inside its limit, before its command: --hold)
 guarded() {
-  local name="$1" estimate="$2" reserve="$3"
-  shift 3
+  local name="$1" estimate="$2" reserve="$3" hold="$4"
+  shift 4
   local left=$(( budget - $(elapsed) ))
   if [ "$left" -lt "$estimate" ]; then
     record_step "$name" skipped "$estimate" "$left" 0 "not started: ${left} s left, ${estimate} s estimated"
@@ -114,7 +127,7 @@ guarded() {
   [ "$left" -ge "$estimate" ] || left="$estimate"
   local t0 rc
   t0=$(date +%s)
-  timeout --signal=TERM --kill-after=20 "$left" bash -c '"$@"' "$name" "$@" > "$dir/$name.log" 2>&1
+  timeout --signal=TERM --kill-after=20 "$left" bash -c 'sleep "$0" && "$@"' "$hold" "$@" > "$dir/$name.log" 2>&1
   rc=$?
   local took=$(( $(date +%s) - t0 ))
   if [ "$rc" = 124 ] || [ "$rc" = 137 ]; then
@@ -242,9 +255,9 @@ if [ "$plan" = 1 ]; then
 fi
 # Reserves: what each later step needs at least to start (its estimate), so that an overrun
 # of the AO tables cannot starve the indirect ones of their start.
-guarded gpu-tests "$est_tests" $(( est_ao + est_indirect )) gpu_tests
-guarded ao "$est_ao" "$est_indirect" sweep ao
-guarded indirect "$est_indirect" 0 sweep indirect
+guarded gpu-tests "$est_tests" $(( est_ao + est_indirect )) "$hold_tests" gpu_tests
+guarded ao "$est_ao" "$est_indirect" "$hold_ao" sweep ao
+guarded indirect "$est_indirect" 0 "$hold_indirect" sweep indirect
 
 # The summary: the device, each step, the tests' counts and the configurations recorded.
 count_records() {  # FOLDER: statuses of the records.csv there and the repetitions measured
