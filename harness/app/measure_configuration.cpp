@@ -48,6 +48,7 @@ void describe_configuration(Record& r, const Configuration& config, const RunSet
   r.set("gl_version", device.gl_version);
   r.set("egl_platform", device.egl_platform);
   r.set("int64_atomics", device.has_int64_atomics);
+  r.set("driver_defects", device.driver_defects);
   describe_host(r);
   r.set("ldmbench_version", ldmbench_version());
   r.set("git_commit", git_commit());

@@ -5,6 +5,7 @@
 #include "harness/app/axis_registry.h"
 #include "harness/app/run_command.h"
 #include "harness/cli/commands.h"
+#include "harness/gl/driver_probe.h"
 #include "harness/gl/egl_context.h"
 #include "harness/passes/pass.h"
 #include "harness/app/record_schema.h"
@@ -53,6 +54,14 @@ Runner add_listing_commands(CLI::App& app) {
                 << "\nmax storage block: " << d.max_ssbo_block_bytes << " bytes"
                 << "\n64-bit atomics: " << (d.has_int64_atomics ? "yes" : "no")
                 << "\ntimer queries: " << (d.has_timer_queries ? "yes" : "no") << "\n";
+      // Each self-test's own line: a run's records say only what failed (driver_defects).
+      for (const BarrierProbeResult& probe : driver_conformance().barrier_probes)
+        std::cout << "self-test: "
+                  << (probe.conformant() ? std::string(probe_barrier_name(probe.barrier)) +
+                                               " in a divergent " + probe_stage_name(probe.stage) +
+                                               " loop: ok"
+                                         : "FAILED: " + probe.describe())
+                  << "\n";
     }
     return kExitOk;
   };

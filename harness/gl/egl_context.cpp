@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "harness/gl/driver_probe.h"
 #include "harness/gl/gl_api.h"
 #include "harness/util/error.h"
 
@@ -176,6 +177,12 @@ DeviceInfo describe_current_context(const std::string& platform_name, bool debug
     glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
     glDebugMessageCallback(debug_callback, nullptr);
     info.debug_output = true;
+  }
+  // The self-tests of behaviour the structures rely on (once per driver and process).
+  try {
+    info.driver_defects = driver_conformance().defects_text();
+  } catch (const GpuError& e) {
+    info.driver_defects = std::string("self-test could not run: ") + e.what();
   }
   return info;
 }

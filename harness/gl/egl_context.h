@@ -38,6 +38,9 @@ struct DeviceInfo {
   bool has_int64_atomics = false;  // GL_NV_shader_atomic_int64 (64-bit atomicMax on SSBOs)
   bool has_timer_queries = false;  // timestamp counter with > 0 bits
   bool debug_output = false;
+  // What the driver self-tests found wrong (harness/gl/driver_probe.h): "none", or each
+  // failed probe.
+  std::string driver_defects;
 };
 
 // An OpenGL 4.5 core context with no window, current on the calling thread for its lifetime.

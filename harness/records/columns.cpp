@@ -67,6 +67,7 @@ std::vector<ColumnSpec> main_columns() {
       {"device", "gl_version", "", "GL_VERSION"},
       {"device", "egl_platform", "", "EGL platform of the headless context (device or surfaceless)"},
       {"device", "int64_atomics", "", "whether GL_NV_shader_atomic_int64 is available"},
+      {"device", "driver_defects", "", "what the driver self-tests found wrong (harness/gl/driver_probe.h; docs/reference/structures.md#driver-conformance): none, or each failed probe; a structure that depends on a failed one refuses to build"},
       {"device", "timer", "", "sub-pass timer: gl_timestamp, fenced_wall_clock, or cpu_wall (the CPU's steady clock alone: a pass that runs on the CPU, rtao)"},
       {"device", "host", "", "host name of the machine that measured (a merged sweep joins several)"},
       {"device", "slurm_job_id", "", "under Slurm: the job that measured (SLURM_JOB_ID; an array task's own id); absent outside Slurm"},

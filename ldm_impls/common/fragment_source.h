@@ -10,6 +10,7 @@
 //                            contention tests of the lock-free insertions
 #include <string>
 
+#include "harness/gl/driver_probe.h"
 #include "harness/gl/gl_objects.h"
 #include "harness/gl/shader_program.h"
 
@@ -25,6 +26,9 @@ class FragmentSource {
   // Runs `program` (from build_program()) once per fragment; ends with a storage and
   // atomic-counter barrier so later passes see every write.
   virtual void run(const GlProgram& program) const = 0;
+  // The shader stage the fragment shader runs in (a driver's defects can differ by stage:
+  // harness/gl/driver_probe.h).
+  virtual ProbeStage stage() const = 0;
 };
 
 }  // namespace ldm

@@ -36,6 +36,7 @@ class RasterFragmentSource : public FragmentSource {
   GlProgram build_program(const std::string& fragment_file,
                           const ShaderDefines& defines) const override;
   void run(const GlProgram& program) const override;
+  ProbeStage stage() const override { return ProbeStage::Fragment; }
 
  private:
   const GpuScene& scene_;

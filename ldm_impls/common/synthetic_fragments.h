@@ -31,6 +31,7 @@ class SyntheticFragmentSource : public FragmentSource {
   GlProgram build_program(const std::string& fragment_file,
                           const ShaderDefines& defines) const override;
   void run(const GlProgram& program) const override;
+  ProbeStage stage() const override { return ProbeStage::Compute; }
 
   // Retry paths the fragment shaders took (LDM_COUNT_RETRY in ldm/ldm_fragment.glsl) over
   // every run() so far.

@@ -1,5 +1,7 @@
 #include "ldm_impls/psppsll/psppsll.h"
 
+#include "harness/util/error.h"
+
 namespace ldm {
 
 Psppsll::Psppsll(StructureParams& params) : pool_("psppsll", params) {
@@ -15,7 +17,20 @@ std::vector<AxisSpec> Psppsll::parameters() {
   return {ListNodePool::capacity_parameter(), atomic_reads};
 }
 
+std::optional<std::string> psppsll_driver_refusal(const DriverConformance& driver,
+                                                  ProbeStage stage) {
+  const BarrierProbeResult* defect = driver.barrier_defect(stage, ProbeBarrier::MemoryBarrier);
+  if (!defect) return std::nullopt;
+  return "psppsll cannot be measured on this driver: its insertion loop needs memoryBarrier() "
+         "in a loop that invocations leave at different iterations, and the driver's self-test "
+         "of exactly that failed (" +
+         defect->describe() +
+         "): its builds would lose fragments (docs/reference/structures.md#driver-conformance)";
+}
+
 void Psppsll::prepare(const BuildInputs& in) {
+  if (auto refusal = psppsll_driver_refusal(driver_conformance(), in.fragments.stage()))
+    throw UserError(*refusal);
   query_defines_ = common_structure_defines(in);
   ShaderDefines defines;
   // Each step passes one node or retries after a concurrent insertion, so a conforming

@@ -7,9 +7,9 @@
 #include <cmath>
 
 #include "harness/gl/gl_api.h"
-#include "harness/gl/gl_api.h"
 #include "harness/reference/embree_scene.h"
 #include "harness/util/error.h"
+#include "ldm_impls/psppsll/psppsll.h"
 #include "support/ldm_fixture.h"
 
 namespace ldm {
@@ -237,6 +237,35 @@ TEST(Psppsll, RejectsBadParameters) {
   EXPECT_THROW(make_structure("psppsll", StructureParams(Params{{"pool", "fixed"}})), UserError);
   EXPECT_THROW(make_structure("psppsll", StructureParams(Params{{"capacity", "0"}})), UserError);
   EXPECT_THROW(make_structure("nosuch", StructureParams()), UserError);
+}
+
+// A driver whose self-test lost invocations at memoryBarrier() in a divergent loop (the
+// barrier of the insertion loop) gets no PSPPSLL build in that stage, and the refusal names
+// the failed probe; a failure of memoryBarrierBuffer() alone, which PSPPSLL does not use,
+// refuses nothing (harness/gl/driver_probe.h).
+TEST(Psppsll, RefusesToBuildWhereTheDriverFailedItsBarrierSelfTest) {
+  const auto probe = [](ProbeStage stage, ProbeBarrier barrier, uint32_t completed) {
+    BarrierProbeResult r;
+    r.stage = stage;
+    r.barrier = barrier;
+    r.invocations = 64;
+    r.completed = completed;
+    return r;
+  };
+  DriverConformance driver;
+  for (ProbeStage stage : {ProbeStage::Compute, ProbeStage::Fragment})
+    for (ProbeBarrier barrier : {ProbeBarrier::MemoryBarrier, ProbeBarrier::MemoryBarrierBuffer})
+      driver.barrier_probes.push_back(probe(stage, barrier, 64));
+  EXPECT_FALSE(psppsll_driver_refusal(driver, ProbeStage::Compute));
+  EXPECT_FALSE(psppsll_driver_refusal(driver, ProbeStage::Fragment));
+  driver.barrier_probes[1].completed = 8;  // memoryBarrierBuffer(), compute: not PSPPSLL's
+  EXPECT_FALSE(psppsll_driver_refusal(driver, ProbeStage::Compute));
+  driver.barrier_probes[0].completed = 8;  // memoryBarrier(), compute
+  const auto refusal = psppsll_driver_refusal(driver, ProbeStage::Compute);
+  ASSERT_TRUE(refusal);
+  EXPECT_NE(refusal->find("memoryBarrier() in a divergent compute loop: 56 of 64 invocations lost"),
+            std::string::npos) << *refusal;
+  EXPECT_FALSE(psppsll_driver_refusal(driver, ProbeStage::Fragment));
 }
 
 }  // namespace

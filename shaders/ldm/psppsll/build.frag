@@ -4,6 +4,14 @@
 // (ldm/common/list_nodes.glsl). A node past LDM_NODE_CAPACITY is not written: the host
 // compares the counter with the capacity and records the overflow. An insertion that does not finish within
 // LDM_MAX_INSERT_STEPS steps (impossible on a conforming device) is counted as lost.
+//
+// The barriers are memoryBarrier(), not the narrower memoryBarrierBuffer() that would do: the
+// insertion loop is left by invocations at different iterations, and Mesa 22.3's lavapipe
+// (under zink) runs every memory barrier but memoryBarrier() as a work-group execution barrier
+// in compute shaders, which lost invocations mid-loop (1,500 of 3,500 fragments of the
+// contention test). Both order this invocation's buffer writes the same way; the driver
+// self-test (harness/gl/driver_probe.h) checks memoryBarrier() in such a loop on every driver,
+// and the structure refuses to build where it fails.
 #include "ldm/common/list_nodes.glsl"
 #include "ldm/ldm_fragment.glsl"
 
@@ -35,14 +43,14 @@ void main() {
     if (current == 0u || depth < uintBitsToFloat(data[list_depth_slot(current)])) {
       // Complete the new node before it becomes visible to other invocations.
       data[node_slot] = current;
-      memoryBarrierBuffer();
+      memoryBarrier();
       const uint seen = atomicCompSwap(data[previous_slot], current, node);
       if (seen == current) return;
       // Another invocation inserted here first: continue from its node. Acquire: its depth
       // and next index were written before its compare-and-swap published it (the barrier
       // above, on its side); this barrier keeps our reads of them after our atomic.
       LDM_COUNT_RETRY();
-      memoryBarrierBuffer();
+      memoryBarrier();
       current = seen;
     } else {
       previous_slot = list_next_slot(current);
