@@ -10,6 +10,9 @@ packages=(
   clang libclang-rt-14-dev
   # headless OpenGL 4.5: libglvnd's EGL/OpenGL plus Mesa's llvmpipe for machines without a GPU
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri
+  # the second driver the tests run under: zink over the Vulkan driver lavapipe
+  # (scripts/zink-tests.sh, tests/drivers)
+  mesa-vulkan-drivers libvulkan1
   # `ldmbench view`: GLFW and Dear ImGui (GLFW + OpenGL 3 backends), and for its tests a
   # virtual X server (xvfb-run needs xauth) and xdotool to type into the window
   libglfw3-dev libimgui-dev xvfb xauth xdotool
