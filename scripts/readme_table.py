@@ -42,9 +42,17 @@ def method(row):
     return f"{row['pass']} (peer)"
 
 
+def measured_with(rows):
+    """The GL driver(s) the GPU rows ran on, from their records (rtao's device is the CPU)."""
+    drivers = sorted({f"{r['device']}, OpenGL {r['gl_version']}" for r in rows if r["pass"] != "rtao"})
+    return "Measured with " + "; ".join(drivers) + "."
+
+
 def main(path):
     with open(path, newline="") as f:
         rows = [r for r in csv.DictReader(f)]
+    print(measured_with(rows))
+    print()
     print("| scene | method | status | build ms | query ms | frame ms | MiB allocated | MiB used "
           "| MSE | MSSIM | reference noise MSE |")
     print("| --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
