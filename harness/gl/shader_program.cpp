@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "harness/gl/embedded_shaders.h"
+#include "harness/gl/shader_dump.h"
 #include "harness/util/error.h"
 
 namespace ldm {
@@ -98,9 +99,13 @@ GlProgram build_program(const std::vector<ShaderStage>& stages, const ShaderDefi
   GlProgram owner(program);
   std::vector<GLuint> shaders;
   std::string names;
+  std::vector<std::string> dumped;  // LDM_SHADER_DUMP's file names, else empty
   for (const auto& stage : stages) {
     std::vector<std::string> table;
     const std::string source = preprocess_shader(stage.file, defines, stage.prelude_files, &table);
+    const std::string dumped_as = dump_shader_source(stage.type, stage.file, stage.prelude_files,
+                                                       source, table);
+    if (!dumped_as.empty()) dumped.push_back(dumped_as);
     GLuint shader = glCreateShader(stage.type);
     const char* text = source.c_str();
     glShaderSource(shader, 1, &text, nullptr);
@@ -120,6 +125,7 @@ GlProgram build_program(const std::vector<ShaderStage>& stages, const ShaderDefi
     shaders.push_back(shader);
     names += (names.empty() ? "" : " + ") + stage.file;
   }
+  dump_shader_program(dumped);
   glLinkProgram(program);
   for (GLuint s : shaders) {
     glDetachShader(program, s);

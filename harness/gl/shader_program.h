@@ -4,6 +4,8 @@
 // Sources may `#include "path"` other files (paths relative to shaders/); the C++ side
 // prepends `#version 450 core` and a block of `#define`s, then, for structures, the
 // structure's query implementation. Compile errors are reported with file names and lines.
+// With LDM_SHADER_DUMP set, every stage's final text is also written out for a second
+// compiler (harness/gl/shader_dump.h).
 #include <string>
 #include <utility>
 #include <vector>
