@@ -13,6 +13,9 @@ packages=(
   # the second driver the tests run under: zink over the Vulkan driver lavapipe
   # (scripts/zink-tests.sh, tests/drivers)
   mesa-vulkan-drivers libvulkan1
+  # the second GLSL front end (scripts/check-shaders.sh): glslangValidator, Khronos' reference
+  # compiler, on every shader program the harness builds
+  glslang-tools
   # `ldmbench view`: GLFW and Dear ImGui (GLFW + OpenGL 3 backends), and for its tests a
   # virtual X server (xvfb-run needs xauth) and xdotool to type into the window
   libglfw3-dev libimgui-dev xvfb xauth xdotool
