@@ -27,17 +27,17 @@ PointCloudCounts PointCloud::extract(const LdmStructure& structure, const GpuVie
   const uint64_t first = all ? 0 : uint64_t(view) * set.pixels_per_view();
   const uint32_t layers =
       uint32_t(std::clamp<uint64_t>(std::min<uint64_t>(max_layers, max_points_ / std::max<uint64_t>(pixels, 1)), 1, 1u << 16));
-  // The query defines change with the structure's storage; the layer count is a define too.
-  if (compiled_for_ != &structure || generation_ != structure.storage_generation() ||
-      compiled_layers_ != layers) {
-    ShaderDefines defines = binding_defines();
-    for (const auto& define : structure.query_defines().values) defines.values.push_back(define);
-    defines.set("POINT_LAYERS", std::to_string(layers) + "u");
+  // The query defines change with the structure and its storage; the layer count is a define
+  // too. Compiled again whenever what it is compiled from differs.
+  ShaderDefines defines = binding_defines();
+  for (const auto& define : structure.query_defines().values) defines.values.push_back(define);
+  defines.set("POINT_LAYERS", std::to_string(layers) + "u");
+  std::string inputs = defines.text();
+  for (const std::string& source : structure.query_sources()) inputs += source + "\n";
+  if (inputs != compiled_from_) {
     extract_program_ = build_program(
         {{GL_COMPUTE_SHADER, "viewer/point_cloud.comp", structure.query_sources()}}, defines);
-    compiled_for_ = &structure;
-    generation_ = structure.storage_generation();
-    compiled_layers_ = layers;
+    compiled_from_ = inputs;
   }
   slots_ = pixels * layers;
   const uint64_t bytes = kHeaderBytes + slots_ * kPointBytes;

@@ -6,6 +6,7 @@
 // Holes (pixels where a view stores nothing) and surfaces a direction misses show as gaps.
 // Nothing of the structure is copied to the CPU; only two counters are read back.
 #include <cstdint>
+#include <string>
 
 #include <glm/glm.hpp>
 
@@ -36,9 +37,9 @@ class PointCloud {
 
  private:
   uint64_t max_points_;
-  uint64_t generation_ = ~uint64_t(0);
-  const LdmStructure* compiled_for_ = nullptr;
-  uint32_t compiled_layers_ = 0;
+  // What extract_program_ was compiled from (query sources, defines): a new structure may
+  // live at the address of the last one, so the structure's address cannot be the key.
+  std::string compiled_from_;
   GlProgram extract_program_, draw_program_;
   GlBuffer points_;
   GlVertexArray vao_;
