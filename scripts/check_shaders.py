@@ -16,9 +16,13 @@ The full check, in four parts:
    value of every choice and boolean axis (the trace variant, the sizing policy, the AO
    visibility and estimator, each structure's and pass's own choices: key width, atomic
    reads, jitter, emission ...) with every structure and pass it applies to, and every
-   numeric parameter of a structure or pass at its lower bound and one above it (k = 0, an
-   array of no entry; blur 1, a program only a nonzero radius builds). Tiny sizes: the runs
-   only need each program built once. The sweep runs under llvmpipe and under zink (over
+   integer parameter of a structure or pass at its lower bound, or one above where that is
+   its default (k = 0, an array of no entry; blur 1, a program only a nonzero radius
+   builds); not reals, which
+   change a value in the code, not the code. A pass that refuses a value it declares (the
+   indirect pass takes only the default AO visibility) runs without it, as
+   `ldmbench sweep --dry-run` says; a value no pass takes fails. Tiny sizes: the runs only
+   need each program built once. The sweep runs under llvmpipe and under zink (over
    lavapipe; its GL_NV_shader_atomic_int64 builds the HA-buffer's 64-bit keys), at the same
    time. Then the test binaries that build programs no run does (the synthetic fragment
    source that runs fragment shaders as compute shaders, the driver self-test's failing
@@ -33,7 +37,9 @@ The full check, in four parts:
    the active one in some dumped source, as glslang's own preprocessor decides (-E on a copy
    with a marker after each branch). Exempt: include guards' implicit #else, and branches
    holding only #error. A define value no run sets -- a new axis value, or a new define --
-   fails here, naming the file and line of the branch no run compiled.
+   fails here, naming the file and line of the branch no run compiled. And a file compiled
+   with some of a family of preludes (the query API's users, each with a structure's query
+   implementation) must have been compiled with all of them.
 4. glslang on every dumped program: each stage with its stage (-S vert/frag/comp/geom), all
    stages of a program linked together (-l: the interfaces between stages must match).
    Flags: none beyond -S and -l. Without -V or -G, glslangValidator checks GLSL for OpenGL
@@ -42,10 +48,13 @@ The full check, in four parts:
    source's own (`#version 450 core`, its `#extension` lines), as every GL driver reads
    them. Warnings count as failures: a driver may reject what glslang only warns about.
 
-Prints a summary (sources, programs, variants per shader file, branches) and exits 0 when
-everything was accepted; 1 with glslang's message (its source strings named as the shader
-files) and the dumped file for every rejection, or naming what the covering runs missed;
-2 when the check itself could not run (no glslangValidator, no zink, a run that crashed).
+Prints a summary (sources, programs, variants per shader file and prelude, branches, the
+values each code-selecting define took) and exits 0 when everything was accepted; 1 with
+each distinct glslang message once (its source strings named as shader files and lines),
+the dumped files it came from and the command that reproduces it, or naming what the
+covering runs missed; 2 when the check itself could not run (no glslangValidator, no zink,
+a run that crashed). On a failure the dump, the generated sweep and every run's log are
+kept (the folder is printed).
 """
 import argparse
 import concurrent.futures
@@ -117,11 +126,12 @@ def registry_axes(ldmbench):
 
 
 def lower_values(axis):
-    """An integer parameter's values to cover besides its default: the lower bound and the
-    one above it (a size of 0 or 1, a loop of one turn, a radius that switches a program on)."""
+    """An integer parameter's value to cover besides its default: its lower bound (a size of
+    0 or 1, a loop of one turn), or one above it where the default is the bound (a radius
+    that switches a program on)."""
     low = int(axis["min"])
-    values = [v for v in (low, low + 1) if v <= axis["max"]]
-    return [v for v in values if str(v) != axis.get("default")]
+    value = low if str(low) != axis.get("default") else low + 1
+    return [value] if value <= axis["max"] else []
 
 
 def other_values(axis):
@@ -550,7 +560,8 @@ def annotate(source, message):
 
 
 def link_program(program, stages, sources):
-    """glslang -l on a program of several stages: the interfaces between them must match."""
+    """glslang -l on a program of several stages (the interfaces between them must match):
+    None, or (glslang's messages, which program, the command)."""
     by_path = {str(sources[s].path): sources[s] for s in stages}
     out = subprocess.run([GLSLANG, "-l", *by_path], capture_output=True, text=True)
     # glslang names each file before its messages; the link's messages come last.
@@ -559,11 +570,26 @@ def link_program(program, stages, sources):
         if line.strip() in by_path:
             current = by_path[line.strip()]
         elif line.strip():
-            lines.append(annotate(current, line) if current else line)
+            lines.append(annotate(current, line).rstrip() if current else line.rstrip())
     if out.returncode == 0 and not lines:
         return None
-    return (f"program {program} ({' + '.join(sources[s].file for s in stages)}), linked "
-            f"(glslangValidator -l {' '.join(by_path)}):\n  " + "\n  ".join(lines))
+    return ("\n".join(lines or [f"exit {out.returncode}"]),
+            f"program {program} ({' + '.join(sources[s].file for s in stages)})",
+            f"glslangValidator -l {' '.join(by_path)}")
+
+
+def grouped(findings, limit=3):
+    """Findings (message, where, command) with one message, as one paragraph: the message,
+    how many had it, a few of them and the command that reproduces the first."""
+    by_message = defaultdict(list)
+    for message, where, command in findings:
+        by_message[message].append((where, command))
+    paragraphs = []
+    for message, places in by_message.items():
+        shown = "\n".join(f"  in {w}" for w, _ in places[:limit])
+        more = f"\n  and {len(places) - limit} more" if len(places) > limit else ""
+        paragraphs.append(f"{message}\n{shown}{more}\n  reproduce: {places[0][1]}")
+    return paragraphs
 
 
 def check_glslang(sources, programs, jobs):
@@ -579,16 +605,21 @@ def check_glslang(sources, programs, jobs):
         by_stage[source.stage].append(source.path)
     origin = {s.path: s for s in sources.values()}
     rejected, _ = glslang_batches(by_stage, jobs)
-    for path, lines in sorted(rejected.items(), key=lambda item: str(item[0])):
-        source = origin[path]
-        problems.append(f"{path} ({source.file}, glslangValidator -S {source.stage} {path}):\n  " +
-                        "\n  ".join(annotate(source, l) for l in lines))
+    compiled = [("\n".join(annotate(origin[path], l).rstrip() for l in lines),
+                 f"{path} ({origin[path].file})",
+                 f"glslangValidator -S {origin[path].stage} {path}")
+                for path, lines in sorted(rejected.items(), key=lambda item: str(item[0]))]
     linked = [(p.name, stages) for p, stages in programs if len(stages) > 1]
     with concurrent.futures.ThreadPoolExecutor(jobs) as pool:
-        problems += [r for r in pool.map(lambda p: link_program(*p, sources), linked) if r]
+        links = [r for r in pool.map(lambda p: link_program(*p, sources), linked) if r]
+    if compiled:
+        problems.append(f"glslang rejected {len(compiled)} of {len(sources)} sources:\n\n" +
+                        "\n\n".join(grouped(compiled)))
+    if links:
+        problems.append(f"glslang rejected {len(links)} of {len(linked)} programs linked:\n\n" +
+                        "\n\n".join(grouped(links)))
     if problems:
-        raise CheckFailed(f"glslang rejected {len(problems)} of {len(sources)} sources and "
-                          f"{len(linked)} linked programs:\n\n" + "\n\n".join(problems))
+        raise CheckFailed("\n\n".join(problems))
     return len(linked)
 
 
@@ -616,6 +647,7 @@ def summary(sources, branches):
 def check_dump(dump, shaders, jobs):
     if not shutil.which(GLSLANG):
         raise CannotCheck(f"{GLSLANG} is not installed (Debian glslang-tools; scripts/setup.sh)")
+    t0 = time.monotonic()
     sources, programs = read_dump(dump)
     problems = []
     try:
@@ -633,7 +665,8 @@ def check_dump(dump, shaders, jobs):
     required = sum(b.required for b in branches.values())
     log(f"{len(sources)} sources in {len(programs)} programs ({linked} of several stages, "
         f"linked) from {files} shader files; {required} preprocessor branches, each compiled; "
-        f"all accepted by {version}. Variants per shader file:\n" + summary(sources, branches))
+        f"all accepted by {version} ({time.monotonic() - t0:.0f} s). Variants per shader "
+        f"file:\n" + summary(sources, branches))
 
 
 def main():
@@ -650,7 +683,13 @@ def main():
             check_dump(Path(args.dump), Path(args.shaders), args.jobs)
             return 0
         build = Path(args.build)
+        needed = [build / "ldmbench", *(build / "tests" / b for b, _ in TEST_PROGRAMS)]
+        absent = [str(p) for p in needed if not os.access(p, os.X_OK)]
+        if absent:
+            raise CannotCheck("not built: " + ", ".join(absent) + " (scripts/test.sh builds "
+                              "them; or --build DIR)")
         scratch = Path(args.keep) if args.keep else Path(tempfile.mkdtemp(prefix="ldm-check-shaders-"))
+        keep = bool(args.keep)
         try:
             if args.keep and scratch.exists() and any(scratch.iterdir()):
                 raise CannotCheck(f"--keep {scratch}: not empty")
@@ -671,8 +710,12 @@ def main():
             configurations = check_records(records)
             log(f"{configurations} configurations, each built under at least one driver")
             check_dump(dump, Path(args.shaders), args.jobs)
+        except (CheckFailed, CannotCheck):
+            keep = True  # the dumped files and logs the message names
+            log(f"kept the dump, the covering sweep and the runs' logs in {scratch}")
+            raise
         finally:
-            if not args.keep:
+            if not keep:
                 shutil.rmtree(scratch, ignore_errors=True)
         return 0
     except CheckFailed as e:
