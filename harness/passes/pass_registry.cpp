@@ -9,6 +9,7 @@
 #include "harness/passes/indirect_lighting.h"
 #include "harness/passes/pass.h"
 #include "harness/passes/rtao.h"
+#include "harness/passes/rtao_gpu.h"
 #include "harness/util/error.h"
 
 namespace ldm {
@@ -22,6 +23,7 @@ std::vector<Entry>& registry() {
       {"hbao", Hbao::parameters, Hbao::columns, [](StructureParams& p) { return std::make_unique<Hbao>(p); }},
       {"gtao", Gtao::parameters, Gtao::columns, [](StructureParams& p) { return std::make_unique<Gtao>(p); }},
       {"rtao", Rtao::parameters, Rtao::columns, [](StructureParams& p) { return std::make_unique<Rtao>(p); }},
+      {"rtao_gpu", RtaoGpu::parameters, RtaoGpu::columns, [](StructureParams& p) { return std::make_unique<RtaoGpu>(p); }},
       {"indirect", IndirectLighting::parameters, IndirectLighting::columns, [](StructureParams& p) { return std::make_unique<IndirectLighting>(p); }},
   };
   return entries;
