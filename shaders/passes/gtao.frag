@@ -3,8 +3,10 @@
 // G-buffer, with the reference's attenuation applied to each rise of the horizon.
 //
 // The hemisphere around the shading normal n is cut into GTAO_SLICES planes that all contain
-// the view vector v (x towards the eye); slice k is the plane of the screen line through x at
-// angle phi_k = (k + noise) / GTAO_SLICES * pi, its direction d, axis a = d x v. In a slice, a
+// the view vector v (x towards the eye); slice k holds the direction d_k at angle
+// phi_k = (k + noise) / GTAO_SLICES * pi about v (uniform about v, where the paper steps
+// uniformly in screen space: the same about the image's centre, biased off it), its axis
+// a = d x v; on screen it is the line through x's pixel along d's projection. In a slice, a
 // direction is the angle theta from v (positive towards +d), the cosine-weighted integrand is
 // cos(theta - gamma) |sin theta| (gamma the angle of n's projection n_p into the slice) and its
 // integral has the closed form of the paper's Eq. 10:
@@ -132,16 +134,26 @@ void main() {
   const float radius_pixels = gtao_radius * focal_pixels / view_depth;
   const vec2 size = vec2(textureSize(gbuffer_position, 0));
   const float slice_noise = gtao_jitter != 0 ? bayer4(pixel) : 0.5;
+  // An orthonormal pair about v: the slices' directions.
+  const vec3 to_x = x - camera_eye;
+  const vec3 t1 = normalize(camera_right - dot(camera_right, v) * v);
+  const vec3 t2 = cross(v, t1);
   const float step_noise = gtao_jitter != 0 ? bayer4(pixel.yx + ivec2(1, 2)) : 0.5;
 
   float visible = 0.0, open = 0.0;
   for (int k = 0; k < GTAO_SLICES; ++k) {
+    // The slice's direction d, at angle phi about v from t1: uniform about the view vector,
+    // as the integral over phi assumes (uniform screen directions are not, off the image's
+    // centre, and would bias the mean estimator there).
     const float phi = (float(k) + slice_noise) / float(GTAO_SLICES) * kPi;
-    const vec2 direction = vec2(cos(phi), sin(phi));  // pixels, GL rows (y up = camera up)
-    // The slice plane holds the eye, x and the screen line: v and the image-plane direction.
-    const vec3 w = direction.x * camera_right + direction.y * camera_up;
-    const vec3 d = normalize(w - dot(w, v) * v);
+    const vec3 d = cos(phi) * t1 + sin(phi) * t2;
     const vec3 axis = cross(d, v);
+    // The slice plane holds the eye: on screen it is the line through x's pixel along the
+    // projection of d (the derivative of x + s d's pixel position at s = 0; GL rows, y up).
+    const vec2 along = vec2(dot(d, camera_right), dot(d, camera_up)) * view_depth -
+                       vec2(dot(to_x, camera_right), dot(to_x, camera_up)) * dot(d, camera_forward);
+    if (dot(along, along) == 0.0) continue;  // d along the pixel's ray: no slice on screen
+    const vec2 direction = normalize(along);
     const vec3 n_p = n - axis * dot(n, axis);
     const float n_p_length = length(n_p);
     if (n_p_length < 1e-6) continue;  // n normal to the slice: it weighs nothing
