@@ -48,6 +48,7 @@ Gtao::Gtao(StructureParams& params) {
   gtao_.jitter = params.get_choice("jitter") == "on";
   gtao_.normalized = params.get_choice("estimator") == "normalized";
   gtao_.denoise_radius = uint32_t(params.get_uint("denoise"));
+  gtao_.reference_weights = params.get_choice("attenuation") == "reference";
   if (params.has("d_max")) overrides_.d_max = float(params.get_double("d_max"));
   const std::string visibility = params.get_choice("visibility");
   if (visibility != "scene") overrides_.attenuated = visibility == "attenuated";
@@ -55,14 +56,15 @@ Gtao::Gtao(StructureParams& params) {
 
 // The defaults are the measured optimum of docs/measured/gtao-rtao-gpu.md.
 std::vector<AxisSpec> Gtao::parameters() {
-  return {numeric("slices", AxisKind::UInt, 1, 64, "4", "slices", "slice planes through the view vector per pixel"),
-          numeric("steps", AxisKind::UInt, 1, 128, "8", "steps", "horizon-search samples per side of a slice"),
+  return {numeric("slices", AxisKind::UInt, 1, 64, "8", "slices", "slice planes through the view vector per pixel"),
+          numeric("steps", AxisKind::UInt, 1, 128, "16", "steps", "horizon-search samples per side of a slice"),
           numeric("radius", AxisKind::Real, 0.05, 8, "1", "d_max", "search radius R as a multiple of d_max"),
           numeric("falloff", AxisKind::Real, 0, 1, "0", "", "fraction of R over which an occluder's weight fades to 0 (0: none)"),
           numeric("thickness", AxisKind::Real, 0, 1, "0", "", "thickness heuristic: how far a lower sample pulls the horizon back (0: height field)"),
-          numeric("step_power", AxisKind::Real, 0.5, 4, "2", "", "sample distances R * u^power (2: denser near the pixel)"),
-          choice("jitter", {"off", "on"}, "off", "per-pixel slice rotation and step offset (4x4 Bayer pattern)"),
+          numeric("step_power", AxisKind::Real, 0.5, 4, "1.5", "", "sample distances R * u^power (> 1: denser near the pixel)"),
+          choice("jitter", {"off", "on"}, "on", "per-pixel slice rotation and step offset (4x4 Bayer pattern)"),
           choice("estimator", {"mean", "normalized"}, "normalized", "mean over the slices (the paper) or normalized by their open hemispheres"),
+          choice("attenuation", {"reference", "binary"}, "reference", "occluder weight: the reference's 1 - V(r), or 1 within R (the engines' binary horizon, faded by falloff)"),
           numeric("denoise", AxisKind::UInt, 0, 16, "0", "pixels", "cross-bilateral denoise radius (0: none)"),
           ao_pass_parameter(AoAxis::DMax), ao_pass_parameter(AoAxis::Visibility)};
 }
@@ -78,6 +80,7 @@ std::vector<ColumnSpec> Gtao::columns() {
       {"pass", "gtao_step_power", "", "GTAO: sample distances R * u^power (--param gtao:step_power=)"},
       {"pass", "gtao_jitter", "", "GTAO: off, or on (per-pixel slice rotation and step offset, 4x4 Bayer pattern)"},
       {"pass", "gtao_estimator", "", "GTAO: mean (the paper's mean over slices) or normalized (over the slices' open hemispheres)"},
+      {"pass", "gtao_attenuation", "", "GTAO: reference (each horizon rise weighted by the reference's 1 - V(r)) or binary (1 within R, faded by gtao_falloff: the engines' horizon)"},
       {"pass", "gtao_denoise", "pixels", "GTAO: radius of the cross-bilateral denoise, timed as denoise (0: none; --param gtao:denoise=)"},
   };
   columns.insert(columns.end(), own.begin(), own.end());
@@ -120,6 +123,7 @@ std::vector<std::pair<std::string, RecordValue>> Gtao::describe(const Scene& sce
           {"gtao_step_power", double(gtao_.step_power)},
           {"gtao_jitter", std::string(gtao_.jitter ? "on" : "off")},
           {"gtao_estimator", std::string(gtao_.normalized ? "normalized" : "mean")},
+          {"gtao_attenuation", std::string(gtao_.reference_weights ? "reference" : "binary")},
           {"gtao_denoise", int64_t(gtao_.denoise_radius)}};
 }
 

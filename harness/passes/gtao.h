@@ -20,6 +20,8 @@
 //   jitter       off | on: per-pixel slice rotation and step offset (a 4x4 Bayer pattern)
 //   estimator    mean (the paper's mean over slices) | normalized (over the slices' open
 //                hemispheres: exactly 1 where nothing occludes)
+//   attenuation  reference (each horizon rise weighted by the reference's 1 - V(r)) | binary
+//                (1 within R, faded by falloff: the engines' binary horizon)
 //   denoise      radius in pixels of the cross-bilateral blur after it (0..16; 0: none), timed
 //                as the sub-pass `denoise`
 // Defaults: docs/measured/gtao-rtao-gpu.md (chosen by MSE against the reference on the shipped

@@ -14,7 +14,8 @@ GtaoKernel::GtaoKernel(const GtaoSettings& gtao, const AoSettings& ao, int width
   ShaderDefines defines = binding_defines();
   defines.set("GTAO_SLICES", std::to_string(gtao.slices));
   defines.set("GTAO_STEPS", std::to_string(gtao.steps));
-  defines.set("GTAO_ATTENUATED", ao.attenuated ? 1 : 0);
+  // The reference's V weighs the rises where it is attenuated (unattenuated, W = 1 anyway).
+  defines.set("GTAO_REFERENCE_WEIGHTS", ao.attenuated && gtao.reference_weights ? 1 : 0);
   defines.set("GTAO_NORMALIZED", gtao.normalized ? 1 : 0);
   program_ = build_program({{GL_VERTEX_SHADER, "passes/fullscreen.vert", {}},
                             {GL_FRAGMENT_SHADER, "passes/gtao.frag", {}}},

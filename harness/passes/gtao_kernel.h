@@ -14,6 +14,8 @@
 namespace ldm {
 
 struct GtaoSettings {
+  // The pass's defaults are its parameters' (harness/passes/gtao.cpp); these are the
+  // kernel's, for tests that build it by hand.
   uint32_t slices = 4;         // slice planes through the view vector per pixel
   uint32_t steps = 8;          // samples per side of a slice
   float radius_scale = 1.0f;   // R = radius_scale * d_max
@@ -23,6 +25,7 @@ struct GtaoSettings {
   bool jitter = false;         // per-pixel slice rotation and step offset (4x4 Bayer)
   bool normalized = true;      // divide by the open hemisphere's quadrature, not the slices
   uint32_t denoise_radius = 0; // pixels of the cross-bilateral blur; 0: none
+  bool reference_weights = true;  // W = 1 - V(r); false: W = 1 within R (binary horizon)
 };
 
 // Where the G-buffer was seen from: the camera's frame (harness/scene/camera.h) and

@@ -21,6 +21,9 @@
 //   W(r) = 1 - V(r), V the reference's visibility of a hit at the sample's distance r
 //   (attenuated: min(r / d_max, 1)^e; unattenuated: 0, so W = 1 within R),
 // times an optional linear fade over the last `falloff` fraction of R (XeGTAO's falloff).
+// GTAO_REFERENCE_WEIGHTS 0 (gtao:attenuation=binary) sets W = 1 within R whatever the
+// reference's visibility, the engines' binary horizon with only the fade: what the
+// reference's attenuation is worth is the difference.
 // With W = 1 the sum telescopes to the paper's single-horizon integral; with the reference's
 // V it is exact in the limit of many steps wherever the surface seen along the slice's screen
 // line is what the slice's rays hit first (a height field seen from the camera): the sample
@@ -69,7 +72,7 @@ float arc_integral(float theta, float gamma) {
 
 // The weight W(r) of an occluder at distance r: 1 - V(r), faded over the last falloff of R.
 float occluder_weight(float r) {
-#if GTAO_ATTENUATED
+#if GTAO_REFERENCE_WEIGHTS
   const float ratio = min(r / gtao_d_max, 1.0);
   float w = 1.0 - (gtao_falloff_exponent == 2.0 ? ratio * ratio : pow(ratio, gtao_falloff_exponent));
 #else

@@ -1,11 +1,12 @@
 // Ray-traced ambient occlusion on the GPU (harness/passes/rtao_gpu.h): per pixel of the
-// camera's G-buffer, RTAO_GPU_SPP cosine-weighted rays through the scene's BVH
-// (harness/passes/gpu_bvh.h), with the reference's estimator (harness/reference/
-// ao_estimator.h) in every detail that decides the image:
-//  - x and the camera-facing shading normal are the G-buffer's (the reference's primary ray
-//    finds the same point); the rays start kRayOffsetUlps float ulps of the largest
-//    coordinate of x's triangle off the surface, along the triangle's plane normal on the
-//    camera's side (harness/reference/surface_point.cpp);
+// G-buffer (traced by rtao_gpu_primary.comp, or rasterised), RTAO_GPU_SPP cosine-weighted rays
+// through the scene's BVH (harness/passes/gpu_bvh.h, bvh_traversal.glsl), with the
+// reference's estimator (harness/reference/ao_estimator.h) in every detail that decides the
+// image:
+//  - x and the camera-facing shading normal are the G-buffer's; the rays start
+//    kRayOffsetUlps float ulps of the largest coordinate of x's triangle off the surface,
+//    along the triangle's plane normal on the camera's side (harness/reference/
+//    surface_point.cpp);
 //  - directions: Malley's method, z = sqrt(1 - u1), about the shading normal in Duff et al.'s
 //    frame (harness/reference/hemisphere.h), u1 and u2 drawn in that order from the pixel's
 //    PCG32 stream (pcg32.glsl: the CPU's numbers for the same seed and pass);
@@ -13,43 +14,19 @@
 //    miss); unattenuated, any hit at any distance, V = 0 (the first hit ends the ray);
 //  - AO = the mean of V over the rays, 0 on background.
 //
-// The traversal is one loop (the "if-if" form of Aila and Laine 2009, with the pixel's rays
-// in the same loop): each iteration tests one BVH node (both children's boxes), or one
-// triangle of the current leaf, or finishes a ray and starts the next. llvmpipe counts every
-// loop iteration of a SIMD group against one limit (harness/passes/trace_steps.h); with one
-// loop a group runs exactly as many iterations as its longest invocation, which the counting
-// variant (RTAO_GPU_COUNT 1, run untimed after the measured frames) records.
+// The pixel's rays and their traversal are one loop: each iteration finishes a ray and starts
+// the next, or takes one traversal step (bvh_traversal.glsl), so that the counting variant
+// (RTAO_GPU_COUNT 1, run untimed after the measured frames) counts what llvmpipe's loop
+// limiter counts.
 layout(local_size_x = 8, local_size_y = 8) in;
 
 #include "passes/pcg32.glsl"
+#include "passes/bvh_traversal.glsl"
 
 layout(binding = 0) uniform sampler2D gbuffer_position;
 layout(binding = 1) uniform sampler2D gbuffer_normal;
 layout(binding = 2) uniform usampler2D gbuffer_triangle;  // scene triangle + 1, 0: background
 layout(binding = 0, r32f) uniform restrict writeonly image2D ao_image;
-
-layout(std430, binding = RTAO_GPU_NODES_BINDING) restrict readonly buffer BvhNodes {
-  // 4 per node (gpu_bvh.h). Read as words: the child words are small integers, whose bits as
-  // floats would be denormals, which a device may flush.
-  uvec4 bvh_nodes[];
-};
-layout(std430, binding = RTAO_GPU_TRIANGLES_BINDING) restrict readonly buffer BvhTriangles {
-  uvec4 bvh_triangles[];  // 3 per triangle: v0 (w: scene index), v1, v2, as float bits
-};
-layout(std430, binding = RTAO_GPU_SLOTS_BINDING) restrict readonly buffer BvhSlots {
-  uint bvh_slots[];  // per scene triangle: its index in bvh_triangles
-};
-#if RTAO_GPU_COUNT
-// Per pixel: nodes visited and triangles tested by its rays, summed; then the maxima over
-// every ray (nodes, triangles) and over every invocation (loop iterations).
-layout(std430, binding = RTAO_GPU_COUNTS_BINDING) restrict buffer RtaoGpuCounts {
-  uint count_max_nodes;
-  uint count_max_triangles;
-  uint count_max_steps;
-  uint count_pad;
-  uvec2 count_pixel[];
-};
-#endif
 
 uniform vec3 camera_eye;
 uniform uvec2 rng_seed_mixed;  // mix64(seed)
@@ -58,7 +35,6 @@ uniform float ao_d_max;
 uniform float ao_falloff_exponent;
 uniform float ray_offset_ulps;  // surface_point.h's kRayOffsetUlps
 
-const uint kNone = 0xffffffffu;
 const float kFloatEpsilon = 1.1920928955078125e-7;  // FLT_EPSILON
 
 // Duff et al. 2017, as NormalFrame (hemisphere.h), its copysign(1, n.z) included: the sign
@@ -82,45 +58,7 @@ vec3 cosine_weighted_direction(float u1, float u2) {
   return vec3(r * cos(phi), r * sin(phi), sqrt(1.0 - u1));
 }
 
-// The slab test: where the ray enters the box within [0, t_max] (gpu_bvh.cpp's hit_box).
-bool hit_box(vec3 lo, vec3 hi, vec3 origin, vec3 inverse, float t_max, out float t_enter) {
-  const vec3 t0 = (lo - origin) * inverse, t1 = (hi - origin) * inverse;
-  const vec3 near = min(t0, t1), far = max(t0, t1);
-  t_enter = max(max(near.x, near.y), max(near.z, 0.0));
-  // A few ulps of slack: a box touching the hit must not be culled by rounding.
-  const float leave = min(min(far.x, far.y), min(far.z, t_max)) * 1.0000004;
-  return t_enter <= leave;
-}
-
-// Möller-Trumbore (gpu_bvh.cpp's hit_triangle): the hit's t, negative on a miss.
-vec3 triangle_vertex(uint slot, uint vertex) {
-  return uintBitsToFloat(bvh_triangles[3u * slot + vertex].xyz);
-}
-
-float hit_triangle(uint slot, vec3 origin, vec3 direction) {
-  const vec3 v0 = triangle_vertex(slot, 0u);
-  const vec3 e1 = triangle_vertex(slot, 1u) - v0;
-  const vec3 e2 = triangle_vertex(slot, 2u) - v0;
-  const vec3 p = cross(direction, e2);
-  const float det = dot(e1, p);
-  if (det == 0.0) return -1.0;
-  const float inverse = 1.0 / det;
-  const vec3 s = origin - v0;
-  const float u = dot(s, p) * inverse;
-  if (u < 0.0 || u > 1.0) return -1.0;
-  const vec3 q = cross(s, e1);
-  const float v = dot(direction, q) * inverse;
-  if (v < 0.0 || u + v > 1.0) return -1.0;
-  return dot(e2, q) * inverse;
-}
-
-// 1 / d, with components smaller than 1e-30 replaced by +-1e-30 (gpu_bvh.cpp's
-// safe_inverse): no 0 * inf in the slab test.
-vec3 safe_inverse(vec3 d) {
-  const vec3 signs = vec3(greaterThanEqual(d, vec3(0.0))) * 2.0 - 1.0;
-  return 1.0 / mix(d, signs * 1e-30, lessThan(abs(d), vec3(1e-30)));
-}
-
+// V of the ray just traced (the reference's attenuation).
 float visibility(bool found, float t) {
 #if RTAO_GPU_ATTENUATED
   if (!found) return 1.0;
@@ -139,6 +77,9 @@ void main() {
   const uint triangle_id = texelFetch(gbuffer_triangle, pixel, 0).r;
   if (position.w == 0.0 || triangle_id == 0u) {  // background
     imageStore(ao_image, pixel, vec4(0.0));
+#if RTAO_GPU_COUNT
+    count_pixel[pixel.y * size.x + pixel.x] = uvec2(0u);
+#endif
     return;
   }
   const vec3 x = position.xyz;
@@ -159,24 +100,18 @@ void main() {
 
 #if RTAO_GPU_ATTENUATED
   const float t_far = ao_d_max;
+  const bool any_hit = false;
 #else
   const float t_far = uintBitsToFloat(0x7f800000u);  // +inf
+  const bool any_hit = true;
 #endif
   // Sums of V: per 64 rays in `partial`, then in `total`, so that thousands of rays lose no
   // digits to one float accumulator.
   float total = 0.0, partial = 0.0;
   uint rays_done = 0u;
-  vec3 direction = vec3(0.0), inverse = vec3(0.0);
-  float t_max = t_far;
-  bool found = false;
-  uint node = kNone, leaf_next = 0u, leaf_left = 0u;
-  uint stack_word[RTAO_GPU_STACK], stack_count[RTAO_GPU_STACK];
-  float stack_enter[RTAO_GPU_STACK];
-  int stack_size = 0;
   bool ray_live = false;
 #if RTAO_GPU_COUNT
-  uint steps = 0u, ray_nodes = 0u, ray_triangles = 0u, pixel_nodes = 0u, pixel_triangles = 0u;
-  uint max_nodes = 0u, max_triangles = 0u;
+  uint steps = 0u, pixel_nodes = 0u, pixel_triangles = 0u, max_nodes = 0u, max_triangles = 0u;
 #endif
   for (;;) {
 #if RTAO_GPU_COUNT
@@ -184,92 +119,25 @@ void main() {
 #endif
     if (!ray_live) {
       if (rays_done > 0u) {  // finish the ray just traced
-        partial += visibility(found, t_max);
+        partial += visibility(trace_found, trace_t_max);
         if ((rays_done & 63u) == 0u) {
           total += partial;
           partial = 0.0;
         }
 #if RTAO_GPU_COUNT
-        pixel_nodes += ray_nodes;
-        pixel_triangles += ray_triangles;
-        max_nodes = max(max_nodes, ray_nodes);
-        max_triangles = max(max_triangles, ray_triangles);
-        ray_nodes = 0u;
-        ray_triangles = 0u;
+        pixel_nodes += trace_nodes;
+        pixel_triangles += trace_triangles;
+        max_nodes = max(max_nodes, trace_nodes);
+        max_triangles = max(max_triangles, trace_triangles);
 #endif
       }
       if (rays_done == RTAO_GPU_SPP) break;
       const float u1 = pcg32_next_float(rng);
       const float u2 = pcg32_next_float(rng);
-      direction = to_world(n, cosine_weighted_direction(u1, u2));
-      inverse = safe_inverse(direction);
-      t_max = t_far;
-      found = false;
-      node = 0u;  // the root
-      stack_size = 0;
+      trace_begin(origin, to_world(n, cosine_weighted_direction(u1, u2)), t_far);
       ++rays_done;
-      ray_live = true;
     }
-    if (leaf_left > 0u) {  // one triangle of the current leaf
-#if RTAO_GPU_COUNT
-      ++ray_triangles;
-#endif
-      const float t = hit_triangle(leaf_next, origin, direction);
-      ++leaf_next;
-      --leaf_left;
-      if (t > 0.0 && t < t_max) {
-        t_max = t;
-        found = true;
-#if !RTAO_GPU_ATTENUATED
-        leaf_left = 0u;  // any hit ends an unattenuated ray
-        stack_size = 0;
-#endif
-      }
-    } else if (node != kNone) {  // one inner node: both children's boxes
-#if RTAO_GPU_COUNT
-      ++ray_nodes;
-#endif
-      const uvec4 a = bvh_nodes[4u * node], b = bvh_nodes[4u * node + 1u],
-                  c = bvh_nodes[4u * node + 2u], d = bvh_nodes[4u * node + 3u];
-      const uint word0 = a.w, word1 = b.w, count0 = c.w, count1 = d.w;
-      float t0 = 0.0, t1 = 0.0;  // kNone: no such child (gpu_bvh.h)
-      const bool hit0 = word0 != kNone && hit_box(uintBitsToFloat(a.xyz), uintBitsToFloat(b.xyz), origin, inverse, t_max, t0);
-      const bool hit1 = word1 != kNone && hit_box(uintBitsToFloat(c.xyz), uintBitsToFloat(d.xyz), origin, inverse, t_max, t1);
-      uint next_word = kNone, next_count = 0u;
-      if (hit0 && hit1) {  // the nearer first, the other on the stack
-        const bool first0 = t0 <= t1;
-        stack_word[stack_size] = first0 ? word1 : word0;
-        stack_count[stack_size] = first0 ? count1 : count0;
-        stack_enter[stack_size] = first0 ? t1 : t0;
-        ++stack_size;
-        next_word = first0 ? word0 : word1;
-        next_count = first0 ? count0 : count1;
-      } else if (hit0 || hit1) {
-        next_word = hit0 ? word0 : word1;
-        next_count = hit0 ? count0 : count1;
-      }
-      node = kNone;
-      if (next_word != kNone) {
-        if (next_count > 0u) {
-          leaf_next = next_word;
-          leaf_left = next_count;
-        } else {
-          node = next_word;
-        }
-      }
-    } else if (stack_size > 0) {
-      --stack_size;
-      if (stack_enter[stack_size] <= t_max) {  // else a nearer hit was found since
-        if (stack_count[stack_size] > 0u) {
-          leaf_next = stack_word[stack_size];
-          leaf_left = stack_count[stack_size];
-        } else {
-          node = stack_word[stack_size];
-        }
-      }
-    } else {
-      ray_live = false;  // nothing left to visit: the ray is done
-    }
+    ray_live = trace_step(any_hit);
   }
   total += partial;
   imageStore(ao_image, pixel, vec4(total / float(RTAO_GPU_SPP)));

@@ -207,7 +207,8 @@ struct HandGBuffer {
 // jitter is phi = pi/2: it marches up the column x = 1 (and off the bottom at once, so that
 // side stays open). R = d_max = 2 projects to 9 px (focal 18 px at depth 4); 4 steps of power
 // 1 read the pixels 2, 4, 6 and 8 above x. `raised` sets some of them to x + offset.
-float hand_case_ao(const std::vector<std::pair<int, glm::vec3>>& raised, float thickness) {
+float hand_case_ao(const std::vector<std::pair<int, glm::vec3>>& raised, float thickness,
+                   bool reference_weights = true) {
   test::gl_context();
   HandGBuffer g(3, 12);
   for (int y = 0; y < g.height; ++y)
@@ -219,6 +220,7 @@ float hand_case_ao(const std::vector<std::pair<int, glm::vec3>>& raised, float t
   gtao.steps = 4;
   gtao.step_power = 1.0f;
   gtao.thickness = thickness;
+  gtao.reference_weights = reference_weights;
   AoSettings ao;
   ao.d_max = 2.0f;
   ao.attenuated = true;
@@ -252,6 +254,8 @@ TEST(Gtao, AttenuationAndThicknessMatchAHandComputedCase) {
   const double theta_new = theta2 + 0.5 * (theta3 - theta2);
   const double band = G(kPi / 2.0) - G(theta2), uncovered = G(theta_new) - G(theta2);
   EXPECT_NEAR(hand_case_ao(raised, 0.5f), 1.0 - occlusion * (1.0 - uncovered / band), kTolerance);
+  // The binary horizon (gtao:attenuation=binary) weighs every rise within R by 1.
+  EXPECT_NEAR(hand_case_ao(raised, 0.0f, false), 1.0 - (G(kPi / 2.0) - G(theta2)), kTolerance);
   // Beyond R = d_max (r^2 = 4.25 > 4) a sample is ignored however high.
   EXPECT_EQ(hand_case_ao({{2, {0.0f, 0.5f, 2.0f}}}, 0.0f), 1.0f);
 }
@@ -299,7 +303,7 @@ TEST(Gtao, ParametersAreChecked) {
   for (const auto& [key, value] : std::vector<std::pair<std::string, std::string>>{
            {"slices", "0"}, {"steps", "129"}, {"radius", "0"}, {"falloff", "1.5"},
            {"thickness", "-0.1"}, {"step_power", "5"}, {"jitter", "yes"}, {"estimator", "max"},
-           {"denoise", "17"}, {"d_max", "0"}, {"trace", "plane"}, {"spp", "4"}}) {
+           {"denoise", "17"}, {"attenuation", "none"}, {"d_max", "0"}, {"trace", "plane"}, {"spp", "4"}}) {
     EXPECT_THROW(make_pass("gtao", StructureParams({{key, value}}, "--pass gtao")), UserError)
         << key << "=" << value;
   }

@@ -24,14 +24,17 @@ void expect_peer_records(const nlohmann::json& records, const fs::path& out) {
     EXPECT_EQ(r["structure"], "none");
     const std::string pass = r["pass"];
     passes.insert(pass);
-    for (const char* key : {"frame_ms_median", "gbuffer_ms_median", "mse", "mssim", "ref_noise_mse"})
+    for (const char* key : {"frame_ms_median", "mse", "mssim", "ref_noise_mse", "covered_pixel_fraction"})
       EXPECT_TRUE(r.contains(key) && r[key].is_number()) << pass << " " << key;
     if (pass == "gtao") {
       EXPECT_EQ(r["gtao_slices"], 2);
       EXPECT_TRUE(r["gtao_ms_median"].is_number());
+      EXPECT_TRUE(r["gbuffer_ms_median"].is_number());
     } else {
       EXPECT_EQ(r["rtao_gpu_spp"], 2);
-      for (const char* key : {"rtao_gpu_ms_median", "rtao_gpu_bvh_ms", "rtao_gpu_bvh_bytes",
+      EXPECT_EQ(r["rtao_gpu_primary"], "trace");
+      for (const char* key : {"rtao_gpu_primary_ms_median", "rtao_gpu_ms_median", "rtao_gpu_bvh_ms", "rtao_gpu_bvh_bytes",
+                              "work_rtao_gpu_primary_nodes_mean", "rtao_gpu_primary_steps_max",
                               "work_rtao_gpu_nodes_mean", "work_rtao_gpu_nodes_max",
                               "work_rtao_gpu_triangles_mean", "work_rtao_gpu_triangles_max",
                               "rtao_gpu_steps_max", "mem_bvh_nodes_allocated"})
