@@ -1,10 +1,13 @@
 #!/usr/bin/env python3
 """Prints the GTAO / GPU RTAO tables of docs/measured/gtao-rtao-gpu.md from a run's records.csv.
 
-Usage: scripts/gtao_rtao_gpu_tables.py headline|bvh|fit RECORDS.csv
+Usage: scripts/gtao_rtao_gpu_tables.py headline|beside|floor|bvh|fit RECORDS.csv
 
   headline  per scene and method (GTAO and HBAO at their defaults, the GPU RTAO and the CPU
             RTAO at each k): frame and pass time, median with its 95 % interval, MSE, MSSIM
+  beside    per scene: GTAO and HBAO at their defaults, the GPU and the CPU RTAO at 16 spp
+  floor     per scene: the rasterised G-buffer's MSE floor, the GPU RTAO's e_64 with
+            primary=raster less that with primary=trace, beside GTAO's MSE
   bvh       per scene: the GPU RTAO's BVH (nodes, leaves, depth, bytes, build and upload time)
             and its traversal work per ray (nodes visited, triangles tested: mean and max)
   fit       per scene: the GPU RTAO's error beyond the reference's noise, e_k = MSE - noise,
@@ -15,6 +18,7 @@ Reads the CSV alone (docs/measured/gtao-rtao-gpu/headline-llvmpipe.csv).
 """
 import csv
 import math
+import os
 import sys
 
 
@@ -26,7 +30,8 @@ def number(row, key):
 
 
 def scene(row):
-    return row["scene"]
+    """The scene's name (a scene file's path without folder and extension)."""
+    return os.path.splitext(os.path.basename(row["scene"]))[0]
 
 
 def k_of(row):
@@ -43,7 +48,7 @@ def label(row):
     if p == "hbao":
         return f"hbao {row['hbao_directions']}x{row['hbao_steps']}"
     if p == "rtao_gpu":
-        return f"rtao_gpu {k_of(row)} spp"
+        return f"rtao_gpu {k_of(row)} spp" + (", raster" if row.get("rtao_gpu_primary") == "raster" else "")
     if p == "rtao":
         return f"rtao (CPU) {k_of(row)} spp"
     return p
@@ -66,15 +71,16 @@ def sorted_rows(rows):
     for r in rows:
         if scene(r) not in scenes:
             scenes.append(scene(r))
-    return sorted(rows, key=lambda r: (scenes.index(scene(r)), ORDER.get(r["pass"], 9), k_of(r) or 0))
+    return sorted(rows, key=lambda r: (scenes.index(scene(r)), ORDER.get(r["pass"], 9),
+                                       r.get("rtao_gpu_primary") == "raster", k_of(r) or 0))
 
 
 def headline(rows):
-    print("| scene | method | timer | frame ms [95 % CI] | pass ms [95 % CI] | MSE | MSSIM |")
-    print("| --- | --- | --- | ---: | ---: | ---: | ---: |")
+    print("| scene | method | frame ms [95 % CI] | method's own ms [95 % CI] | MSE | MSSIM |")
+    print("| --- | --- | ---: | ---: | ---: | ---: |")
     for r in sorted_rows(rows):
         own = {"gtao": "gtao", "hbao": "hbao", "rtao_gpu": "rtao_gpu", "rtao": "rtao"}[r["pass"]]
-        print(f"| {scene(r)} | {label(r)} | {r['timer']} | {interval(r, 'frame')} | {interval(r, own)} "
+        print(f"| {scene(r)} | {label(r)} | {interval(r, 'frame')} | {interval(r, own)} "
               f"| {number(r, 'mse'):.2e} | {number(r, 'mssim'):.3f} |")
 
 
@@ -82,11 +88,12 @@ def bvh(rows):
     print("| scene | triangles | nodes | leaves | depth | BVH MiB | build ms | upload ms | nodes/ray mean | max | triangles/ray mean | max | loop iterations max (k) |")
     print("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
     seen = set()
-    for r in sorted_rows(rows):
-        if r["pass"] != "rtao_gpu" or scene(r) in seen:
+    traced = [r for r in rows if r["pass"] == "rtao_gpu" and r.get("rtao_gpu_primary") != "raster"]
+    for r in sorted_rows(traced):
+        if scene(r) in seen:
             continue
         seen.add(scene(r))
-        mine = [x for x in rows if x["pass"] == "rtao_gpu" and scene(x) == scene(r)]
+        mine = [x for x in traced if scene(x) == scene(r)]
         biggest = max(mine, key=k_of)
         print(f"| {scene(r)} | {int(number(r, 'triangles'))} | {int(number(r, 'rtao_gpu_bvh_nodes'))} "
               f"| {int(number(r, 'rtao_gpu_bvh_leaves'))} | {int(number(r, 'rtao_gpu_bvh_depth'))} "
@@ -95,6 +102,45 @@ def bvh(rows):
               f"| {int(number(r, 'work_rtao_gpu_nodes_max'))} | {number(r, 'work_rtao_gpu_triangles_mean'):.1f} "
               f"| {int(number(r, 'work_rtao_gpu_triangles_max'))} "
               f"| {int(number(biggest, 'rtao_gpu_steps_max'))} ({k_of(biggest)}) |")
+
+
+def find(rows, s, p, **values):
+    for r in rows:
+        if scene(r) == s and r["pass"] == p and all(r.get(k) == v for k, v in values.items()):
+            return r
+    return None
+
+
+def scene_names(rows):
+    names = []
+    for r in rows:
+        if scene(r) not in names:
+            names.append(scene(r))
+    return names
+
+
+def beside(rows):
+    print("| scene | GTAO MSE | frame ms [95 % CI] | HBAO MSE | frame ms [95 % CI] "
+          "| GPU RTAO 16 spp MSE | frame ms [95 % CI] | CPU RTAO 16 spp MSE | ms [95 % CI] |")
+    print("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
+    for s in scene_names(rows):
+        g, h = find(rows, s, "gtao"), find(rows, s, "hbao")
+        t = find(rows, s, "rtao_gpu", rtao_gpu_spp="16", rtao_gpu_primary="trace")
+        c = find(rows, s, "rtao", rtao_spp="16")
+        print(f"| {s} | " + " | ".join(f"{number(r, 'mse'):.2e} | {interval(r, 'frame')}" for r in (g, h, t, c)) + " |")
+
+
+def floor(rows):
+    print("| scene | GPU RTAO e_64, traced | rasterised | difference: the G-buffer's floor | GTAO's MSE | floor / GTAO's |")
+    print("| --- | ---: | ---: | ---: | ---: | ---: |")
+    for s in scene_names(rows):
+        t = find(rows, s, "rtao_gpu", rtao_gpu_spp="64", rtao_gpu_primary="trace")
+        r = find(rows, s, "rtao_gpu", rtao_gpu_spp="64", rtao_gpu_primary="raster")
+        g = find(rows, s, "gtao")
+        noise = number(t, "ref_noise_mse")
+        et, er = number(t, "mse") - noise, number(r, "mse") - noise
+        print(f"| {s} | {et:.2e} | {er:.2e} | {er - et:.1e} | {number(g, 'mse'):.2e} "
+              f"| {100 * (er - et) / number(g, 'mse'):.1f} % |")
 
 
 def slope(points):
@@ -111,7 +157,14 @@ def slope(points):
 
 
 def fit(rows):
-    gpu = [r for r in sorted_rows(rows) if r["pass"] == "rtao_gpu"]
+    for method in ("rtao_gpu", "rtao_gpu raster", "rtao"):
+        print(f"\n{method}\n")
+        fit_method([r for r in rows if label(r).startswith(method.split()[0] + " ") and
+                    (r.get("rtao_gpu_primary") == "raster") == method.endswith("raster")])
+
+
+def fit_method(rows):
+    gpu = sorted_rows(rows)
     ks = sorted({k_of(r) for r in gpu})
     print("| scene | noise MSE | " + " | ".join(f"e_{k}" for k in ks) + " | slope ± SE | e_1 / e_k at the largest k |")
     print("| --- | ---: | " + " | ".join("---:" for _ in ks) + " | ---: | ---: |")
@@ -133,11 +186,12 @@ def fit(rows):
 
 
 def main():
-    if len(sys.argv) != 3 or sys.argv[1] not in ("headline", "bvh", "fit"):
+    commands = {"headline": headline, "beside": beside, "floor": floor, "bvh": bvh, "fit": fit}
+    if len(sys.argv) != 3 or sys.argv[1] not in commands:
         sys.exit(__doc__)
     with open(sys.argv[2], newline="") as f:
         rows = [r for r in csv.DictReader(f) if r["status"] == "ok"]
-    {"headline": headline, "bvh": bvh, "fit": fit}[sys.argv[1]](rows)
+    commands[sys.argv[1]](rows)
 
 
 if __name__ == "__main__":

@@ -373,7 +373,7 @@ TEST(RtaoGpu, RefusesABvhBeyondTheStorageBlock) {
 TEST(RtaoGpu, ParametersMemoryAndBvhColumns) {
   for (const auto& [key, value] : std::vector<std::pair<std::string, std::string>>{
            {"spp", "0"}, {"spp", "65537"}, {"seed", "-1"}, {"visibility", "half"},
-           {"d_max", "0"}, {"threads", "2"}, {"trace", "plane"}}) {
+           {"d_max", "0"}, {"threads", "2"}, {"trace", "plane"}, {"primary", "none"}}) {
     EXPECT_THROW(make_pass("rtao_gpu", StructureParams({{key, value}}, "--pass rtao_gpu")), UserError)
         << key << "=" << value;
   }
