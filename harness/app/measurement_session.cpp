@@ -219,9 +219,13 @@ Measurement MeasurementSession::result() const {
   if (m.images.empty()) throw std::logic_error("pass " + s.request.pass + " produced no image");
   const std::vector<std::string> problems = image_problems(m.images);
   if (!s.setup) {
-    m.status = problems.empty() ? BuildStatus::Ok : BuildStatus::Invalid;
+    // The image's own problems and the pass's (e.g. a GPU ray tracer the device's loop limit
+    // may have cut short) make a peer's record invalid, as they do an LDM pass's.
+    std::vector<std::string> all_problems = problems;
+    for (const auto& problem : s.pass->problems()) all_problems.push_back(problem);
+    m.status = all_problems.empty() ? BuildStatus::Ok : BuildStatus::Invalid;
     m.memory = s.pass->memory();
-    for (const auto& problem : problems)
+    for (const auto& problem : all_problems)
       m.status_detail += (m.status_detail.empty() ? "" : "; ") + problem;
   } else {
     BuildHealth health = *s.health;  // a snapshot: later frames are judged afresh

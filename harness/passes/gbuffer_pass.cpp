@@ -6,25 +6,37 @@
 
 namespace ldm {
 
-GBufferPass::GBufferPass(int width, int height, bool albedo)
+// Colour attachments: 0 positions, 1 normals, 2 albedo, 3 triangle ids (the fragment shader's
+// output locations).
+constexpr int kTriangleIdAttachment = 3;
+
+GBufferPass::GBufferPass(int width, int height, bool albedo, bool triangle_ids)
     : width_(width),
       height_(height),
       positions_(GL_RGBA32F, width, height),
       normals_(GL_RGBA32F, width, height),
       depth_(GL_DEPTH_COMPONENT32F, width, height),
-      with_albedo_(albedo) {
+      with_albedo_(albedo),
+      with_triangle_ids_(triangle_ids) {
   framebuffer_.attach_color(0, positions_);
   framebuffer_.attach_color(1, normals_);
   if (albedo) {
     albedo_ = GlTexture2D(GL_RGBA32F, width, height);
     framebuffer_.attach_color(2, albedo_);
   }
+  if (triangle_ids) {
+    triangle_ids_ = GlTexture2D(GL_R32UI, width, height);
+    framebuffer_.attach_color(kTriangleIdAttachment, triangle_ids_);
+  }
   framebuffer_.attach_depth(depth_);
-  const GLenum targets[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
-  glNamedFramebufferDrawBuffers(framebuffer_.id(), albedo ? 3 : 2, targets);
+  const GLenum targets[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1,
+                            albedo ? GLenum(GL_COLOR_ATTACHMENT2) : GLenum(GL_NONE),
+                            GL_COLOR_ATTACHMENT3};
+  glNamedFramebufferDrawBuffers(framebuffer_.id(), triangle_ids ? 4 : albedo ? 3 : 2, targets);
   framebuffer_.check_complete("G-buffer");
   ShaderDefines defines = binding_defines();
   defines.set("GBUFFER_ALBEDO", albedo ? 1 : 0);
+  defines.set("GBUFFER_TRIANGLE_ID", triangle_ids ? 1 : 0);
   defines.set("INDIRECT_MATERIALS_BINDING", kMaterialsBinding);
   defines.set("INDIRECT_ALBEDO_BINDING", kMaterialAlbedoBinding);
   program_ = build_program({{GL_VERTEX_SHADER, "passes/gbuffer.vert", {}},
@@ -37,6 +49,8 @@ std::vector<BufferMemory> GBufferPass::memory() const {
                                    {"gbuffer_normals", normals_.bytes(), normals_.bytes()},
                                    {"gbuffer_depth", depth_.bytes(), depth_.bytes()}};
   if (with_albedo_) out.push_back({"gbuffer_albedo", albedo_.bytes(), albedo_.bytes()});
+  if (with_triangle_ids_)
+    out.push_back({"gbuffer_triangle_ids", triangle_ids_.bytes(), triangle_ids_.bytes()});
   return out;
 }
 
@@ -64,6 +78,9 @@ void GBufferPass::render_view(const GpuScene& scene, const glm::mat4& vp, glm::v
   glClearNamedFramebufferfv(framebuffer_.id(), GL_COLOR, 0, zero);
   glClearNamedFramebufferfv(framebuffer_.id(), GL_COLOR, 1, zero);
   if (with_albedo_) glClearNamedFramebufferfv(framebuffer_.id(), GL_COLOR, 2, zero);
+  const GLuint no_triangle = 0;
+  if (with_triangle_ids_)
+    glClearNamedFramebufferuiv(framebuffer_.id(), GL_COLOR, kTriangleIdAttachment, &no_triangle);
   glClearNamedFramebufferfv(framebuffer_.id(), GL_DEPTH, 0, &far_depth);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
@@ -83,6 +100,14 @@ Image GBufferPass::read_positions() const {
 
 Image GBufferPass::read_albedo() const {
   return image_from_gl_rows(albedo_.read_floats(4), width_, height_, 4);
+}
+
+std::vector<uint32_t> GBufferPass::read_triangle_ids() const {
+  std::vector<uint32_t> ids(size_t(width_) * size_t(height_));
+  glGetTextureImage(triangle_ids_.id(), 0, GL_RED_INTEGER, GL_UNSIGNED_INT,
+                    GLsizei(ids.size() * sizeof(uint32_t)), ids.data());
+  check_gl("reading the G-buffer's triangle ids");
+  return ids;
 }
 
 Image GBufferPass::read_normals() const {

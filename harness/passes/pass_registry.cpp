@@ -4,10 +4,12 @@
 #include <stdexcept>
 
 #include "harness/passes/ambient_occlusion.h"
+#include "harness/passes/gtao.h"
 #include "harness/passes/hbao.h"
 #include "harness/passes/indirect_lighting.h"
 #include "harness/passes/pass.h"
 #include "harness/passes/rtao.h"
+#include "harness/passes/rtao_gpu.h"
 #include "harness/util/error.h"
 
 namespace ldm {
@@ -19,7 +21,9 @@ std::vector<Entry>& registry() {
   static std::vector<Entry> entries = {
       {"ao", AmbientOcclusion::parameters, AmbientOcclusion::columns, [](StructureParams& p) { return std::make_unique<AmbientOcclusion>(p); }},
       {"hbao", Hbao::parameters, Hbao::columns, [](StructureParams& p) { return std::make_unique<Hbao>(p); }},
+      {"gtao", Gtao::parameters, Gtao::columns, [](StructureParams& p) { return std::make_unique<Gtao>(p); }},
       {"rtao", Rtao::parameters, Rtao::columns, [](StructureParams& p) { return std::make_unique<Rtao>(p); }},
+      {"rtao_gpu", RtaoGpu::parameters, RtaoGpu::columns, [](StructureParams& p) { return std::make_unique<RtaoGpu>(p); }},
       {"indirect", IndirectLighting::parameters, IndirectLighting::columns, [](StructureParams& p) { return std::make_unique<IndirectLighting>(p); }},
   };
   return entries;

@@ -7,6 +7,9 @@ layout(location = 1) out vec4 out_normal;    // xyz unit normal facing the camer
 #include "passes/indirect/surface_albedo.glsl"
 layout(location = 2) out vec4 out_albedo;    // rgb diffuse albedo (lighting passes)
 #endif
+#if GBUFFER_TRIANGLE_ID
+layout(location = 3) out uint out_triangle;  // the scene triangle's index + 1 (0: background)
+#endif
 
 void main() {
   vec3 n = normalize(v_normal);
@@ -16,5 +19,8 @@ void main() {
   out_normal = vec4(n, 0.0);
 #if GBUFFER_ALBEDO
   out_albedo = vec4(surface_albedo(gl_PrimitiveID), 1.0);
+#endif
+#if GBUFFER_TRIANGLE_ID
+  out_triangle = uint(gl_PrimitiveID) + 1u;
 #endif
 }

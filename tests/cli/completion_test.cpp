@@ -98,7 +98,8 @@ TEST_F(Completion, AxisValuesFromTheRegistry) {
   const std::set<std::string> scenes = complete("ldmbench run --scene ");
   for (const std::string& scene : names_listed_by("scenes")) EXPECT_TRUE(scenes.count(scene)) << scene;
   EXPECT_EQ(complete("ldmbench run --sizing=prev"), std::set<std::string>{"previous_frame"});
-  EXPECT_EQ(complete("ldmbench run --pass r"), std::set<std::string>{"rtao"});
+  EXPECT_EQ(complete("ldmbench run --pass r"), (std::set<std::string>{"rtao", "rtao_gpu"}));
+  EXPECT_EQ(complete("ldmbench run --pass g"), std::set<std::string>{"gtao"});
   EXPECT_EQ(complete("ldmbench sweep x --egl-platform s"), std::set<std::string>{"surfaceless"});
 }
 

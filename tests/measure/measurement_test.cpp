@@ -91,12 +91,12 @@ TEST(BuildHealth, EveryKindOfSilentFaultIsInvalid) {
 }
 
 TEST(PassRegistry, AoIsRegisteredAndParametersAreChecked) {
-  EXPECT_EQ(pass_names(), (std::vector<std::string>{"ao", "hbao", "rtao", "indirect"}));
+  EXPECT_EQ(pass_names(), (std::vector<std::string>{"ao", "hbao", "gtao", "rtao", "rtao_gpu", "indirect"}));
   try {
     make_pass("photons", StructureParams());
     FAIL() << "an unknown pass was accepted";
   } catch (const UserError& e) {
-    EXPECT_NE(std::string(e.what()).find("known: ao, hbao, rtao, indirect"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("known: ao, hbao, gtao, rtao, rtao_gpu, indirect"), std::string::npos) << e.what();
   }
   EXPECT_THROW(make_pass("ao", StructureParams({{"dmax", "1"}}, "--pass ao")), UserError);
   EXPECT_THROW(make_pass("ao", StructureParams({{"d_max", "-1"}}, "--pass ao")), UserError);

@@ -1,0 +1,186 @@
+#include "harness/passes/gtao.h"
+
+#include "harness/metrics/ao_range.h"
+#include "harness/passes/ao_parameters.h"
+#include "harness/passes/hbao_kernel.h"
+#include "harness/reference/ao_reference.h"
+#include "harness/reference/reference_settings.h"
+#include "harness/scene/camera.h"
+
+namespace ldm {
+namespace {
+
+AxisSpec numeric(const char* key, AxisKind kind, double lo, double hi, const char* fallback,
+                 const char* unit, const char* description) {
+  AxisSpec p;
+  p.key = key;
+  p.kind = kind;
+  p.min = lo;
+  p.max = hi;
+  p.default_value = fallback;
+  p.unit = unit;
+  p.column = std::string("gtao_") + key;
+  p.description = description;
+  return p;
+}
+
+AxisSpec choice(const char* key, std::vector<std::string> choices, const char* fallback,
+                const char* description) {
+  AxisSpec p;
+  p.key = key;
+  p.kind = AxisKind::Choice;
+  p.choices = std::move(choices);
+  p.default_value = fallback;
+  p.column = std::string("gtao_") + key;
+  p.description = description;
+  return p;
+}
+
+}  // namespace
+
+Gtao::Gtao(StructureParams& params) {
+  gtao_.slices = uint32_t(params.get_uint("slices"));
+  gtao_.steps = uint32_t(params.get_uint("steps"));
+  gtao_.radius_scale = float(params.get_double("radius"));
+  gtao_.falloff = float(params.get_double("falloff"));
+  gtao_.thickness = float(params.get_double("thickness"));
+  gtao_.step_power = float(params.get_double("step_power"));
+  gtao_.jitter = params.get_choice("jitter") == "on";
+  gtao_.normalized = params.get_choice("estimator") == "normalized";
+  gtao_.denoise_radius = uint32_t(params.get_uint("denoise"));
+  gtao_.reference_weights = params.get_choice("attenuation") == "reference";
+  if (params.has("d_max")) overrides_.d_max = float(params.get_double("d_max"));
+  const std::string visibility = params.get_choice("visibility");
+  if (visibility != "scene") overrides_.attenuated = visibility == "attenuated";
+}
+
+// The defaults are the measured optimum of docs/measured/gtao-rtao-gpu.md.
+std::vector<AxisSpec> Gtao::parameters() {
+  return {numeric("slices", AxisKind::UInt, 1, 64, "8", "slices", "slice planes through the view vector per pixel"),
+          numeric("steps", AxisKind::UInt, 1, 128, "16", "steps", "horizon-search samples per side of a slice"),
+          numeric("radius", AxisKind::Real, 0.05, 8, "1", "d_max", "search radius R as a multiple of d_max"),
+          numeric("falloff", AxisKind::Real, 0, 1, "0", "", "fraction of R over which an occluder's weight fades to 0 (0: none)"),
+          numeric("thickness", AxisKind::Real, 0, 1, "0", "", "thickness heuristic: how far a lower sample pulls the horizon back (0: height field)"),
+          numeric("step_power", AxisKind::Real, 0.5, 4, "1.5", "", "sample distances R * u^power (> 1: denser near the pixel)"),
+          choice("jitter", {"off", "on"}, "on", "per-pixel slice rotation and step offset (4x4 Bayer pattern)"),
+          choice("estimator", {"mean", "normalized"}, "normalized", "mean over the slices (the paper) or normalized by their open hemispheres"),
+          choice("attenuation", {"reference", "binary"}, "reference", "occluder weight: the reference's 1 - V(r), or 1 within R (the engines' binary horizon, faded by falloff)"),
+          numeric("denoise", AxisKind::UInt, 0, 16, "0", "pixels", "cross-bilateral denoise radius (0: none)"),
+          ao_pass_parameter(AoAxis::DMax), ao_pass_parameter(AoAxis::Visibility)};
+}
+
+std::vector<ColumnSpec> Gtao::columns() {
+  std::vector<ColumnSpec> columns = ao_setting_columns(false);
+  const std::vector<ColumnSpec> own = {
+      {"pass", "gtao_slices", "", "GTAO: slice planes through the view vector per pixel (--param gtao:slices=)"},
+      {"pass", "gtao_steps", "", "GTAO: horizon-search samples per side of a slice (--param gtao:steps=)"},
+      {"pass", "gtao_radius", "d_max", "GTAO: search radius R as a multiple of d_max (--param gtao:radius=)"},
+      {"pass", "gtao_falloff", "", "GTAO: fraction of R over which an occluder's weight fades to 0 at R (0: none; --param gtao:falloff=)"},
+      {"pass", "gtao_thickness", "", "GTAO: thickness heuristic beta, how far a sample below the horizon pulls it back (0: height field; --param gtao:thickness=)"},
+      {"pass", "gtao_step_power", "", "GTAO: sample distances R * u^power (--param gtao:step_power=)"},
+      {"pass", "gtao_jitter", "", "GTAO: off, or on (per-pixel slice rotation and step offset, 4x4 Bayer pattern)"},
+      {"pass", "gtao_estimator", "", "GTAO: mean (the paper's mean over slices) or normalized (over the slices' open hemispheres)"},
+      {"pass", "gtao_attenuation", "", "GTAO: reference (each horizon rise weighted by the reference's 1 - V(r)) or binary (1 within R, faded by gtao_falloff: the engines' horizon)"},
+      {"pass", "gtao_denoise", "pixels", "GTAO: radius of the cross-bilateral denoise, timed as denoise (0: none; --param gtao:denoise=)"},
+  };
+  columns.insert(columns.end(), own.begin(), own.end());
+  for (auto& c : ao_range_columns()) columns.push_back(c);
+  return columns;
+}
+
+Gtao::~Gtao() = default;
+
+AoSettings Gtao::settings_for(const Scene& scene) const {
+  return apply_ao_overrides(scene.ao, overrides_);
+}
+
+PassRequirements Gtao::requirements() const {
+  PassRequirements r;
+  r.scene_attributes.normals = true;  // the G-buffer's shading normals: the hemisphere's axis
+  r.needs_structure = false;
+  return r;
+}
+
+std::vector<TimedSubpass> Gtao::subpasses() const {
+  std::vector<TimedSubpass> subpasses = {
+      {"gbuffer", "G-buffer: world positions and camera-facing normals from the camera"},
+      {"gtao", "GTAO: slices x 2 sides x steps horizon samples per pixel, cosine-weighted closed-form integral"}};
+  if (gtao_.denoise_radius > 0)
+    subpasses.push_back({"denoise", "GTAO: separable cross-bilateral blur of the AO (--param gtao:denoise=)"});
+  return subpasses;
+}
+
+std::vector<std::pair<std::string, RecordValue>> Gtao::describe(const Scene& scene) const {
+  const AoSettings ao = settings_for(scene);
+  return {{"visibility", std::string(ao.attenuated ? "attenuated" : "unattenuated")},
+          {"d_max", double(ao.d_max)},
+          {"falloff_exponent", double(ao.falloff_exponent)},
+          {"gtao_slices", int64_t(gtao_.slices)},
+          {"gtao_steps", int64_t(gtao_.steps)},
+          {"gtao_radius", double(gtao_.radius_scale)},
+          {"gtao_falloff", double(gtao_.falloff)},
+          {"gtao_thickness", double(gtao_.thickness)},
+          {"gtao_step_power", double(gtao_.step_power)},
+          {"gtao_jitter", std::string(gtao_.jitter ? "on" : "off")},
+          {"gtao_estimator", std::string(gtao_.normalized ? "normalized" : "mean")},
+          {"gtao_attenuation", std::string(gtao_.reference_weights ? "reference" : "binary")},
+          {"gtao_denoise", int64_t(gtao_.denoise_radius)}};
+}
+
+void Gtao::prepare(const PassInputs& in) {
+  scene_ = &in.scene;
+  gpu_scene_ = &in.gpu_scene;
+  width_ = in.width;
+  height_ = in.height;
+  gbuffer_ = std::make_unique<GBufferPass>(in.width, in.height);
+  kernel_ = std::make_unique<GtaoKernel>(gtao_, settings_for(in.scene), in.width, in.height);
+  const CameraFrame frame = camera_frame(in.scene.camera, in.width, in.height);
+  const float focal_pixels = 0.5f * float(in.height) / frame.tan_half_fov_y;
+  kernel_->set_camera({frame.eye, frame.forward, frame.right, frame.up, focal_pixels});
+  if (gtao_.denoise_radius > 0) {
+    denoise_ = std::make_unique<HbaoBlur>(gtao_.denoise_radius, kernel_->target());
+    denoise_->set_camera({frame.eye, frame.forward, focal_pixels});
+  }
+}
+
+void Gtao::render(GpuTimer* timer) {
+  gbuffer_->render(*gpu_scene_, *scene_, timer);
+  {
+    ScopedSubpass timed(timer, "gtao");
+    kernel_->run(gbuffer_->positions(), gbuffer_->normals());
+  }
+  if (denoise_) {
+    ScopedSubpass timed(timer, "denoise");
+    denoise_->run(gbuffer_->positions(), gbuffer_->normals());
+  }
+}
+
+std::vector<PassImage> Gtao::images() const {
+  return {{"ao", image_from_gl_rows(kernel_->target().read_floats(1), width_, height_, 1)}};
+}
+
+std::vector<BufferMemory> Gtao::memory() const {
+  // Render targets, every texel written each frame (allocated = used), the G-buffer included.
+  std::vector<BufferMemory> targets = gbuffer_->memory();
+  const uint64_t ao_bytes = kernel_->target().bytes();
+  targets.push_back({"gtao_ao", ao_bytes, ao_bytes});
+  if (denoise_)
+    targets.push_back({"gtao_denoise_scratch", denoise_->scratch().bytes(), denoise_->scratch().bytes()});
+  return targets;
+}
+
+std::vector<std::pair<std::string, RecordValue>> Gtao::results() const {
+  const Image positions = gbuffer_->read_positions();
+  const AoRange range = ao_range(images().front().image, positions);
+  return {{"ao_max", range.max},
+          {"ao_fraction_above_1", range.fraction_above_1},
+          {"covered_pixel_fraction", covered_pixel_fraction(positions)}};
+}
+
+ReferenceResult Gtao::reference(const Scene& scene, int width, int height,
+                                const ReferenceSettings& settings) const {
+  // The AO reference every AO-like pass shares (one cache entry).
+  return ao_reference_for_run(scene, settings_for(scene), width, height, settings);
+}
+
+}  // namespace ldm
