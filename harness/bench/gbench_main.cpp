@@ -34,6 +34,7 @@
 #include <cstring>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <memory>
 #include <set>
 #include <sstream>
@@ -67,6 +68,7 @@ std::string flag_of(const HarnessAxis& axis) { return "--ldm_" + axis.spec.key; 
 struct Axes {
   RunSettings settings;
   std::set<std::string> given;
+  std::optional<std::string> gpu;  // --ldm_gpu=N
 };
 
 Axes default_axes() {
@@ -114,6 +116,7 @@ std::string flags_help() {
   }
   help +=
       "  --ldm_param=OWNER:KEY=VALUE         a structure's or pass's parameter, repeatable\n"
+      "  --ldm_gpu=N                         the GPU, as ldmbench's --gpu (default: LDM_GPU, else 0)\n"
       "gbench's defaults: scenes cornell,atrium, every structure, every pass that reads one,\n"
       "10 frames. Benchmarks are named <pass>/<scene>/<structure>/N:<n>/R:<r>[/<axis>:<value>\n"
       "for each other axis given]; the time is the mean frame time, the counters <subpass>_ms\n"
@@ -134,6 +137,10 @@ Axes parse_axes(int* argc, char** argv) {
     const auto equals = arg.find('=');
     const std::string flag = arg.substr(0, equals);
     const std::string value = equals == std::string::npos ? std::string() : arg.substr(equals + 1);
+    if (flag == "--ldm_gpu") {
+      axes.gpu = value;
+      continue;
+    }
     if (flag == "--ldm_param") {
       const auto colon = value.find(':'), eq = value.find('=');
       if (colon == std::string::npos || eq == std::string::npos || eq < colon + 2 || colon == 0)
@@ -178,6 +185,7 @@ std::string benchmark_name(const Configuration& c, const Axes& axes) {
 }
 
 std::unique_ptr<HeadlessContext> g_context;
+ContextOptions g_context_options = default_context_options();  // --ldm_gpu / LDM_GPU
 
 // The values of an axis the benchmarks use, comma-joined: those given, else gbench's or
 // run's default, else its note in parentheses ("(the scene's)").
@@ -208,6 +216,8 @@ void add_context(const RunSettings& s, const DeviceInfo& device) {
   benchmark::AddCustomContext("gl_vendor", device.gl_vendor);
   benchmark::AddCustomContext("gl_version", device.gl_version);
   benchmark::AddCustomContext("glsl_version", device.glsl_version);
+  benchmark::AddCustomContext("device_id", device.device_id);
+  benchmark::AddCustomContext("gl_driver", device.gl_driver);
   benchmark::AddCustomContext("egl_platform", device.egl_platform + " (" + device.egl_vendor + ")");
   benchmark::AddCustomContext("timer", timer_source_name(default_timer_source(device.gl_renderer)));
   for (const HarnessAxis& axis : harness_axes())
@@ -227,7 +237,7 @@ void run_measurement(benchmark::State& state, const Scene* scene, Configuration 
     // A fresh context per run of the benchmark: Google Benchmark's repetitions are then
     // independent the way `ldmbench run --repetitions` makes them.
     g_context.reset();
-    g_context = HeadlessContext::create(default_context_options());
+    g_context = HeadlessContext::create(g_context_options);
     MeasurementRequest request = measurement_request(config, *settings, g_context->device());
     // Fixed iterations: exactly the frames asked for, no adaptive stopping.
     request.precision.target = 0;
@@ -270,6 +280,7 @@ int main(int argc, char** argv) {
         throw UserError("--ldm_passes: pass '" + p +
                         "' reads no LDM structure; measure it with `ldmbench run`");
     validate_axes(axes.settings);  // the checks of `ldmbench run`, parameters included
+    g_context_options.gpu = gpu_request_from_environment(axes.gpu, "--ldm_gpu");
     configurations = expand_configurations(axes.settings);
     for (const auto& scene : axes.settings.scenes) scenes.emplace(scene, load_scene(scene));
   } catch (const UserError& e) {
@@ -278,7 +289,12 @@ int main(int argc, char** argv) {
   }
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 2;
-  g_context = HeadlessContext::create(default_context_options());
+  try {
+    g_context = HeadlessContext::create(g_context_options);
+  } catch (const UserError& e) {  // a --ldm_gpu or LDM_GPU no device answers
+    std::cerr << "ldmbench_gbench: error: " << e.what() << "\n";
+    return 2;
+  }
   const DeviceInfo device = g_context->device();
   const RunSettings& s = axes.settings;
   add_context(s, device);

@@ -43,6 +43,7 @@ struct AdviseOptions {
   std::optional<unsigned> reference_max_spp, levels;
   unsigned shards = 1;
   bool overwrite = false;
+  GpuOption gpu;
 };
 
 std::string number(double v) {
@@ -116,8 +117,10 @@ Runner add_advise_command(CLI::App& app) {
                   "(LDM_SLURM_GPUS, LDM_SLURM_GPU_ARGS, SBATCH_ARGS apply; docs/guide/advise.md)")
       ->check(CLI::IsMember({"local", "slurm"}));
   cmd->add_flag("--overwrite", o->overwrite, "Replace an earlier advise of another question in --out");
+  add_gpu_option(cmd, o->gpu);
   return [o]() {
     check_options(*o);
+    export_gpu_option(o->gpu);  // its stages' sweeps read LDM_GPU
     const std::string script = find_tool_script(advise_tool());
     const std::string python = find_tool_python(advise_tool());
     const std::string exe = executable_path();

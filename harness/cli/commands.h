@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,20 @@ Runner add_compare_runs_command(CLI::App& app);  // ldmbench compare BASE NEW
 Runner add_listing_commands(CLI::App& app);
 // ldmbench view (harness/viewer); `program` is argv[0], for the command lines it saves.
 Runner add_view_command(CLI::App& app, const std::string& program);  // scenes, structures, passes, columns, info
+
+// --gpu N of every command that opens a context (docs/guide/gpu-nodes.md#choosing-the-gpu):
+// the option wins over LDM_GPU. `text()` is the value when given.
+struct GpuOption {
+  std::string value;
+  CLI::Option* option = nullptr;
+  std::optional<std::string> text() const {
+    return option && option->count() ? std::optional<std::string>(value) : std::nullopt;
+  }
+};
+void add_gpu_option(CLI::App* command, GpuOption& gpu);
+// Commands that measure through child processes (advise, interleave): a --gpu given is
+// checked, then handed to the children as LDM_GPU.
+void export_gpu_option(const GpuOption& gpu);
 
 // `ldmbench completion bash` and `ldmbench man` describe `app` itself (harness/cli/cli_model.h):
 // call them after every other subcommand is added.

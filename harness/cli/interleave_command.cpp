@@ -33,9 +33,12 @@ Runner add_interleave_command(CLI::App& app) {
                   "Leave this structure parameter (or n_views, r_ldm) out of the identity when "
                   "pairing A's configurations with B's (repeatable)")
       ->allow_extra_args(false);  // one value each time: the command after -- stays positional
+  auto gpu = std::make_shared<GpuOption>();
+  add_gpu_option(cmd, *gpu);
   cmd->add_option("command", s->command, "After --: `run ...` or `sweep FILE ...`, as for one build")
       ->required();
-  return [s, a_args, b_args, ignored]() {
+  return [s, a_args, b_args, ignored, gpu]() {
+    export_gpu_option(*gpu);  // both builds' children read LDM_GPU
     const auto words = [](const std::string& text) {
       std::vector<std::string> out;
       std::istringstream in(text);

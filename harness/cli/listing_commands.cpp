@@ -21,12 +21,16 @@ Runner add_listing_commands(CLI::App& app) {
   auto* columns = app.add_subcommand("columns", "Describe every record column: unit and meaning");
   auto markdown = std::make_shared<bool>(false);
   columns->add_flag("--markdown", *markdown, "As the Markdown table of docs/reference/records.md");
-  auto* info = app.add_subcommand("info", "Print the OpenGL device ldmbench runs on");
+  auto* info = app.add_subcommand(
+      "info", "List every EGL device (index, kind: CUDA ordinal, DRM node or software; renderer "
+              "where a context can be made) and print the OpenGL device ldmbench runs on");
+  auto info_gpu = std::make_shared<GpuOption>();
+  add_gpu_option(info, *info_gpu);
   auto* axes = app.add_subcommand("axes", "List every axis a sweep can vary: the harness's and each structure's and pass's parameters");
   auto axes_format = std::make_shared<std::string>("text");
   axes->add_flag("--json{json}", *axes_format, "As JSON (what the report reads)");
   axes->add_flag("--markdown{markdown}", *axes_format, "As the Markdown table of docs/reference/axes.md");
-  return [scenes, structures, passes, columns, markdown, info, axes, axes_format]() {
+  return [scenes, structures, passes, columns, markdown, info, info_gpu, axes, axes_format]() {
     if (axes->parsed()) {
       if (*axes_format == "json") std::cout << axes_json().dump(2) << "\n";
       else if (*axes_format == "markdown") std::cout << axes_markdown();
@@ -46,9 +50,16 @@ Runner add_listing_commands(CLI::App& app) {
     } else if (columns->parsed()) {
       std::cout << (*markdown ? columns_markdown() : columns_text());
     } else if (info->parsed()) {
-      auto context = HeadlessContext::create(default_context_options());
+      ContextOptions options = default_context_options();
+      options.gpu = gpu_request_from_environment(info_gpu->text());
+      // Every device first: the list is what a wrong --gpu is judged against.
+      const auto devices = list_egl_devices(true);
+      std::cout << "egl devices: " << devices.size() << (devices.empty() ? " (EGL_EXT_device_enumeration lists none)" : "") << "\n";
+      for (const auto& device : devices) std::cout << "  " << device.describe() << "\n";
+      auto context = HeadlessContext::create(options);
       const DeviceInfo& d = context->device();
-      std::cout << "renderer: " << d.gl_renderer << "\nvendor: " << d.gl_vendor
+      std::cout << "chosen: " << d.device_choice << "\ndevice id: " << d.device_id
+                << "\ngl driver: " << d.gl_driver << "\nrenderer: " << d.gl_renderer << "\nvendor: " << d.gl_vendor
                 << "\nversion: " << d.gl_version << "\nglsl: " << d.glsl_version
                 << "\negl platform: " << d.egl_platform << " (" << d.egl_vendor << ")"
                 << "\nmax storage block: " << d.max_ssbo_block_bytes << " bytes"

@@ -3,6 +3,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <memory>
 
@@ -201,7 +202,21 @@ void add_run_options(CLI::App* run, RunOptions* o) {
                   "block in 32, rotating) or every (in full after every build)")
       ->check(CLI::IsMember({"every", "sampled"}))
       ->capture_default_str();
+  add_gpu_option(run, o->gpu);
   run->add_flag("--gl-debug", s.context.debug_output, "Print OpenGL debug messages");
+}
+
+void add_gpu_option(CLI::App* command, GpuOption& gpu) {
+  gpu.option = command->add_option(
+      "--gpu", gpu.value,
+      "The GPU to run on (default: LDM_GPU, else 0). On NVIDIA the CUDA ordinal: 0 is the first "
+      "GPU CUDA_VISIBLE_DEVICES leaves visible (a Slurm task's --gres=gpu:1 GPU); elsewhere the "
+      "N-th EGL device that makes a context. `ldmbench info` lists the devices");
+}
+
+void export_gpu_option(const GpuOption& gpu) {
+  if (const auto request = gpu_request_from_environment(gpu.text()))
+    ::setenv("LDM_GPU", std::to_string(request->n).c_str(), 1);
 }
 
 RunSettings run_settings_from(RunOptions* o) {
@@ -216,6 +231,7 @@ RunSettings run_settings_from(RunOptions* o) {
     settings.height = o->height ? o->height : settings.height;
   }
   settings.context.platform = parse_egl_platform(o->platform);
+  settings.context.gpu = gpu_request_from_environment(o->gpu.text());
   settings.isolation = parse_repetition_isolation(o->isolation);
   return settings;
 }

@@ -9,6 +9,7 @@
 
 #include "harness/app/axis_options.h"
 #include "harness/app/run_settings.h"
+#include "harness/cli/commands.h"
 
 namespace ldm::cli {
 
@@ -19,6 +20,7 @@ struct RunOptions {
   int width = 0, height = 0;  // --width/--height: the image size's two sides
   std::string platform = "auto";
   std::string isolation = "context";
+  GpuOption gpu;
 };
 
 // Registers every option of `run` on `command`; `o` must outlive the parse.

@@ -20,6 +20,7 @@ struct SweepOptions {
   std::string isolation, step, interleaved_session;
   int repetitions = 0;  // 0: the file's (settings.timing.repetitions)
   bool overwrite = false, redo_failed = false, dry_run = false, gl_debug = false;
+  GpuOption gpu;
   bool memory_plan = false;
 };
 
@@ -55,6 +56,7 @@ int write_memory_plan(const SweepPlan& plan, const Shard& shard, const SweepOpti
   ContextOptions context = default_context_options();
   context.platform = parse_egl_platform(o.platform);
   context.debug_output = o.gl_debug;
+  context.gpu = gpu_request_from_environment(o.gpu.text());
   auto gl = HeadlessContext::create(context);
   MemoryPlanner planner(plan.scenes);
   const std::vector<size_t> members = shard_members(plan, shard);
@@ -118,6 +120,7 @@ Runner add_sweep_command(CLI::App& app, const std::string& command_line,
   sweep->add_option("--egl-platform", o->platform, "EGL platform: auto, device, surfaceless")
       ->check(CLI::IsMember({"auto", "device", "surfaceless"}))
       ->capture_default_str();
+  add_gpu_option(sweep, o->gpu);
   sweep->add_flag("--gl-debug", o->gl_debug, "Print OpenGL debug messages");
   auto* repetitions = sweep->add_option("--repetitions", o->repetitions,
                     "Independent repetitions of every configuration (default: the file's "
@@ -138,6 +141,7 @@ Runner add_sweep_command(CLI::App& app, const std::string& command_line,
 
   return [o, command_line, arguments]() {
     const Shard shard = parse_shard(o->shard);
+    const auto gpu = gpu_request_from_environment(o->gpu.text());  // a bad value: before any work
     RunSettings base;
     base.reference.cache_dir = o->cache_dir;
     const SweepPlan plan = plan_sweep(o->file, base);
@@ -168,6 +172,7 @@ Runner add_sweep_command(CLI::App& app, const std::string& command_line,
     run.context = default_context_options();
     run.context.platform = parse_egl_platform(o->platform);
     run.context.debug_output = o->gl_debug;
+    run.context.gpu = gpu;
     // Repetitions and isolation change what is measured: another sweep for resuming.
     run.sweep_key = sweep_key({"sweep", plan.sweep_hash, "shard", shard.text(), "repetitions",
                                std::to_string(run.repetitions), "isolation",

@@ -53,6 +53,9 @@ Runner add_view_command(CLI::App& app, const std::string& program) {
   // Here --frames counts the viewer's frames (the brief of --frames K --screenshot PATH);
   // the run's own --frames is --measured-frames.
   view->remove_option(view->get_option("--frames"));
+  // The window's context is made by the display server (GLX, or EGL on X11), which picks
+  // the GPU: --gpu chooses among headless EGL devices only (docs/guide/gpu-nodes.md).
+  view->remove_option(view->get_option("--gpu"));
   viewer::ViewerOptions& v = o->viewer;
   view->add_option("--frames", v.frames, "Render this many frames, then exit (0: until closed)")
       ->check(CLI::Range(0, 1000000));

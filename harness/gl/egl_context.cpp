@@ -3,6 +3,7 @@
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <string>
@@ -37,20 +38,113 @@ bool contains_word(const char* list, const char* word) {
   return false;
 }
 
-// Finds an NVIDIA GPU among the EGL devices (the proprietary driver marks its devices with
-// EGL_NV_device_cuda). Returns nullptr when there is none.
-EGLDeviceEXT find_nvidia_device() {
+std::vector<EGLDeviceEXT> egl_devices() {
   auto query_devices = egl_proc<PFNEGLQUERYDEVICESEXTPROC>("eglQueryDevicesEXT");
-  auto query_string = egl_proc<PFNEGLQUERYDEVICESTRINGEXTPROC>("eglQueryDeviceStringEXT");
-  if (!query_devices || !query_string) return nullptr;
+  if (!query_devices) return {};
   EGLint count = 0;
-  if (!query_devices(0, nullptr, &count) || count <= 0) return nullptr;
+  if (!query_devices(0, nullptr, &count) || count <= 0) return {};
   std::vector<EGLDeviceEXT> devices(static_cast<size_t>(count));
-  query_devices(count, devices.data(), &count);
-  for (EGLDeviceEXT device : devices) {
-    if (contains_word(query_string(device, EGL_EXTENSIONS), "EGL_NV_device_cuda")) return device;
+  if (!query_devices(count, devices.data(), &count)) return {};
+  devices.resize(static_cast<size_t>(std::max<EGLint>(count, 0)));
+  return devices;
+}
+
+const char* device_extensions(EGLDeviceEXT device) {
+  auto query_string = egl_proc<PFNEGLQUERYDEVICESTRINGEXTPROC>("eglQueryDeviceStringEXT");
+  return query_string ? query_string(device, EGL_EXTENSIONS) : nullptr;
+}
+
+// What the device's extensions say it is (no context made).
+EglDeviceSummary summarize(EGLDeviceEXT device, int index) {
+  EglDeviceSummary summary;
+  summary.index = index;
+  const char* extensions = device_extensions(device);
+  auto query_string = egl_proc<PFNEGLQUERYDEVICESTRINGEXTPROC>("eglQueryDeviceStringEXT");
+  auto query_attrib = egl_proc<PFNEGLQUERYDEVICEATTRIBEXTPROC>("eglQueryDeviceAttribEXT");
+  if (contains_word(extensions, "EGL_NV_device_cuda") && query_attrib) {
+    EGLAttrib ordinal = -1;
+    if (query_attrib(device, EGL_CUDA_DEVICE_NV, &ordinal) && ordinal >= 0)
+      summary.cuda_ordinal = int(ordinal);
   }
-  return nullptr;
+  if (contains_word(extensions, "EGL_EXT_device_drm") && query_string)
+    if (const char* node = query_string(device, EGL_DRM_DEVICE_FILE_EXT)) summary.drm_node = node;
+  summary.software = contains_word(extensions, "EGL_MESA_device_software");
+  return summary;
+}
+
+// The UUID of EGL_EXT_device_persistent_id, or "".
+std::string egl_device_uuid(EGLDeviceEXT device) {
+  using QueryBinary = EGLBoolean (*)(EGLDeviceEXT, EGLint, EGLint, void*, EGLint*);
+  auto query_binary = egl_proc<QueryBinary>("eglQueryDeviceBinaryEXT");
+  if (!query_binary || !contains_word(device_extensions(device), "EGL_EXT_device_persistent_id"))
+    return "";
+  unsigned char uuid[16] = {};
+  EGLint size = 0;
+  if (!query_binary(device, EGL_DEVICE_UUID_EXT, sizeof uuid, uuid, &size) || size != 16) return "";
+  return format_uuid(uuid);
+}
+
+// GL_DEVICE_UUID_EXT of the current context (GL_EXT_memory_object), or "".
+std::string gl_device_uuid() {
+  using GetUnsignedBytei = void (*)(GLenum, GLuint, GLubyte*);
+  auto get = egl_proc<GetUnsignedBytei>("glGetUnsignedBytei_vEXT");
+  if (!get || !has_gl_extension("GL_EXT_memory_object")) return "";
+  unsigned char uuid[16] = {};
+  while (glGetError() != GL_NO_ERROR) {
+  }
+  get(0x9597 /* GL_DEVICE_UUID_EXT */, 0, uuid);
+  if (glGetError() != GL_NO_ERROR) return "";
+  return format_uuid(uuid);
+}
+
+// What the current context says of its device; a context made on the surfaceless platform
+// (or by a window system) runs Mesa's default driver: software when the renderer is Mesa's.
+DeviceIdentity gl_device_identity(const DeviceInfo& info) {
+  DeviceIdentity identity;
+  identity.renderer = info.gl_renderer;
+  const std::string& driver = info.gl_driver;
+  identity.software = driver == "llvmpipe" || driver == "softpipe" ||
+                      (driver == "zink" && info.gl_renderer.find("llvmpipe") != std::string::npos);
+  identity.gl_uuid = gl_device_uuid();
+  return identity;
+}
+
+std::vector<EGLint> context_attributes(bool debug_output) {
+  std::vector<EGLint> attributes = {EGL_CONTEXT_MAJOR_VERSION, 4,
+                                    EGL_CONTEXT_MINOR_VERSION, 5,
+                                    EGL_CONTEXT_OPENGL_PROFILE_MASK,
+                                    EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT};
+  if (debug_output) {
+    attributes.push_back(EGL_CONTEXT_OPENGL_DEBUG);
+    attributes.push_back(EGL_TRUE);
+  }
+  attributes.push_back(EGL_NONE);
+  return attributes;
+}
+
+// Tries an OpenGL 4.5 core context on the device; its GL_RENDERER, or nullopt when none is
+// made. Leaves nothing current and nothing initialised.
+std::optional<std::string> try_context(EGLDeviceEXT device) {
+  auto get_platform_display = egl_proc<PFNEGLGETPLATFORMDISPLAYEXTPROC>("eglGetPlatformDisplayEXT");
+  if (!get_platform_display) return std::nullopt;
+  EGLDisplay display = get_platform_display(EGL_PLATFORM_DEVICE_EXT, device, nullptr);
+  EGLint major = 0, minor = 0;
+  if (display == EGL_NO_DISPLAY || !eglInitialize(display, &major, &minor)) return std::nullopt;
+  std::optional<std::string> renderer;
+  const auto attributes = context_attributes(false);
+  if (eglBindAPI(EGL_OPENGL_API)) {
+    EGLContext context = eglCreateContext(display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attributes.data());
+    if (context != EGL_NO_CONTEXT) {
+      if (eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
+        const char* name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+        renderer = name ? name : "";
+        eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+      }
+      eglDestroyContext(display, context);
+    }
+  }
+  eglTerminate(display);
+  return renderer;
 }
 
 void APIENTRY debug_callback(GLenum source, GLenum type, GLuint id, GLenum severity, GLsizei,
@@ -62,6 +156,21 @@ void APIENTRY debug_callback(GLenum source, GLenum type, GLuint id, GLenum sever
 }
 
 }  // namespace
+
+std::vector<EglDeviceSummary> list_egl_devices(bool try_contexts) {
+  const std::vector<EGLDeviceEXT> devices = egl_devices();
+  std::vector<EglDeviceSummary> summaries;
+  for (size_t i = 0; i < devices.size(); ++i) {
+    EglDeviceSummary summary = summarize(devices[i], int(i));
+    if (try_contexts) {
+      const auto renderer = try_context(devices[i]);
+      summary.makes_context = renderer.has_value();
+      summary.renderer = renderer.value_or("");
+    }
+    summaries.push_back(std::move(summary));
+  }
+  return summaries;
+}
 
 EglPlatform parse_egl_platform(const std::string& name) {
   if (name == "auto") return EglPlatform::Auto;
@@ -77,17 +186,36 @@ std::unique_ptr<HeadlessContext> HeadlessContext::create(const ContextOptions& o
   if (!get_platform_display)
     throw UserError("EGL: eglGetPlatformDisplayEXT is missing; libglvnd's EGL is required");
 
+  // Which device (device_selection.h): described from the extensions, tried for a context
+  // only where the choice is by position (no NVIDIA device).
+  const std::vector<EGLDeviceEXT> devices =
+      options.platform == EglPlatform::Surfaceless ? std::vector<EGLDeviceEXT>{} : egl_devices();
+  std::vector<EglDeviceSummary> summaries;
+  for (size_t i = 0; i < devices.size(); ++i) summaries.push_back(summarize(devices[i], int(i)));
+  if (options.platform == EglPlatform::Surfaceless && options.gpu && options.gpu->source != "LDM_GPU")
+    throw UserError(options.gpu->source + " " + std::to_string(options.gpu->n) +
+                    ": a GPU is chosen on the EGL device platform, not with --egl-platform surfaceless");
+  DeviceChoice choice{std::nullopt, "Mesa surfaceless platform (--egl-platform surfaceless)"};
+  if (options.platform != EglPlatform::Surfaceless) {
+    const bool prefer_surfaceless = options.platform == EglPlatform::Auto;
+    if (device_choice_needs_context_probe(summaries, options.gpu, prefer_surfaceless))
+      for (auto& summary : summaries) {
+        const auto renderer = try_context(devices[size_t(summary.index)]);
+        summary.makes_context = renderer.has_value();
+        summary.renderer = renderer.value_or("");
+      }
+    if (summaries.empty() && options.platform == EglPlatform::Device)
+      throw UserError("EGL: --egl-platform device asked for, but EGL lists no device");
+    choice = choose_egl_device(summaries, options.gpu, prefer_surfaceless);
+  }
   EGLDisplay display = EGL_NO_DISPLAY;
   std::string platform_name;
-  if (options.platform != EglPlatform::Surfaceless) {
-    if (EGLDeviceEXT device = find_nvidia_device()) {
-      display = get_platform_display(EGL_PLATFORM_DEVICE_EXT, device, nullptr);
-      platform_name = "device";
-    } else if (options.platform == EglPlatform::Device) {
-      throw UserError("EGL: --egl-platform device asked for, but no NVIDIA EGL device was found");
-    }
-  }
-  if (display == EGL_NO_DISPLAY) {
+  const EglDeviceSummary* chosen = nullptr;
+  if (choice.device_index) {
+    chosen = &summaries[size_t(*choice.device_index)];
+    display = get_platform_display(EGL_PLATFORM_DEVICE_EXT, devices[size_t(*choice.device_index)], nullptr);
+    platform_name = "device";
+  } else {
     display = get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
     platform_name = "surfaceless";
   }
@@ -103,15 +231,7 @@ std::unique_ptr<HeadlessContext> HeadlessContext::create(const ContextOptions& o
 
   if (!eglBindAPI(EGL_OPENGL_API)) throw UserError("EGL: this display offers no desktop OpenGL");
 
-  std::vector<EGLint> attributes = {EGL_CONTEXT_MAJOR_VERSION, 4,
-                                    EGL_CONTEXT_MINOR_VERSION, 5,
-                                    EGL_CONTEXT_OPENGL_PROFILE_MASK,
-                                    EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT};
-  if (options.debug_output) {
-    attributes.push_back(EGL_CONTEXT_OPENGL_DEBUG);
-    attributes.push_back(EGL_TRUE);
-  }
-  attributes.push_back(EGL_NONE);
+  const std::vector<EGLint> attributes = context_attributes(options.debug_output);
   // EGL_KHR_no_config_context and EGL_KHR_surfaceless_context: no surface is ever made.
   EGLContext context = eglCreateContext(display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT,
                                         attributes.data());
@@ -141,6 +261,14 @@ std::unique_ptr<HeadlessContext> HeadlessContext::create(const ContextOptions& o
 
   ctx->device_ = describe_current_context(platform_name, options.debug_output);
   ctx->device_.egl_vendor = egl_vendor ? egl_vendor : "";
+  if (chosen) {  // what EGL knows of the device adds to what GL says (describe_current_context)
+    DeviceIdentity identity = gl_device_identity(ctx->device_);
+    identity.software = chosen->software;
+    identity.egl_uuid = egl_device_uuid(devices[size_t(chosen->index)]);
+    identity.drm_node = chosen->drm_node;
+    ctx->device_.device_id = device_id(identity);
+  }
+  ctx->device_.device_choice = choice.how;
   return ctx;
 }
 
@@ -155,6 +283,8 @@ DeviceInfo describe_current_context(const std::string& platform_name, bool debug
   info.gl_vendor = gl_string(GL_VENDOR);
   info.gl_version = gl_string(GL_VERSION);
   info.glsl_version = gl_string(GL_SHADING_LANGUAGE_VERSION);
+  info.gl_driver = gl_driver_name(info.gl_renderer, info.gl_vendor, info.gl_version);
+  info.device_id = device_id(gl_device_identity(info));
   GLint value = 0;
   glGetIntegerv(GL_MAJOR_VERSION, &value);
   info.gl_major = value;

@@ -1,17 +1,24 @@
 #pragma once
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
+#include <vector>
+
+#include "harness/gl/device_selection.h"
 
 namespace ldm {
 
 // Which EGL platform to open. Auto picks an NVIDIA GPU through the EGL device platform when
-// there is one, otherwise Mesa's surfaceless platform (llvmpipe on machines without a GPU).
+// there is one (the CUDA ordinal `gpu` asks for, default 0), otherwise Mesa's surfaceless
+// platform (llvmpipe on machines without a GPU), or the device `gpu` asks for when given.
 enum class EglPlatform { Auto, Device, Surfaceless };
 
 struct ContextOptions {
   EglPlatform platform = EglPlatform::Auto;
   bool debug_output = false;  // GL_KHR_debug messages (errors, warnings) to stderr
+  // --gpu N or LDM_GPU=N (device_selection.h); nullopt: the default device.
+  std::optional<GpuRequest> gpu;
 };
 
 // Debug builds turn GL debug output on; release builds leave it to --gl-debug.
@@ -41,7 +48,16 @@ struct DeviceInfo {
   // What the driver self-tests found wrong (harness/gl/driver_probe.h): "none", or each
   // failed probe.
   std::string driver_defects;
+  // Which device it is: a unique name (device_selection.h, device_id()), the driver's short
+  // name (llvmpipe, zink, nvidia, ...), and how it was chosen (printed, not recorded).
+  std::string device_id;
+  std::string gl_driver;
+  std::string device_choice;
 };
+
+// Every EGL device (EGL_EXT_device_enumeration), each tried for an OpenGL 4.5 core context
+// when `try_contexts` (its renderer then filled in): what `ldmbench info` lists.
+std::vector<EglDeviceSummary> list_egl_devices(bool try_contexts);
 
 // An OpenGL 4.5 core context with no window, current on the calling thread for its lifetime.
 // Rendering goes into framebuffer objects. Throws UserError with what was found when the
