@@ -44,6 +44,8 @@ void describe_configuration(Record& r, const Configuration& config, const RunSet
   r.set("frames", settings.frames);
   r.set("warmup", settings.warmup);
   r.set("device", device.gl_renderer);
+  r.set("device_id", device.device_id);
+  r.set("gl_driver", device.gl_driver);
   r.set("gl_vendor", device.gl_vendor);
   r.set("gl_version", device.gl_version);
   r.set("egl_platform", device.egl_platform);

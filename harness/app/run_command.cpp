@@ -458,7 +458,7 @@ int run_configurations(const ConfigurationRun& job, const std::string& command_l
   auto context = HeadlessContext::create(job.context);
   const DeviceInfo device = context->device();
   detail << "device: " << device.gl_renderer << " (" << device.gl_version << ", EGL "
-         << device.egl_platform << ")\n";
+         << device.egl_platform << "; " << device.device_choice << ")\n";
 
   const MeasurementPaths paths{out_dir, (std::filesystem::path(out_dir) / "images").string()};
   prepare_run_folder(out_dir, plan);
@@ -478,6 +478,8 @@ int run_configurations(const ConfigurationRun& job, const std::string& command_l
   run.set("started", timestamp("%Y-%m-%dT%H:%M:%S%z"));
   run.set("device", device.gl_renderer);
   run.set("gl_version", device.gl_version);
+  run.set("device_id", device.device_id);
+  run.set("gl_driver", device.gl_driver);
   run.set("egl_platform", device.egl_platform);
   run.set("git_commit", git_commit());
   run.set("ldmbench_version", ldmbench_version());

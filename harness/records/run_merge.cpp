@@ -159,7 +159,7 @@ MergeResult merge_runs(const std::string& out_dir, const std::vector<std::string
   Record run;
   run.set("command", options.command);
   run.set("sweep_key", merged_key);
-  for (const char* key : {"device", "gl_version", "egl_platform", "git_commit", "ldmbench_version",
+  for (const char* key : {"device", "gl_driver", "gl_version", "egl_platform", "git_commit", "ldmbench_version",
                           "sweep_file", "sweep_hash", "sweep_configurations"})
     if (const RecordValue* v = first.run.get(key)) run.put(key, *v);
   std::string merged_from;
