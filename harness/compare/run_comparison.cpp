@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <map>
 #include <optional>
@@ -15,6 +16,7 @@
 #include <boost/math/distributions/students_t.hpp>
 
 #include "harness/compare/samples.h"
+#include "harness/gl/device_selection.h"
 #include "harness/app/record_schema.h"
 #include "harness/records/record_validation.h"
 #include "harness/stats/intervals.h"
@@ -246,6 +248,8 @@ void compare_pair(ConfigChange& c, const RunRecords& base, const json& a, const 
   const std::string timer_a = text(a, "timer"), timer_b = text(b, "timer");
   if (!t.compare_time)
     c.time_note = "not compared (--no-time)";
+  else if (c.cross == "cross-driver")
+    c.time_note = "drivers differ (" + c.base_driver + " vs " + c.new_driver + ")";
   else if (!same_device)
     c.time_note = "devices differ (" + text(a, "device") + " vs " + text(b, "device") + ")";
   else if (timer_a != timer_b)
@@ -293,6 +297,44 @@ std::string fixed(double v, const char* format) {
 
 std::string mib(double bytes) { return bytes < 0 ? "-" : fixed(bytes / (1024.0 * 1024.0), "%.3g"); }
 
+// "llvmpipe" or "llvmpipe, zink": the drivers (or devices) of a run's records, in order.
+std::string joined(const std::vector<std::string>& names) {
+  std::string out;
+  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
+std::vector<std::string> distinct(const std::vector<json>& records, const std::function<std::string(const json&)>& of) {
+  std::vector<std::string> out;
+  for (const json& r : records)
+    if (const std::string v = of(r); std::find(out.begin(), out.end(), v) == out.end()) out.push_back(v);
+  return out;
+}
+
+// Says once, for the run, when the two sides ran on different drivers or devices: their
+// differences are then what the drivers or devices do, not regressions.
+void add_device_warnings(const RunRecords& base, const RunRecords& next, size_t other_gpus, RunComparison& out) {
+  const auto cross = [&](const std::string& kind) {
+    return std::count_if(out.matched.begin(), out.matched.end(), [&](const ConfigChange& c) { return c.cross == kind; });
+  };
+  const auto device = [](const json& r) { return text(r, "device"); };
+  const std::string base_drivers = joined(distinct(base.records, record_driver));
+  const std::string new_drivers = joined(distinct(next.records, record_driver));
+  if (const auto n = cross("cross-driver"))
+    out.warnings.push_back("baseline on " + base_drivers + ", candidate on " + new_drivers +
+                           ": a cross-driver comparison (" + std::to_string(n) +
+                           " configuration(s)), differences are not regressions; times are not compared");
+  if (const auto n = cross("cross-device"))
+    out.warnings.push_back("baseline on " + joined(distinct(base.records, device)) + ", candidate on " +
+                           joined(distinct(next.records, device)) + ": a cross-device comparison (" +
+                           std::to_string(n) + " configuration(s)), differences are not regressions; "
+                           "times are not compared");
+  if (other_gpus)
+    out.warnings.push_back(std::to_string(other_gpus) + " configuration(s) ran on another GPU of the same "
+                           "model (device_id differs): times compared, but the spread between GPUs of one "
+                           "model is not in their intervals");
+}
+
 }  // namespace
 
 RunRecords load_run_records(const std::string& folder_or_file) {
@@ -328,7 +370,14 @@ RunRecords load_run_records(const std::string& folder_or_file) {
   return run;
 }
 
+std::string record_driver(const json& record) {
+  const std::string recorded = text(record, "gl_driver");
+  if (!recorded.empty()) return recorded;
+  return gl_driver_name(text(record, "device"), text(record, "gl_vendor"), text(record, "gl_version"));
+}
+
 bool ConfigChange::time_regression() const {
+  if (!cross.empty()) return false;
   return std::any_of(times.begin(), times.end(), [](const TimeChange& t) { return t.verdict == "SLOW"; });
 }
 
@@ -348,6 +397,7 @@ RunComparison compare_runs(const RunRecords& base, const RunRecords& next, const
   // measured beside the other's, so their ratio cancels what the pair shared.
   const std::string session_a = text(base.run, "interleaved_session"), session_b = text(next.run, "interleaved_session");
   out.paired = !session_a.empty() && session_a == session_b;
+  size_t other_gpus = 0;  // pairs on two GPUs of one model
   for (const json& a : base.records) {
     ConfigChange c;
     c.config_id = text(a, "config_id");
@@ -369,6 +419,12 @@ RunComparison compare_runs(const RunRecords& base, const RunRecords& next, const
       c.time_note = "not in NEW";
     } else {
       used.insert(b);
+      c.base_driver = record_driver(a);
+      c.new_driver = record_driver(*b);
+      if (c.base_driver != c.new_driver) c.cross = "cross-driver";
+      else if (!same_device) c.cross = "cross-device";
+      const std::string id_a = text(a, "device_id"), id_b = text(*b, "device_id");
+      if (c.cross.empty() && !id_a.empty() && !id_b.empty() && id_a != id_b) ++other_gpus;
       compare_pair(c, base, a, next, *b, same_device, out.paired, t);
     }
     out.matched.push_back(std::move(c));
@@ -412,9 +468,7 @@ RunComparison compare_runs(const RunRecords& base, const RunRecords& next, const
   const std::string commit_a = text(base.run, "git_commit"), commit_b = text(next.run, "git_commit");
   if (!commit_a.empty() && commit_a == commit_b)
     out.warnings.push_back("both runs are of commit " + commit_a);
-  if (text(base.run, "device") != text(next.run, "device"))
-    out.warnings.push_back("devices differ: " + text(base.run, "device") + " vs " +
-                           text(next.run, "device") + "; times are not compared");
+  add_device_warnings(base, next, other_gpus, out);
   return out;
 }
 
@@ -428,7 +482,7 @@ size_t count_regressions(const RunComparison& comparison, const std::string& kin
     if (kind == "time") return c.time_regression();
     if (kind == "memory") return c.memory_regression();
     if (kind == "accuracy") return c.accuracy_regression();
-    if (kind == "status") return c.status_worse;
+    if (kind == "status") return c.status_regression();
     throw std::invalid_argument("unknown regression kind " + kind);
   });
 }
@@ -455,6 +509,7 @@ std::string comparison_table(const RunComparison& comparison) {
   for (const ConfigChange& c : comparison.matched) {
     std::string status = c.base_status == c.new_status ? c.new_status : c.base_status + " -> " + c.new_status;
     if (c.status_worse) status += " WORSE";
+    if (!c.cross.empty()) status += " [" + c.cross + ": " + c.base_driver + " -> " + c.new_driver + "]";
     std::string time;
     for (const TimeChange& t : c.times) time += (time.empty() ? "" : ", ") + describe_time_change(t);
     if (!c.time_note.empty()) time += (time.empty() ? "" : "; ") + c.time_note;
@@ -545,6 +600,7 @@ nlohmann::ordered_json comparison_json(const RunComparison& comparison, const Co
                        {"warning", x.warning}});
     root["configurations"].push_back(
         {{"identity", c.identity}, {"config_id", c.config_id}, {"device", c.device},
+         {"drivers", {{"base", c.base_driver}, {"new", c.new_driver}}}, {"cross", c.cross},
          {"status", {{"base", c.base_status}, {"new", c.new_status}, {"worse", c.status_worse}}},
          {"time", times}, {"time_note", c.time_note},
          {"memory", {{"base_allocated", num(c.base_allocated)}, {"new_allocated", num(c.new_allocated)},

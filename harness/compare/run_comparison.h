@@ -13,6 +13,10 @@
 //             max(--min-time-change, MDE); a change below the MDE is SAME ("could not detect
 //             < x%"); a change above both that the test cannot confirm is UNSURE. Refused
 //             across devices or timers.
+//   device    each record's driver (gl_driver, or for records from before it, derived from
+//             device, gl_vendor, gl_version) and device (GL_RENDERER): a configuration whose
+//             two records ran on different drivers or device models is a cross-driver or
+//             cross-device comparison, shown as such, whose differences are not regressions.
 //   memory    bytes_allocated and bytes_used, exact.
 //   accuracy  the MSE change against the reference's noise floor (ref_noise_mse): a change
 //             smaller than the noise the reference itself carries is no change.
@@ -71,6 +75,10 @@ struct TimeChange {
 };
 struct ConfigChange {
   std::string identity, config_id, device;
+  std::string base_driver, new_driver;  // gl_driver of each side ("" when not in NEW)
+  // "cross-driver", "cross-device" (same driver, another GPU model), or "" (the same device,
+  // or another GPU of its model): a cross comparison has verdicts but no regressions.
+  std::string cross;
   std::string base_status, new_status;  // new_status "missing": not in NEW
   std::vector<TimeChange> times;
   std::string time_note;  // why times were not compared
@@ -83,8 +91,9 @@ struct ConfigChange {
   bool status_worse = false;
 
   bool time_regression() const;
-  bool memory_regression() const { return memory_verdict == "MORE"; }
-  bool accuracy_regression() const { return accuracy_verdict == "WORSE"; }
+  bool memory_regression() const { return cross.empty() && memory_verdict == "MORE"; }
+  bool accuracy_regression() const { return cross.empty() && accuracy_verdict == "WORSE"; }
+  bool status_regression() const { return cross.empty() && status_worse; }
 };
 
 // A parameter whose --ignore-param would pair configurations of BASE missing from NEW with
@@ -104,6 +113,10 @@ struct RunComparison {
   size_t time_tests = 0;               // how many the Holm correction spans
   bool paired = false;                 // both runs from one interleaved session
 };
+
+// A record's driver: its gl_driver, else (a record from before the column) the name
+// gl_driver_name() gives its device, gl_vendor and gl_version.
+std::string record_driver(const nlohmann::json& record);
 
 RunComparison compare_runs(const RunRecords& base, const RunRecords& next,
                            const CompareThresholds& thresholds);

@@ -257,6 +257,100 @@ TEST(CompareRuns, RefusesTimeAcrossDevicesAndTimers) {
   EXPECT_NE(c.time_note.find("timers differ"), std::string::npos);
 }
 
+// Two drivers (or two GPU models) measure differently without either regressing: the
+// comparison says so, keeps its verdicts, and counts no regression (issue 31).
+TEST(CompareRuns, ACrossDriverComparisonSaysSoAndCountsNoRegression) {
+  std::mt19937 rng(11);
+  json base = record("c", timed(rng, 10, 3, 0.01));
+  base["gl_driver"] = "llvmpipe";
+  base["device"] = "llvmpipe (LLVM 15.0.6, 256 bits)";
+  json zink = record("c", timed(rng, 20, 3, 0.01));
+  zink["gl_driver"] = "zink";
+  zink["device"] = "zink (llvmpipe (LLVM 15.0.6, 256 bits))";
+  zink["bytes_used"] = 900;  // MORE
+  zink["mse"] = 0.02;        // WORSE
+  zink["status"] = "lossy";  // worse
+  CompareThresholds t;
+  t.time_subpasses = {"frame"};
+  const RunComparison c = compare_runs(run_of({base}), run_of({zink}, "bbb"), t);
+  ASSERT_EQ(c.matched.size(), 1u);
+  const ConfigChange& m = c.matched.front();
+  EXPECT_EQ(m.cross, "cross-driver");
+  EXPECT_EQ(m.base_driver, "llvmpipe");
+  EXPECT_EQ(m.new_driver, "zink");
+  EXPECT_TRUE(m.times.empty());
+  EXPECT_EQ(m.time_note, "drivers differ (llvmpipe vs zink)");
+  EXPECT_EQ(m.memory_verdict, "MORE");  // what differs is still shown
+  EXPECT_EQ(m.accuracy_verdict, "WORSE");
+  EXPECT_TRUE(m.status_worse);
+  for (const std::string& kind : regression_kinds()) EXPECT_EQ(count_regressions(c, kind), 0u) << kind;
+  const std::string table = comparison_table(c);
+  EXPECT_NE(table.find("baseline on llvmpipe, candidate on zink: a cross-driver comparison"), std::string::npos) << table;
+  EXPECT_NE(table.find("differences are not regressions"), std::string::npos) << table;
+  EXPECT_NE(table.find("[cross-driver: llvmpipe -> zink]"), std::string::npos) << table;
+  EXPECT_NE(table.find("regressions: time 0 memory 0 accuracy 0 status 0"), std::string::npos) << table;
+  EXPECT_EQ(comparison_json(c, t)["configurations"][0]["cross"], "cross-driver");
+
+  // The same records on one driver are regressions.
+  json same = zink;
+  same["gl_driver"] = "llvmpipe";
+  same["device"] = base["device"];
+  const RunComparison r = compare_runs(run_of({base}), run_of({same}, "bbb"), t);
+  EXPECT_EQ(r.matched.front().cross, "");
+  EXPECT_EQ(count_regressions(r, "memory"), 1u);
+  EXPECT_EQ(count_regressions(r, "accuracy"), 1u);
+  EXPECT_EQ(count_regressions(r, "status"), 1u);
+}
+
+// Records from before gl_driver: the driver is derived from device, gl_vendor, gl_version,
+// so an old llvmpipe baseline still matches a new llvmpipe run, and not a zink one.
+TEST(CompareRuns, OldRecordsWithoutTheDriverColumnsAreMatchedByTheirGlStrings) {
+  json old = record("c", {});
+  old["device"] = "llvmpipe (LLVM 15.0.6, 256 bits)";
+  old["gl_vendor"] = "Mesa/X.org";
+  old["gl_version"] = "4.5 (Core Profile) Mesa 22.3.6";
+  EXPECT_EQ(record_driver(old), "llvmpipe");
+  json now = old;
+  now["gl_driver"] = "llvmpipe";
+  now["device_id"] = "software:llvmpipe (LLVM 15.0.6, 256 bits)";
+  now["bytes_used"] = 900;
+  EXPECT_EQ(compare_one(old, now).cross, "");
+  EXPECT_TRUE(compare_one(old, now).memory_regression());
+  json zink = now;
+  zink["gl_driver"] = "zink";
+  zink["device"] = "zink (llvmpipe (LLVM 15.0.6, 256 bits))";
+  EXPECT_EQ(compare_one(old, zink).cross, "cross-driver");
+  EXPECT_FALSE(compare_one(old, zink).memory_regression());
+}
+
+// One driver, two GPU models: cross-device; two GPUs of one model: compared, with a warning.
+TEST(CompareRuns, AnotherDeviceModelIsCrossDeviceAnotherGpuOfTheModelIsCompared) {
+  std::mt19937 rng(5);
+  json a = record("c", timed(rng, 10, 3, 0.01));
+  a["gl_driver"] = "nvidia";
+  a["device"] = "NVIDIA A100";
+  a["device_id"] = "00000000-0000-0000-0000-000000000001";
+  json other_model = record("c", timed(rng, 10, 3, 0.01));
+  other_model["gl_driver"] = "nvidia";
+  other_model["device"] = "NVIDIA H100";
+  other_model["bytes_used"] = 900;
+  auto c = compare_one(a, other_model);
+  EXPECT_EQ(c.cross, "cross-device");
+  EXPECT_FALSE(c.memory_regression());
+  EXPECT_TRUE(c.times.empty());
+  json other_gpu = record("c", timed(rng, 10, 3, 0.01));
+  other_gpu["gl_driver"] = "nvidia";
+  other_gpu["device"] = "NVIDIA A100";
+  other_gpu["device_id"] = "00000000-0000-0000-0000-000000000002";
+  CompareThresholds t;
+  t.time_subpasses = {"frame"};
+  const RunComparison r = compare_runs(run_of({a}), run_of({other_gpu}, "bbb"), t);
+  EXPECT_EQ(r.matched.front().cross, "");
+  EXPECT_EQ(r.matched.front().times.size(), 1u);
+  const std::string table = comparison_table(r);
+  EXPECT_NE(table.find("1 configuration(s) ran on another GPU of the same model"), std::string::npos) << table;
+}
+
 TEST(CompareRuns, MemoryIsExactUnlessToleranceAllows) {
   const json base = record("c", {});
   json more = base;
