@@ -125,10 +125,24 @@ def collision_note(table):
             "differs")
 
 
+def cross_platform_note(table):
+    """Records of several drivers (or GPU models) compared in one report: said once, since
+    what differs between them is the driver's or device's doing, not a regression."""
+    platforms = list(dict.fromkeys(table.platform()))
+    if len(platforms) < 2:
+        return None
+    where = "; ".join(f"{p} (run {', '.join(dict.fromkeys(table.text('run')[table.platform() == p]))})"
+                      for p in platforms)
+    kind = "cross-driver" if len(table.drivers()) > 1 else "cross-device"
+    return (f"the records ran on {len(platforms)} drivers or devices: {where}. A {kind} comparison: "
+            "rankings and panels are per driver and device, and differences between them are "
+            "not regressions")
+
+
 def runs_info_from_runs(runs):
     return [{"label": r.label, "records_file": r.records_file,
              "records": len(r.rows), **{k: str(r.metadata.get(k, "")) for k in
-                                         ("device", "git_commit", "command")}} for r in runs]
+                                         ("device", "gl_driver", "git_commit", "command")}} for r in runs]
 
 
 def runs_info_from_table(table, tidy_path):
@@ -138,6 +152,7 @@ def runs_info_from_table(table, tidy_path):
         info.append({"label": label, "records_file": f"{tidy_path} ({rows['run_dir'].iloc[0]})",
                      "records": len(rows),
                      "device": ", ".join(dict.fromkeys(rows.get("device", []))),
+                     "gl_driver": ", ".join(d for d in dict.fromkeys(rows.get("gl_driver", [])) if d),
                      "git_commit": ", ".join(dict.fromkeys(rows.get("git_commit", []))),
                      "command": ""})
     return info
@@ -194,9 +209,9 @@ def main(argv):
 
     table = Table(columns, rows, extra_axes=args.axis)
     canvas = figures.Canvas(args.out, formats=args.formats, dpi=args.dpi)
-    note = collision_note(table)
-    if note:
-        canvas.note(note)
+    for note in (cross_platform_note(table), collision_note(table)):
+        if note:
+            canvas.note(note)
     figures.draw_tradeoffs(table, canvas)
     figures.draw_memory(table, canvas)
     figures.draw_depth_histograms(table, canvas)

@@ -245,5 +245,49 @@ class Style(unittest.TestCase):
             self.assertEqual(f.read(5), b"%PDF-")
 
 
+class Drivers(unittest.TestCase):
+    """Issue 31: records of two drivers (llvmpipe, zink) or GPU models are ranked and drawn
+    apart, and the report says the comparison is across drivers, not a regression."""
+
+    def two_drivers(self, with_driver_column=True):
+        rows = []
+        for run, driver, device in (("a", "llvmpipe", "llvmpipe (LLVM 15.0.6, 256 bits)"),
+                                    ("z", "zink", "zink (llvmpipe (LLVM 15.0.6, 256 bits))")):
+            for n in (4, 8):
+                extra = {"gl_driver": driver} if with_driver_column else {}
+                rows.append(record(run=run, n_views=n, device=device, frame_ms_median=n, **extra))
+        return table(rows)
+
+    def test_rankings_and_panels_are_per_driver(self):
+        t = self.two_drivers()
+        labels = [label for label, _ in pages.ranking_groups(t)]
+        self.assertEqual(len(labels), 2, labels)
+        self.assertTrue(labels[0].startswith("cornell on llvmpipe: llvmpipe"), labels)
+        self.assertTrue(labels[1].startswith("cornell on zink: zink"), labels)
+        titles = [title for title, _ in figures.comparable_groups(t, "", "mse")]
+        self.assertEqual(len(titles), 2, titles)
+        self.assertIn("on zink", titles[1])
+
+    def test_one_driver_is_one_group(self):
+        rows = [record(n_views=n, device="llvmpipe", gl_driver="llvmpipe") for n in (4, 8)]
+        self.assertEqual(len(pages.ranking_groups(table(rows))), 1)
+
+    def test_the_report_says_it_is_a_cross_driver_comparison(self):
+        sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "..", "scripts", "report"))
+        import ldmbench_report
+        note = ldmbench_report.cross_platform_note(self.two_drivers())
+        self.assertIn("A cross-driver comparison", note)
+        self.assertIn("not regressions", note)
+        self.assertIn("llvmpipe: llvmpipe (LLVM 15.0.6, 256 bits) (run a)", note)
+        # Records from before gl_driver: grouped by their device (GL_RENDERER) alone.
+        old = self.two_drivers(with_driver_column=False)
+        self.assertEqual(len(pages.ranking_groups(old)), 2)
+        self.assertIn("cross-device", ldmbench_report.cross_platform_note(old))
+        one = table([record(n_views=n, device="llvmpipe", gl_driver="llvmpipe") for n in (4, 8)])
+        self.assertIsNone(ldmbench_report.cross_platform_note(one))
+        self.assertEqual(pages.device_cell({"device": "zink (llvmpipe)", "gl_driver": "zink"}), "zink: zink (llvmpipe)")
+        self.assertEqual(pages.device_cell({"device": "llvmpipe"}), "llvmpipe")
+
+
 if __name__ == "__main__":
     unittest.main()

@@ -198,12 +198,16 @@ def point_label(table, i, varying=(), several_runs=None):
 
 
 def comparable_groups(table, prefix, column):
-    """Rows scored against one reference, per scene: their errors compare. Returns
+    """Rows scored against one reference, per scene (and per driver and device when the
+    records span several: Table.platform): their errors and times compare. Returns
     [(title, mask)], titles after style.panel_title."""
     scored = table.num(column).notna() & np.isfinite(table.num("frame_ms_median"))
     key_column = table.reference_key_column(prefix)
-    keys = table.text("scene") + "|" + (table.text(key_column) if key_column else
-                                        table.text("width") + "x" + table.text("height"))
+    scene = table.text("scene")
+    if table.platform()[scored].nunique() > 1:
+        scene = scene + " on " + table.platform()
+    keys = scene + "|" + (table.text(key_column) if key_column else
+                          table.text("width") + "x" + table.text("height"))
     masks = [scored & (keys == k) for k in dict.fromkeys(keys[scored])]
     firsts = [m[m].index[0] for m in masks]
     candidates = ["width", "height", "visibility", "d_max"] + table.extra_axes
@@ -212,7 +216,7 @@ def comparable_groups(table, prefix, column):
     passes = [", ".join(dict.fromkeys(table.text("pass")[m])) for m in masks]
     titles = []
     for i, m, p in zip(firsts, masks, passes):
-        titles.append(style.panel_title(table.text("scene")[i],
+        titles.append(style.panel_title(scene[i],
                                         {a: table.axis_values(a)[i] for a in differing},
                                         p if len(set(passes)) > 1 else None))
     return list(zip(titles, masks))

@@ -45,13 +45,14 @@ def fmt(value, digits=4):
 
 
 def ranking_groups(table):
-    """Rows that compare: per scene (and per device when the runs span several), and per
+    """Rows that compare: per scene (and per driver and device when the runs span several:
+    Table.platform), and per
     reference image. Records scored against the same reference (the same ref_cache_key)
     estimate the same image, so their errors and times compare; an AO record and an
     indirect-light record, or AO at two d_max, do not. Without a reference: per pass."""
     scene = table.text("scene")
-    if table.text("device").nunique() > 1:
-        scene = scene + " on " + table.text("device")
+    if table.platform().nunique() > 1:
+        scene = scene + " on " + table.platform()
     reference = table.text("ref_cache_key").replace("nan", "")
     passes = table.text("pass")
     identity = reference.where(reference != "", "pass " + passes)
@@ -244,8 +245,14 @@ def configuration_rows(table):
     return header, rows
 
 
+def device_cell(info):
+    """"zink: zink (llvmpipe ...)": the driver before the device, when the run names it."""
+    driver, device = info.get("gl_driver", ""), info.get("device", "")
+    return f"{driver}: {device}" if driver else device
+
+
 def runs_rows(runs_info):
-    return [[r["label"], r["records_file"], str(r["records"]), r.get("device", ""),
+    return [[r["label"], r["records_file"], str(r["records"]), device_cell(r),
              r.get("git_commit", ""), r.get("command", "")] for r in runs_info]
 
 

@@ -96,6 +96,18 @@ class Table:
             return pd.Series([""] * len(self.df), index=self.df.index, dtype=object)
         return self.df[column].astype(str)
 
+    def platform(self):
+        """What a record ran on, as rankings and panels group it: "driver: device" (gl_driver
+        and GL_RENDERER), or the device alone for records from before gl_driver. GPUs of one
+        model share it (their device_id differs): a sweep's shards on several GPUs of a node
+        rank together."""
+        driver, device = self.text("gl_driver"), self.text("device")
+        return (driver + ": " + device).where(driver != "", device)
+
+    def drivers(self):
+        """The drivers the records ran on, in order (those from before gl_driver left out)."""
+        return [d for d in dict.fromkeys(self.text("gl_driver")) if d]
+
     def num(self, column):
         """The column as floats: NaN where absent, empty or not a number."""
         if not self.has(column):
