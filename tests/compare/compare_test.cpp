@@ -531,6 +531,39 @@ TEST(CompareCommand, ExitCodeFollowsFailOn) {
   EXPECT_NE(o.output.find("config_id"), std::string::npos);
 }
 
+// Two real runs of one configuration, the second under zink (Mesa's second driver): the
+// records name their driver and device, and compare calls it a cross-driver comparison with
+// no regression, whatever --fail-on asks (issue 31).
+TEST(CompareCommand, ARunUnderZinkAgainstLlvmpipeIsACrossDriverComparison) {
+  const fs::path tmp = test::make_temp_dir("ldm-compare-drivers");
+  const std::string args = "run --scene cornell --structure ppfla -N 4 -R 32 --image-size 32x32 --frames 2 "
+                           "--warmup 1 --no-reference --no-images --out ";
+  Outcome o = ldmbench(args + (tmp / "llvmpipe").string(), "env -u MESA_LOADER_DRIVER_OVERRIDE");
+  ASSERT_EQ(o.status, 0) << o.output;
+  const fs::path runtime = tmp / "xdg";
+  fs::create_directories(runtime);
+  fs::permissions(runtime, fs::perms::owner_all, fs::perm_options::replace);
+  o = ldmbench(args + (tmp / "zink").string(), "XDG_RUNTIME_DIR=" + runtime.string() +
+                                                   " MESA_LOADER_DRIVER_OVERRIDE=zink LIBGL_ALWAYS_SOFTWARE=1 ");
+  if (o.status != 0 && o.output.find("zink") == std::string::npos)
+    GTEST_SKIP() << "no zink here: " << o.output;
+  ASSERT_EQ(o.status, 0) << o.output;
+  const RunRecords a = load_run_records((tmp / "llvmpipe").string()), z = load_run_records((tmp / "zink").string());
+  ASSERT_EQ(a.records.size(), 1u);
+  ASSERT_EQ(z.records.size(), 1u);
+  const std::string driver_a = a.records[0].value("gl_driver", ""), driver_z = z.records[0].value("gl_driver", "");
+  if (driver_z != "zink") GTEST_SKIP() << "the zink override gave " << driver_z;
+  EXPECT_EQ(a.records[0].value("device_id", ""), "software:" + a.records[0].value("device", ""));
+  EXPECT_EQ(a.run.value("gl_driver", ""), driver_a);
+  o = ldmbench("compare " + (tmp / "llvmpipe").string() + " " + (tmp / "zink").string() +
+               " --fail-on time,memory,accuracy,status");
+  EXPECT_EQ(o.status, 0) << o.output;
+  EXPECT_NE(o.output.find("baseline on " + driver_a + ", candidate on zink: a cross-driver comparison"),
+            std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("drivers differ (" + driver_a + " vs zink)"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("regressions: time 0 memory 0 accuracy 0 status 0"), std::string::npos) << o.output;
+}
+
 // --min-time-change through the command, at its boundary: the default is 5 % (a 5.5 %
 // slowdown is SLOW, 4.5 % SAME), and the value given is the one judged by (0.06 turns the
 // 5.5 % SAME, 0.04 the 4.5 % SLOW), in the verdicts, the JSON thresholds and the exit code of
