@@ -12,9 +12,11 @@
 # is requeued or resubmitted resumes its shard: finished configurations are skipped. Run it
 # from the repository root on a shared file system. Environment:
 #   LDMBENCH          the binary (default build/ldmbench)
-#   LDM_SLURM_GPUS    1 (default): every task gets a GPU of its own and its node to itself,
-#                     LDM_SLURM_GPU_ARGS (default "--gres=gpu:1 --exclusive"); 0: no GPU
-#                     options (a node without GPUs, such as the CI's)
+#   LDM_SLURM_GPUS    1 (default): every task gets a GPU of its own, LDM_SLURM_GPU_ARGS
+#                     (default "--gres=gpu:1"; several tasks share a node, one per GPU, and
+#                     each renders on the GPU Slurm gave it: CUDA ordinal 0 of the ones
+#                     CUDA_VISIBLE_DEVICES leaves it, docs/guide/gpu-nodes.md#choosing-the-gpu);
+#                     0: no GPU options (a node without GPUs, such as the CI's)
 #   LDM_SLURM_TASKS   which array tasks to submit (sbatch --array syntax, e.g. "3" or "1,5");
 #                     default all: resubmit the failed ones after a failure (the merge reruns)
 #   LDM_SWEEP_ARGS    more `ldmbench sweep` options for every task (--cache-dir, ...)
@@ -51,6 +53,10 @@ if [ -n "${SLURM_ARRAY_TASK_ID:-}" ]; then
   # The records name the node, job, array task and GPUs (ldmbench reads SLURM_* itself).
   echo "slurm-sweep: shard $SLURM_ARRAY_TASK_ID/$shards of $sweep on ${SLURMD_NODENAME:-$(hostname)}," \
     "job ${SLURM_ARRAY_JOB_ID:-?}_$SLURM_ARRAY_TASK_ID, GPUs: ${SLURM_JOB_GPUS:-${CUDA_VISIBLE_DEVICES:-none allocated}}"
+  # The task's GPU is ordinal 0 of those Slurm left visible: an LDM_GPU of the submitting
+  # shell (a GPU of the login node's numbering) must not pick another (--gpu in
+  # LDM_SWEEP_ARGS still wins). SLURM_JOB_GPUS, the physical ids, is only recorded.
+  if [ -n "${CUDA_VISIBLE_DEVICES:-}" ]; then export LDM_GPU=0; fi
   status=0
   # shellcheck disable=SC2086  # LDM_SWEEP_ARGS is split on purpose
   "$ldmbench" sweep "$sweep" --shard "$SLURM_ARRAY_TASK_ID/$shards" --out "$out/shard-$SLURM_ARRAY_TASK_ID" \
@@ -65,13 +71,14 @@ fi
 [ -f "$sweep" ] || { echo "slurm-sweep: sweep file '$sweep' not found" >&2; exit 2; }
 # ldmbench checks the sweep (and the shard count) here, before anything is queued.
 "$ldmbench" sweep "$sweep" --dry-run --shard "0/$shards" >/dev/null
-# ldmbench renders on the first NVIDIA EGL device it finds, whatever CUDA_VISIBLE_DEVICES
-# says: --gres=gpu:1 alone would let two shards on one node time on the same GPU unless the
-# site's cgroups hide the others (ConstrainDevices=yes). --exclusive keeps a node to one
-# shard; LDM_SLURM_GPU_ARGS="--gres=gpu:1" drops it where devices are constrained.
+# ldmbench renders on the EGL device whose CUDA ordinal is 0 among the GPUs
+# CUDA_VISIBLE_DEVICES leaves (Slurm sets it for --gres=gpu:1), so the shards of one node
+# each time on their own GPU, whether or not the site's cgroups hide the others: no
+# --exclusive, no idle GPUs. Add --exclusive to LDM_SLURM_GPU_ARGS to keep a node to one
+# shard (when shards on one node would disturb each other's timing through the CPU or bus).
 gpu_args=""
 case "${LDM_SLURM_GPUS:-1}" in
-  1) gpu_args="${LDM_SLURM_GPU_ARGS:---gres=gpu:1 --exclusive}" ;;
+  1) gpu_args="${LDM_SLURM_GPU_ARGS:---gres=gpu:1}" ;;
   0) ;;
   *) echo "slurm-sweep: LDM_SLURM_GPUS must be 1 or 0, not '${LDM_SLURM_GPUS}'" >&2; exit 2 ;;
 esac
