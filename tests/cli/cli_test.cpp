@@ -212,6 +212,46 @@ TEST(Cli, BadInputIsRejectedBeforeAnythingIsWritten) {
   expect_rejected("--scene cornell --ao-estimator mean", "--ao-estimator");
 }
 
+// --gpu and LDM_GPU (issue 31): a bad value names its source, a GPU no device answers lists
+// the devices, both exit 2 with nothing written; the option wins over the variable; `info`
+// lists the EGL devices and says which it chose.
+TEST(Cli, GpuChoiceIsCheckedAndListed) {
+  const std::string run = "--scene cornell --structure ppfla -N 4 -R 32";
+  expect_rejected(run + " --gpu x", "--gpu 'x': expected a GPU index");
+  expect_rejected(run + " --gpu -1", "--gpu");
+  expect_rejected(run + " --gpu 7", "--gpu 7: ");
+  expect_rejected(run + " --gpu 7", "the EGL devices (`ldmbench info`):\n  0: ");
+  const fs::path out = fs::path(test::make_temp_dir("ldm-cli")) / "out";
+  Outcome o = ldmbench("run " + run + " --out " + out.string(), "LDM_GPU=two");
+  EXPECT_EQ(o.status, 2) << o.output;
+  EXPECT_NE(o.output.find("LDM_GPU='two'"), std::string::npos) << o.output;
+  o = ldmbench("run " + run + " --out " + out.string(), "LDM_GPU=9");
+  EXPECT_EQ(o.status, 2) << o.output;
+  EXPECT_NE(o.output.find("LDM_GPU 9: "), std::string::npos) << o.output;
+  EXPECT_FALSE(fs::exists(out));
+  o = ldmbench("sweep " + std::string(LDM_TEST_SOURCE_DIR) + "/../sweeps/slurm-ci.json --gpu x --out " +
+               out.string());
+  EXPECT_EQ(o.status, 2) << o.output;
+  EXPECT_NE(o.output.find("--gpu 'x'"), std::string::npos) << o.output;
+  EXPECT_FALSE(fs::exists(out));
+  o = ldmbench("info --gpu 0", "LDM_GPU=9");  // the option wins
+  ASSERT_EQ(o.status, 0) << o.output;
+  EXPECT_NE(o.output.find("egl devices: "), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("\n  0: "), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("chosen: "), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("(--gpu)"), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("gl driver: "), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("device id: "), std::string::npos) << o.output;
+  o = ldmbench("interleave a b --out x --gpu x -- run --scene cornell");
+  EXPECT_EQ(o.status, 2) << o.output;
+  EXPECT_NE(o.output.find("--gpu 'x'"), std::string::npos) << o.output;
+#ifdef LDM_GBENCH_PATH
+  o = test::run_shell(std::string(LDM_GBENCH_PATH) + " --ldm_scenes=cornell --ldm_structures=ppfla --ldm_gpu=9");
+  EXPECT_EQ(o.status, 2) << o.output;
+  EXPECT_NE(o.output.find("--ldm_gpu 9: "), std::string::npos) << o.output;
+#endif
+}
+
 // The trace and the estimator are axes of the sweep and columns of the record; the reference
 // depends on neither, so every configuration is scored against the same cached reference.
 TEST(Cli, TraceAndEstimatorAreAxesScoredAgainstOneReference) {
