@@ -90,7 +90,7 @@ std::string gl_device_uuid() {
   auto get = egl_proc<GetUnsignedBytei>("glGetUnsignedBytei_vEXT");
   if (!get || !has_gl_extension("GL_EXT_memory_object")) return "";
   unsigned char uuid[16] = {};
-  while (glGetError() != GL_NO_ERROR) {
+  for (int i = 0; i < 16 && glGetError() != GL_NO_ERROR; ++i) {  // errors of earlier calls
   }
   get(0x9597 /* GL_DEVICE_UUID_EXT */, 0, uuid);
   if (glGetError() != GL_NO_ERROR) return "";
