@@ -56,6 +56,7 @@ Runner add_view_command(CLI::App& app, const std::string& program) {
   // The window's context is made by the display server (GLX, or EGL on X11), which picks
   // the GPU: --gpu chooses among headless EGL devices only (docs/guide/gpu-nodes.md).
   view->remove_option(view->get_option("--gpu"));
+  o->run.gpu.option = nullptr;  // removed: never given
   viewer::ViewerOptions& v = o->viewer;
   view->add_option("--frames", v.frames, "Render this many frames, then exit (0: until closed)")
       ->check(CLI::Range(0, 1000000));

@@ -321,11 +321,13 @@ TEST(SweepCli, SlurmScriptRunsItsShardsAndMerges) {
   const std::string env = "LDMBENCH=" + std::string(LDM_BINARY_PATH) + " ";
   std::string output;
   // The variables Slurm sets in an array task (job 101 of array 100, task i, on node n7
-  // with GPU 3), and no others: the records name them.
+  // with GPU 3, which CUDA_VISIBLE_DEVICES makes the task's ordinal 0), and no others: the
+  // records name them. An LDM_GPU from the submitting shell must not pick another GPU.
   for (int i = 0; i < 2; ++i)
     ASSERT_EQ(test::run_command(env + "SLURM_ARRAY_TASK_ID=" + std::to_string(i) + " SLURM_ARRAY_JOB_ID=100 " +
                                     "SLURM_JOB_ID=" + std::to_string(101 + i) + " SLURMD_NODENAME=n7 " +
-                                    "SLURM_JOB_GPUS=3 " + script + " " + sweep + " 2 " + out, &output), 0)
+                                    "SLURM_JOB_GPUS=3 CUDA_VISIBLE_DEVICES=3 LDM_GPU=5 " + script + " " + sweep +
+                                    " 2 " + out, &output), 0)
         << output;
   ASSERT_EQ(test::run_command(env + "LDM_SLURM_MERGE=1 " + script + " " + sweep + " 2 " + out, &output), 0)
       << output;
@@ -437,8 +439,10 @@ TEST(SweepCli, SlurmScriptSubmitsGpuOptionsAndNamedLogs) {
   ASSERT_EQ(submit("", &output), 0) << output;
   std::vector<std::string> call = lines();
   ASSERT_EQ(call.size(), 2u) << output;
-  // The array: a GPU of its own and the node to itself; every task's log names shard and job.
-  EXPECT_NE(call[0].find("--gres=gpu:1 --exclusive"), std::string::npos) << call[0];
+  // The array: a GPU of its own (several tasks per node, one per GPU: no --exclusive);
+  // every task's log names shard and job.
+  EXPECT_NE(call[0].find("--gres=gpu:1 "), std::string::npos) << call[0];
+  EXPECT_EQ(call[0].find("--exclusive"), std::string::npos) << call[0];
   EXPECT_NE(call[0].find("--array=0-2"), std::string::npos) << call[0];
   EXPECT_NE(call[0].find("--output=" + out + "/slurm-logs/ldmbench-shard-%a-of-3-job-%A_%a.out"), std::string::npos)
       << call[0];
