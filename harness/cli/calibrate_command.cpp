@@ -10,6 +10,7 @@
 #include "harness/app/calibration.h"
 #include "harness/app/machine_state.h"
 #include "harness/cli/commands.h"
+#include "harness/compare/run_comparison.h"
 #include "harness/gl/egl_context.h"
 #include "harness/measure/run_to_run_spread.h"
 
@@ -64,6 +65,12 @@ Runner add_calibrate_command(CLI::App& app) {
                 spread.pairs, spread.processes, spread.probe_seconds);
     std::printf("an interval of one repetition is widened by +-%.1f%% (95%%); written to %s\n",
                 100 * (std::exp(1.959964 * spread.spread) - 1), path.c_str());
+    // One run's median varies by spread / sqrt 2 (the spread is that of a difference of two).
+    const double per_run = spread.spread / std::sqrt(2.0);
+    std::printf("ldmbench compare needs about %zu repetitions per side to detect a 10%% change "
+                "(%zu for 20%%) at this spread\n",
+                repetitions_for_detectable_change(per_run, 0.10, 0.05, 0.8),
+                repetitions_for_detectable_change(per_run, 0.20, 0.05, 0.8));
     return 0;
   };
 }

@@ -276,6 +276,23 @@ class UncertainAtEveryLevel(unittest.TestCase):
         self.assertIn("verification", outcome.why)
 
 
+    def test_a_better_candidate_straddling_the_budget_is_named_across_the_budget_line(self):
+        """a is surely within the budget; b has less error, but its interval straddles the
+        budget at every level: a is recommended and b named as uncertain (it goes to the
+        repeated verification), never dropped silently; c, worse and straddling, is not."""
+        a, b, c = (Candidate("a-n8-r64", "a", 8, 64), Candidate("b-n8-r64", "b", 8, 64),
+                   Candidate("c-n8-r64", "c", 8, 64))
+        values = {"a": (10, 9, 11, 0.3), "b": (19, 15, 25, 0.1), "c": (20, 16, 24, 0.5)}
+
+        def measure(cands, level, stage):
+            return {x.key: Measurement(values[x.group][0], values[x.group][1], values[x.group][2],
+                                       values[x.group][3], 0.001, 100) for x in cands}
+
+        outcome = Search([a, b, c], Goal(budget_ms=22), 2, measure).run()
+        self.assertEqual(outcome.recommended, a.key)
+        self.assertEqual(outcome.uncertain, [b.key])
+
+
 class NoisyModels(unittest.TestCase):
     def test_noisy_measurements_find_a_tied_optimum(self):
         """With noise, the recommendation is the true optimum or tied with it within the

@@ -126,6 +126,8 @@ def sweep_file(question, assignments, precision, description):
     timing = {"target": precision["target"]}
     if "cap_s" in precision:
         timing["cap_s"] = precision["cap_s"]
+    if precision.get("repetitions", 1) > 1:
+        timing["repetitions"] = precision["repetitions"]
     return {
         "description": description,
         "axes": main,
