@@ -22,11 +22,16 @@ namespace ldm {
 namespace {
 
 // Configurations of different cost (a factor of about 3 between the cheapest and the
-// dearest frame here), small enough that a probe process takes a second or two.
+// dearest frame here), small enough that a probe process takes about a second.
 const std::vector<std::string> kProbeRun = {"run",           "--scene",      "cornell",       "--structure",
                                             "psppsll,habuffer,ppfla",       "-N",            "8,32",
                                             "-R",            "64",           "--image-size",  "64x64",
-                                            "--no-reference", "--no-images", "--calibration", "skip"};
+                                            "--no-reference", "--no-images", "--calibration", "skip",
+                                            // A fixed number of frames: a run's default time target would
+                                            // let a loaded machine stretch every configuration to its 2 s
+                                            // cap (a 30 s probe); 9 frames' median varies a little more,
+                                            // which only widens the spread (the safe side).
+                                            "--time-target", "0", "--frames", "9"};
 
 // The sub-passes whose spread is measured: the times tables and decisions read. (The sizing
 // policy's sub-millisecond census and readback vary far more in relative terms; their own
@@ -224,7 +229,7 @@ ResolvedCalibration resolve_calibration(const CalibrationChoice& choice, const D
     }
   }
   log << "calibrating the run-to-run spread of this machine (" << why
-      << "; `ldmbench calibrate`, --calibration skip|FILE): about half a minute\n";
+      << "; `ldmbench calibrate`, --calibration skip|FILE): a few seconds\n";
   RunToRunSpread measured = run_calibration_probe(device, ProbeOptions{}, log);
   write_calibration_file(path, measured);
   out.spread = measured;

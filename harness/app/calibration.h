@@ -9,10 +9,10 @@
 //   --calibration FILE   a spread saved by `ldmbench calibrate --out FILE`.
 // LDM_CALIBRATION=auto|skip|FILE does the same for batch use; the option wins.
 //
-// The probe (`ldmbench calibrate`): kProbeProcesses runs of a fixed set of configurations
-// of different cost (cornell, three structures, N 8 and 32), each a separate
-// `ldmbench run` process with default timing options, back to back; every pair of
-// processes gives one log ratio per configuration and sub-pass.
+// The probe (`ldmbench calibrate`): ProbeOptions::processes runs of a fixed set of
+// configurations of different cost (cornell, three structures, N 8 and 32, 9 frames each),
+// each a separate `ldmbench run` process, back to back; every pair of processes gives one log
+// ratio per configuration and sub-pass (build, pass, frame).
 #include <filesystem>
 #include <iosfwd>
 #include <optional>
@@ -34,7 +34,7 @@ struct CalibrationChoice {
 CalibrationChoice parse_calibration_choice(const std::string& option_value, const char* environment_value);
 
 struct ProbeOptions {
-  int processes = 5;
+  int processes = 4;
   double gap_seconds = 0;  // pause between processes
   std::string program;     // the ldmbench binary (default: this one)
 };
