@@ -28,8 +28,8 @@ from ldmadvise.launch import LocalShards, SingleProcess, SlurmShards  # noqa: E4
 from ldmadvise.measure import (CENSUS, LEVELS, VERIFY, VERIFY_UNCERTAIN, MeasureError, StageRunner,  # noqa: E402
                                measurement_of)
 from ldmadvise.search import YES, CensusPlan, Goal, Search, choose_best, primary_tied, primary_value  # noqa: E402
-from ldmadvise.space import (SpaceError, candidate_assignments, candidate_of, load_space,  # noqa: E402
-                             sweep_file)
+from ldmadvise.space import (SpaceError, candidate_assignments, candidate_of, check_passes,  # noqa: E402
+                             load_space, sweep_file)
 from ldmadvise.report import fmt_bytes, write_report  # noqa: E402
 
 EXIT_USAGE, EXIT_NONE = 2, 1
@@ -49,7 +49,8 @@ def parse_arguments(argv):
     p.add_argument("--ldmbench", required=True, help="the ldmbench binary")
     p.add_argument("--axes", required=True, help="the axis registry (ldmbench axes --json)")
     p.add_argument("--scene", required=True)
-    p.add_argument("--pass", dest="pass_name", default="ao", choices=["ao", "indirect"])
+    p.add_argument("--pass", dest="pass_name", default="ao",
+                   help="the pass, or a comma list of AO methods (ao,gtao,hbao,rtao_gpu): the method is then an axis")
     p.add_argument("--budget-ms", type=float)
     p.add_argument("--budget-mib", type=float)
     p.add_argument("--max-error", type=float)
@@ -146,12 +147,13 @@ def main(argv):
         if s not in structures_known:
             fail(f"--structures: unknown structure {s!r} (known: {', '.join(structures_known)})")
     try:
-        axes = load_space(a.space, a.pass_name, wanted, structures_known, passes_known)
+        passes = check_passes([p for p in a.pass_name.split(",") if p], passes_known)
+        axes = load_space(a.space, passes, wanted, structures_known, passes_known)
         for key in axes:
             if ":" in key and names and key not in names:
                 raise SpaceError(f"{a.space or 'the default space'}: axes.{key}: not a parameter "
                                  "(`ldmbench axes` lists them)")
-        assignments = candidate_assignments(axes, a.pass_name)
+        assignments = candidate_assignments(axes, passes)
     except SpaceError as e:
         fail(str(e))
     if not assignments:
