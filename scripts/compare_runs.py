@@ -21,7 +21,9 @@ import sys
 # Columns that differ between two runs of the same build, or between two builds by design.
 VOLATILE = re.compile(
     r"^(.*_ms_(median|min|max|stddev)|wall_seconds|build_vs_raster\w*|fragments_per_second|"
-    r"ref_render_seconds|ref_from_cache|git_commit|ldmbench_version)$")
+    r"ref_render_seconds|ref_from_cache|git_commit|ldmbench_version|"
+    r".*_ms_(ci_low|ci_high|rep_spread)|time_half_width\w*|time_run_to_run_spread|time_calibration|"
+    r"load_average_.+|cpu_mhz_.+|cpu_governor|gpu_(sm_clock_mhz|power_w|throttle_reasons)_.+)$")
 
 
 def read_records(folder):

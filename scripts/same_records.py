@@ -34,7 +34,9 @@ TIME_COLUMNS = re.compile(
     r"^(.+_ms_(median|ci_low|ci_high|rep_spread|min|max|stddev)"
     r"|build_vs_raster|build_vs_raster_touch|fragments_per_second|time_half_width"
     r"|time_target_met|wall_seconds|ref_render_seconds|rtao_bvh_ms"
-    r"|frames_timed_ms|verify_ms|verify_warmup_ms|verify_share)$")
+    r"|frames_timed_ms|verify_ms|verify_warmup_ms|verify_share"
+    r"|time_half_width_within_run|time_run_to_run_spread|time_calibration"
+    r"|load_average_.+|cpu_mhz_.+|cpu_governor|gpu_(sm_clock_mhz|power_w|throttle_reasons)_.+)$")
 HOST_COLUMNS = re.compile(r"^(host|slurm_.+)$")
 HISTORY_COLUMNS = {"ref_from_cache"}
 FILE_COLUMNS = re.compile(r"^(.+_(exr|png)|frame_samples_csv)$")

@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "harness/app/accuracy.h"
+#include "harness/app/machine_state.h"
 #include "harness/app/measured_where.h"
 #include "harness/app/scene_profile.h"
 #include "harness/app/timing_columns.h"
@@ -150,8 +151,13 @@ Record measure_configuration(const Scene& scene, const Configuration& config,
                              const MeasurementPaths& paths, Repetition repetition) {
   Record r;
   describe_configuration(r, config, settings, device);
+  const GpuStateQuery gpu{device.gl_vendor.find("NVIDIA") != std::string::npos, 0};
+  const MachineState before = sample_machine_state(gpu);
   const Measurement m = measure(scene, measurement_request(config, settings, device));
+  const MachineState after = sample_machine_state(gpu);
   add_measurement(r, m, settings.precision);
+  set_machine_state_columns(r, before, after);
+  append_status_detail(r, clock_change_warning(before, after));
   add_scene_profile(r, scene, config, m);
   if (repetition.count > 1) r.set("repetition", repetition.index);
   // Images and accuracy once, from the first repetition: the image of an identical build

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cstdlib>
 #include <ctime>
 #include <filesystem>
 #include <iomanip>
@@ -87,7 +88,8 @@ std::string status_of(const Record& r) {
 }  // namespace
 
 std::vector<std::string> run_key_parts(const std::vector<std::string>& arguments) {
-  static const std::set<std::string> with_value = {"--out", "--step", "--interleaved-session"};
+  // How intervals are widened is not what is measured: --calibration keeps the sweep.
+  static const std::set<std::string> with_value = {"--out", "--step", "--interleaved-session", "--calibration"};
   static const std::set<std::string> flags = {"--overwrite", "--redo-failed"};
   std::vector<std::string> parts;
   for (size_t i = 0; i < arguments.size(); ++i) {
@@ -163,6 +165,7 @@ int run_benchmark(const RunSettings& settings, const std::string& command_line,
   run.arguments = arguments;
   run.step = settings.step;
   run.context = settings.context;
+  run.calibration = parse_calibration_choice(settings.calibration, std::getenv("LDM_CALIBRATION"));
   if (!settings.interleaved_session.empty()) run.metadata.set("interleaved_session", settings.interleaved_session);
   if (settings.dry_run) {
     list_configurations(run.configurations, log);
@@ -374,11 +377,21 @@ int drive_repetition_processes(const ConfigurationRun& job, const std::string& c
   install_stop_handlers();
   const std::string program = executable_path();
   if (program.empty()) throw UserError("--isolation process: cannot find this program's path (/proc/self/exe)");
+  // The spread is resolved once, here, and every child reads the same one.
+  const ResolvedCalibration calibration = [&] {
+    auto context = HeadlessContext::create(job.context);
+    return resolve_calibration(job.calibration, context->device(), log);
+  }();
   std::vector<std::string> child = {program};
   bool has_out = false;
   for (size_t i = 0; i < job.arguments.size(); ++i) {
     const std::string& a = job.arguments[i];
     if (a == "--overwrite") continue;  // done here, once
+    if (a == "--calibration") {
+      ++i;
+      continue;
+    }
+    if (a.rfind("--calibration=", 0) == 0) continue;
     if (a == "--out" || a.rfind("--out=", 0) == 0) has_out = true;
     child.push_back(a);
   }
@@ -386,6 +399,8 @@ int drive_repetition_processes(const ConfigurationRun& job, const std::string& c
     child.push_back("--out");
     child.push_back(out_dir);
   }
+  child.push_back("--calibration");
+  child.push_back(calibration.file.empty() ? "skip" : calibration.file);
   const size_t repetitions = size_t(std::max(1, job.repetitions));
   const std::string journal_path = (std::filesystem::path(out_dir) / kJournalFile).string();
   int interrupted_by = 0;
@@ -459,6 +474,10 @@ int run_configurations(const ConfigurationRun& job, const std::string& command_l
   const DeviceInfo device = context->device();
   detail << "device: " << device.gl_renderer << " (" << device.gl_version << ", EGL "
          << device.egl_platform << "; " << device.device_choice << ")\n";
+  // The run-to-run spread that widens every record's interval (harness/app/calibration.h).
+  const ResolvedCalibration calibration = resolve_calibration(job.calibration, device, detail);
+  const RunToRunSpread* spread = calibration.spread ? &*calibration.spread : nullptr;
+  detail << "time intervals: " << (spread ? "widened by the run-to-run spread, " : "") << calibration.source << "\n";
 
   const MeasurementPaths paths{out_dir, (std::filesystem::path(out_dir) / "images").string()};
   prepare_run_folder(out_dir, plan);
@@ -616,6 +635,7 @@ int run_configurations(const ConfigurationRun& job, const std::string& command_l
     std::vector<std::string> combined_written;
     try {
       Record combined = combine_repetitions(reps, out_dir, settings.precision);
+      widen_time_intervals(combined, spread, calibration.source);
       const OutputFolder samples(out_dir, (std::filesystem::path(out_dir) / "samples").string(),
                                  &combined_written);
       combined.set("frame_samples_csv", samples.write_text(samples_file_name(id, {}),
@@ -685,6 +705,7 @@ int run_configurations(const ConfigurationRun& job, const std::string& command_l
       try {
         record = measure_configuration(job.scenes->at(config.scene), config, settings, device,
                                        config_paths, repetition);
+        if (repetitions == 1) widen_time_intervals(record, spread, calibration.source);
       } catch (const Interrupted& e) {
         // Abandoned cleanly: no record, no images; a rerun of the same command measures it.
         remove_files(written);

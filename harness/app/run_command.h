@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "harness/app/calibration.h"
 #include "harness/app/run_settings.h"
 #include "harness/records/record.h"
 #include "harness/scene/scene.h"
@@ -51,6 +52,7 @@ struct ConfigurationRun {
   std::string sweep_key;  // identity of the sweep for resuming (records/run_folder.h)
   Record metadata;        // extra fields of the journal's run entries (sweep file, shard)
   std::string report_hint = "ldmbench report";  // the command printed at the end
+  CalibrationChoice calibration;  // the run-to-run spread (harness/app/calibration.h)
 };
 
 // Measures every configuration not already finished in the folder: each record is appended

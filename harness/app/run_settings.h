@@ -60,6 +60,7 @@ struct RunSettings {
   // (a child of --isolation process or of `ldmbench interleave`), the session it belongs
   // to, and listing the configurations instead of measuring them.
   std::string step;
+  std::string calibration;  // --calibration auto|skip|FILE; "" = LDM_CALIBRATION, else auto
   std::string interleaved_session;
   bool dry_run = false;
   ContextOptions context = default_context_options();

@@ -62,6 +62,38 @@ void add_timing_columns(Record& r, const TimingOutcome& t) {
     r.set("fragments_per_second", fragments / (build->median * 1e-3));
 }
 
+void widen_time_intervals(Record& r, const RunToRunSpread* spread, const std::string& source) {
+  if (!r.get("frame_ms_median")) return;  // nothing timed (a failed record)
+  r.set("time_calibration", source);
+  if (!spread || !std::isfinite(spread->spread)) return;
+  const RecordValue* interval_kind = r.get("time_interval");
+  const std::string* kind = interval_kind ? std::get_if<std::string>(interval_kind) : nullptr;
+  if (kind && kind->find(kRunToRunSuffix) != std::string::npos) return;  // widened already
+  const double reps = number_of(r, "repetitions");
+  const size_t repetitions = reps >= 1 ? size_t(reps) : 1;
+  const double z = normal_quantile(0.5 + kTimeConfidence / 2);
+  const std::string suffix = "_ms_ci_low";
+  std::vector<std::string> subpasses;
+  for (const auto& [key, value] : r.fields())
+    if (key.size() > suffix.size() && key.compare(key.size() - suffix.size(), suffix.size(), suffix) == 0)
+      subpasses.push_back(key.substr(0, key.size() - suffix.size()));
+  for (const std::string& sub : subpasses) {
+    const double median = number_of(r, sub + "_ms_median");
+    const double low = number_of(r, sub + "_ms_ci_low"), high = number_of(r, sub + "_ms_ci_high");
+    if (!(median > 0) || !(low > 0) || !(high >= median)) continue;  // a 0 ms sub-pass has no spread
+    const double within = std::max(std::log(median / low), std::log(high / median));
+    const double h = widened_log_half_width(within, spread->spread, repetitions, z);
+    r.set(sub + "_ms_ci_low", median * std::exp(-h));
+    r.set(sub + "_ms_ci_high", median * std::exp(h));
+  }
+  if (const RecordValue* half = r.get("time_half_width")) r.put("time_half_width_within_run", *half);
+  const double median = number_of(r, "frame_ms_median");
+  const double low = number_of(r, "frame_ms_ci_low"), high = number_of(r, "frame_ms_ci_high");
+  if (median > 0) r.set("time_half_width", relative_half_width(Interval{low, high, kTimeConfidence}, median));
+  r.set("time_interval", (kind ? *kind : std::string()) + kRunToRunSuffix);
+  r.set("time_run_to_run_spread", spread->spread);
+}
+
 void set_verify_share(Record& r) {
   const RecordValue* verify = r.get("verify_ms");
   const RecordValue* timed = r.get("frames_timed_ms");

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "harness/measure/frame_stop_rule.h"
+#include "harness/measure/run_to_run_spread.h"
 #include "harness/measure/timing_stats.h"
 #include "harness/records/record.h"
 
@@ -25,6 +26,16 @@ struct TimingOutcome {
 // Sets (or replaces) every time column; `r` must already hold "fragments" for
 // fragments_per_second (a pass without a structure has none).
 void add_timing_columns(Record& r, const TimingOutcome& timing);
+
+// Widens every sub-pass's interval (<subpass>_ms_ci_low/high) so that it holds another
+// run's median, by the run-to-run spread (harness/measure/run_to_run_spread.h:
+// widened_log_half_width), and says so: time_interval gains kRunToRunSuffix,
+// time_half_width_within_run keeps the frame interval's own half-width,
+// time_run_to_run_spread and time_calibration name the spread and where it came from.
+// Without a spread (calibration skipped), only time_calibration is set: the intervals stay
+// within-run, and the record says that they do.
+inline constexpr const char* kRunToRunSuffix = "+run_to_run_spread";
+void widen_time_intervals(Record& r, const RunToRunSpread* spread, const std::string& calibration_source);
 
 // verify_share = verify_ms / frames_timed_ms, when the record has both (a structure's builds
 // were checked and frames were timed).

@@ -85,8 +85,10 @@ Runner add_advise_command(CLI::App& app) {
       "advise", "The structure and parameters that meet a scene's budgets with the least error (or the "
                 "fastest within an error bound): an adaptive search, verified at a normal run's precision");
   cmd->add_option("--scene", o->scene, "Built-in scene, scene file or mesh file")->required();
-  cmd->add_option("--pass", o->pass, "The pass (ao or indirect)")
-      ->check(CLI::IsMember({"ao", "indirect"}));
+  cmd->add_option("--pass", o->pass,
+                  "The pass (ao or indirect), or a comma list of AO methods (ao,gtao,hbao,rtao_gpu): the "
+                  "method is then an axis of the search, each peer a candidate per value of its own "
+                  "parameters (checked against `ldmbench passes`)");
   cmd->add_option("--budget-ms", o->budget_ms, "Frame time budget [ms] (median frame time)");
   cmd->add_option("--budget-mib", o->budget_mib, "Memory budget [MiB] (the structure's bytes allocated)");
   cmd->add_option("--max-error", o->max_error,

@@ -73,9 +73,10 @@ Runner add_compare_runs_command(CLI::App& app) {
                   "this and the test's minimum detectable change")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
-  cmd->add_option("--process-spread", o->thresholds.process_spread,
-                  "Assumed relative standard deviation between two processes' medians, for a "
-                  "run measured with one repetition (which cannot show it)")
+  auto* spread = cmd->add_option("--process-spread", o->thresholds.process_spread,
+                  "Assumed relative standard deviation of one process's median, for a run measured "
+                  "with one repetition (which cannot show it); default: the records' calibration "
+                  "(time_run_to_run_spread / sqrt 2, `ldmbench calibrate`), else this")
       ->check(CLI::Range(0.0, 10.0))
       ->capture_default_str();
   cmd->add_option("--memory-tolerance", o->thresholds.memory_tolerance,
@@ -93,9 +94,10 @@ Runner add_compare_runs_command(CLI::App& app) {
                 "Compare no times (memory, accuracy and status only): what the CI guard does, "
                 "since a CI machine's times say nothing about a change");
   cmd->add_flag("--json", o->json, "Print the comparison as JSON instead of a table");
-  return [o]() {
+  return [o, spread]() {
     const std::vector<std::string> fail_on = fail_on_kinds(o->fail_on);
     CompareThresholds thresholds = o->thresholds;
+    thresholds.process_spread_given = spread->count() > 0;
     thresholds.ignored_params.insert(o->ignored_params.begin(), o->ignored_params.end());
     const RunRecords base = load_run_records(o->base);
     const RunRecords next = load_run_records(o->next);

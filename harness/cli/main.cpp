@@ -58,6 +58,7 @@ int main(int argc, char** argv) {
       {"run", ldm::cli::add_run_command(app, command_line, arguments)},
       {"sweep", ldm::cli::add_sweep_command(app, command_line, arguments)},
       {"interleave", ldm::cli::add_interleave_command(app)},
+      {"calibrate", ldm::cli::add_calibrate_command(app)},
       {"merge", ldm::cli::add_merge_command(app, command_line)},
       {"reference", ldm::cli::add_reference_command(app)},
       {"compare-images", ldm::cli::add_compare_command(app)},

@@ -244,6 +244,12 @@ Runner add_run_command(CLI::App& app, const std::string& command_line,
              "records.json and images");
   add_run_options(run, o.get());
   RunSettings& s = o->settings;
+  run->add_option("--calibration", s.calibration,
+                  "The run-to-run spread that widens every time interval so that it holds another "
+                  "run's median: auto (this machine's cached probe, probed again when older than a "
+                  "day or measured at another load; `ldmbench calibrate`), skip (within-run "
+                  "intervals, said in each record), or a FILE from `ldmbench calibrate --out` "
+                  "(default: LDM_CALIBRATION, else auto)");
   run->add_option("--step", s.step,
                   "Measure only the next repetition of this configuration id and stop (what "
                   "--isolation process and `ldmbench interleave` run in each child)");

@@ -17,7 +17,7 @@ namespace {
 
 struct SweepOptions {
   std::string file, out_dir, shard = "0/1", cache_dir, platform = "auto";
-  std::string isolation, step, interleaved_session;
+  std::string isolation, step, interleaved_session, calibration;
   int repetitions = 0;  // 0: the file's (settings.timing.repetitions)
   bool overwrite = false, redo_failed = false, dry_run = false, gl_debug = false;
   GpuOption gpu;
@@ -133,6 +133,9 @@ Runner add_sweep_command(CLI::App& app, const std::string& command_line,
   auto* step = sweep->add_option("--step", o->step,
                     "Measure only the next repetition of this configuration id and stop (the "
                     "children of --isolation process and `ldmbench interleave`)");
+  sweep->add_option("--calibration", o->calibration,
+                    "The run-to-run spread that widens every time interval: auto, skip or FILE, as "
+                    "for `ldmbench run` (default: LDM_CALIBRATION, else auto)");
   auto* session = sweep->add_option("--interleaved-session", o->interleaved_session,
                     "The `ldmbench interleave` session this run belongs to (recorded)");
   // A memory plan measures nothing: options about measuring or resuming would be ignored.
@@ -168,6 +171,7 @@ Runner add_sweep_command(CLI::App& app, const std::string& command_line,
     run.isolation = o->isolation.empty() ? first.isolation : parse_repetition_isolation(o->isolation);
     run.arguments = arguments;
     run.step = o->step;
+    run.calibration = parse_calibration_choice(o->calibration, std::getenv("LDM_CALIBRATION"));
     if (!o->interleaved_session.empty()) run.metadata.set("interleaved_session", o->interleaved_session);
     run.context = default_context_options();
     run.context.platform = parse_egl_platform(o->platform);

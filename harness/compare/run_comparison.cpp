@@ -160,7 +160,7 @@ std::optional<SideTimes> side_times(const std::vector<TimingSeries>& repetitions
 
 // The test of one sub-pass (verdicts come later, once every test's p is Holm-corrected).
 TimeChange test_time(const std::string& subpass, const SideTimes& a, const SideTimes& b, bool paired,
-                     const CompareThresholds& t) {
+                     const CompareThresholds& t, double calibrated_spread) {
   TimeChange c;
   c.subpass = subpass;
   c.base_repetitions = a.medians.size();
@@ -188,8 +188,17 @@ TimeChange test_time(const std::string& subpass, const SideTimes& a, const SideT
     // A side of one repetition cannot show its process offset: its frames' standard error
     // plus an assumed spread (or the other side's measured one, if larger).
     double spread = t.process_spread;
+    c.spread_source = t.process_spread_given ? "--process-spread" : "default";
+    if (!t.process_spread_given && calibrated_spread > 0) {
+      spread = calibrated_spread;
+      c.spread_source = "calibration";
+    }
     for (const SideTimes* other : {&a, &b})
-      if (other->medians.size() >= 2) spread = std::max(spread, log_moments(other->medians).stddev);
+      if (other->medians.size() >= 2 && log_moments(other->medians).stddev > spread) {
+        spread = log_moments(other->medians).stddev;
+        c.spread_source = "repetitions";
+      }
+    c.process_spread = spread;
     double variance = 0;
     for (const SideTimes* side : {&a, &b}) {
       if (side->medians.size() >= 2) {
@@ -203,9 +212,12 @@ TimeChange test_time(const std::string& subpass, const SideTimes& a, const SideT
     char text[200];
     std::snprintf(text, sizeof text,
                   "%s has one repetition: its verdict assumes independent frames plus a "
-                  "process-to-process spread of %.3g%% (--process-spread); measure with "
-                  "--repetitions 3 or more",
-                  ka < 2 && kb < 2 ? "each run" : ka < 2 ? "BASE" : "NEW", 100 * spread);
+                  "process-to-process spread of %.3g%% (%s); measure with repetitions "
+                  "(see the repetitions line below)",
+                  ka < 2 && kb < 2 ? "each run" : ka < 2 ? "BASE" : "NEW", 100 * spread,
+                  c.spread_source == "calibration" ? "this machine's calibration, time_run_to_run_spread"
+                  : c.spread_source == "--process-spread" ? "--process-spread"
+                                                         : "an assumed default: `ldmbench calibrate` measures it");
     c.warning = text;
   }
   c.method = time_test_method_name(test.method);
@@ -240,6 +252,18 @@ std::vector<TimingSeries> samples_of(const RunRecords& run, const json& record) 
   return load_frame_samples((std::filesystem::path(run.dir) / file).string());
 }
 
+// The spread of one run's log median from the records' calibration (time_run_to_run_spread
+// is the spread of the difference of two runs: sqrt 2 times one's), the larger of the two;
+// -1 when neither carries one.
+double calibrated_spread(const json& a, const json& b) {
+  double out = -1;
+  for (const json* r : {&a, &b}) {
+    const double s = number(*r, "time_run_to_run_spread");
+    if (s > 0) out = std::max(out, s / std::sqrt(2.0));
+  }
+  return out;
+}
+
 void compare_pair(ConfigChange& c, const RunRecords& base, const json& a, const RunRecords& next,
                   const json& b, bool same_device, bool paired, const CompareThresholds& t) {
   c.new_status = text(b, "status");
@@ -262,7 +286,7 @@ void compare_pair(ConfigChange& c, const RunRecords& base, const json& a, const 
         c.time_note += (c.time_note.empty() ? "" : ", ") + subpass + " samples not in both";
         continue;
       }
-      c.times.push_back(test_time(subpass, *ta, *tb, paired, t));
+      c.times.push_back(test_time(subpass, *ta, *tb, paired, t, calibrated_spread(a, b)));
     }
   }
 
@@ -503,6 +527,10 @@ std::string percent_text(double relative) {
   return fixed(100 * relative, relative < 0.1 ? "%.1f%%" : "%.0f%%");
 }
 
+namespace {
+std::string repetitions_advice(const RunComparison& comparison, double median_detectable);
+}  // namespace
+
 std::string comparison_table(const RunComparison& comparison) {
   std::vector<std::vector<std::string>> rows = {
       {"configuration", "status", "time", "memory MiB", "mse / noise", "mssim"}};
@@ -552,6 +580,7 @@ std::string comparison_table(const RunComparison& comparison) {
            "minimum detectable change per test: median " +
            percent_text(detectable[detectable.size() / 2]) + ", best " + percent_text(detectable.front()) +
            ", worst " + percent_text(detectable.back()) + "\n";
+    out += repetitions_advice(comparison, detectable[detectable.size() / 2]);
   }
   for (const PairingHint& h : comparison.pairing_hints)
     out += "hint: --ignore-param " + h.param + " pairs " + std::to_string(h.paired) + " of the " +
@@ -562,6 +591,45 @@ std::string comparison_table(const RunComparison& comparison) {
     out += " " + kind + " " + std::to_string(count_regressions(comparison, kind));
   return out + "\n";
 }
+
+size_t repetitions_for_detectable_change(double spread, double target, double alpha, double power) {
+  if (!(spread > 0) || !(target > 0)) return 2;
+  const double z = boost_quantile_normal(1 - alpha / 2) + boost_quantile_normal(power);
+  const double k = 2 * std::pow(z * spread / std::log1p(target), 2);
+  return std::max<size_t>(2, size_t(std::ceil(k - 1e-9)));
+}
+
+namespace {
+
+// What reaches a 10 % minimum detectable change on this machine, from the spread the tests
+// rested on: "" when the comparison detects 10 % already.
+std::string repetitions_advice(const RunComparison& comparison, double median_detectable) {
+  constexpr double kTarget = 0.10;
+  if (median_detectable <= kTarget) return "";
+  std::vector<double> spreads;
+  std::set<std::string> sources;
+  for (const ConfigChange& c : comparison.matched)
+    for (const TimeChange& t : c.times)
+      if (t.p_value >= 0 && t.process_spread > 0) {
+        spreads.push_back(t.process_spread);
+        sources.insert(t.spread_source);
+      }
+  if (spreads.empty()) return "";
+  std::sort(spreads.begin(), spreads.end());
+  const double spread = spreads[spreads.size() / 2];
+  std::string from;
+  for (const std::string& s : sources) from += (from.empty() ? "" : ", ") + s;
+  char text[400];
+  std::snprintf(text, sizeof text,
+                "repetitions: one run's median varies by about %.3g%% between processes here (%s); "
+                "a %.0f%% change needs about %zu repetitions per side (--repetitions), or fewer pairs "
+                "measured side by side (ldmbench interleave)\n",
+                100 * spread, from.c_str(), 100 * kTarget,
+                repetitions_for_detectable_change(spread, kTarget, 0.05, 0.8));
+  return text;
+}
+
+}  // namespace
 
 nlohmann::ordered_json comparison_json(const RunComparison& comparison, const CompareThresholds& t) {
   using oj = nlohmann::ordered_json;
@@ -595,6 +663,8 @@ nlohmann::ordered_json comparison_json(const RunComparison& comparison, const Co
                        {"p_adjusted", x.p_adjusted < 0 ? oj(nullptr) : oj(x.p_adjusted)},
                        {"minimum_detectable_change",
                         x.p_value < 0 || !std::isfinite(x.minimum_detectable) ? oj(nullptr) : oj(x.minimum_detectable)},
+                       {"process_spread", x.process_spread < 0 ? oj(nullptr) : oj(x.process_spread)},
+                       {"process_spread_source", x.spread_source},
                        {"verdict", x.verdict},
                        {"summary", describe_time_change(x)},
                        {"warning", x.warning}});

@@ -51,7 +51,10 @@ struct CompareThresholds {
   // Assumed relative standard deviation between two processes' medians of the same work,
   // for a run of one repetition (which cannot show it). Measured on the development machine
   // (docs/timing.md, "Comparing"); a run with repetitions uses its own instead.
+  // Without --process-spread, the records' own calibration (time_run_to_run_spread / sqrt 2:
+  // the spread of one run's median, from `ldmbench calibrate`) is used where they carry one.
   double process_spread = kDefaultProcessSpread;
+  bool process_spread_given = false;
   double memory_tolerance = 0;    // relative growth of bytes allowed before MORE
   double noise_factor = 1;        // MSE change allowed, in multiples of ref_noise_mse
   std::set<std::string> ignored_params;  // structure parameters left out of the identity
@@ -72,7 +75,17 @@ struct TimeChange {
   std::string verdict;              // FAST, SLOW, SAME, UNSURE
   std::string warning;              // e.g. a single repetition
   double se = 0, df = 0;            // of the test (log scale), for the MDE
+  // The process-to-process spread (log standard deviation of one run's median) the test
+  // rests on: measured from the repetitions, or assumed (--process-spread or the records'
+  // calibration) for a side of one; and where it came from.
+  double process_spread = -1;
+  std::string spread_source;
 };
+
+// Repetitions per side a comparison needs to detect `target` (relative, 0.1 = 10 %) at
+// two-sided level alpha with `power`, when one run's log median varies by `spread`:
+// 2 ((z_{1-alpha/2} + z_power) spread / log(1 + target))^2, rounded up, at least 2.
+size_t repetitions_for_detectable_change(double spread, double target, double alpha, double power);
 struct ConfigChange {
   std::string identity, config_id, device;
   std::string base_driver, new_driver;  // gl_driver of each side ("" when not in NEW)

@@ -13,11 +13,8 @@
 namespace ldm {
 
 std::string default_reference_cache_dir() {
-  const char* xdg = std::getenv("XDG_CACHE_HOME");
-  if (xdg && xdg[0] == '/') return (std::filesystem::path(xdg) / "ldmbench" / "references").string();
-  const char* home = std::getenv("HOME");
-  if (home && home[0] != '\0')
-    return (std::filesystem::path(home) / ".cache" / "ldmbench" / "references").string();
+  const std::string folder = ldmbench_cache_dir("references");
+  if (!folder.empty()) return folder;
   throw UserError("the reference cache has no default folder: neither XDG_CACHE_HOME (absolute) "
                   "nor HOME is set; give --cache-dir");
 }

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include <boost/math/distributions/binomial.hpp>
+#include <boost/math/distributions/normal.hpp>
 #include <boost/math/distributions/students_t.hpp>
 
 namespace ldm {
@@ -72,6 +73,8 @@ Interval log_t_interval(const std::vector<double>& values, double confidence) {
   out.reached = true;
   return out;
 }
+
+double normal_quantile(double p) { return boost::math::quantile(boost::math::normal_distribution<double>(), p); }
 
 double relative_half_width(const Interval& interval, double centre) {
   if (!(centre > 0)) return std::numeric_limits<double>::infinity();

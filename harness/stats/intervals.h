@@ -42,6 +42,9 @@ Interval log_t_interval(const std::vector<double>& values, double confidence = 0
 // max(centre - low, high - centre) / centre (inf for a centre <= 0).
 double relative_half_width(const Interval& interval, double centre);
 
+// The standard normal distribution's quantile: normal_quantile(0.975) = 1.95996...
+double normal_quantile(double p);
+
 // Mean and sample standard deviation of the logarithms (the relative spread of positive
 // values: a standard deviation of 0.03 is about 3 %). Needs >= 2 positive values.
 struct LogMoments {

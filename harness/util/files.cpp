@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdlib>
 #include <filesystem>
 
 #include "harness/util/error.h"
@@ -101,6 +102,14 @@ void write_bytes_atomically(const std::string& path, const void* data, size_t si
 
 void write_text_atomically(const std::string& path, const std::string& text) {
   write_bytes_atomically(path, text.data(), text.size());
+}
+
+std::string ldmbench_cache_dir(const std::string& what) {
+  const char* xdg = std::getenv("XDG_CACHE_HOME");
+  if (xdg && xdg[0] == '/') return (std::filesystem::path(xdg) / "ldmbench" / what).string();
+  const char* home = std::getenv("HOME");
+  if (home && home[0] != '\0') return (std::filesystem::path(home) / ".cache" / "ldmbench" / what).string();
+  return "";
 }
 
 uint64_t hash_file(const std::string& path) {

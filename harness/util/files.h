@@ -28,6 +28,11 @@ void fsync_folder(const std::string& path);
 // name too long), else IoError (no space, an I/O error).
 [[noreturn]] void throw_file_error(const std::string& what, int error_number);
 
+// ldmbench's folder for `what` in the user's cache, as the XDG base directory specification
+// puts it: $XDG_CACHE_HOME/ldmbench/<what> (an absolute XDG_CACHE_HOME only), else
+// $HOME/.cache/ldmbench/<what>; "" when neither is set.
+std::string ldmbench_cache_dir(const std::string& what);
+
 // 64-bit FNV-1a of a file's bytes, read in blocks; throws IoError when it cannot be read.
 uint64_t hash_file(const std::string& path);
 

@@ -81,6 +81,33 @@ TEST(AdviseCli, RefusesBadBudgetsAndEmptySpacesWithNothingWritten) {
 // A small space on the Cornell box at 32x32: answered and verified, then rerun (resumed:
 // nothing measured again), then asked another question in the same folder (refused), then
 // an infeasible memory budget (no recommendation, exit 1, every candidate's reason).
+// The method as an axis (issue 36): LDM AO beside GTAO and GPU RTAO in one question, each
+// peer a candidate per value of its own parameters, all scored against one reference.
+TEST(AdviseEndToEnd, ChoosesAmongAoMethods) {
+  const fs::path dir = test::make_temp_dir("advise-methods");
+  std::ofstream(dir / "space.json") << R"({"axes": {"structures": ["psppsll"], "views": [4, 8], "r_ldm": [32],
+                                                    "gtao:slices": [2, 4], "rtao_gpu:spp": [1, 4]}})";
+  const fs::path out = dir / "advice";
+  const Outcome o = ldmbench("advise --scene cornell --pass ao,gtao,rtao_gpu --space " + (dir / "space.json").string() +
+                             " --image-size 32x32 --reference-max-spp 16 --levels 1 --budget-ms 1000 --cache-dir " +
+                             (dir / "cache").string() + " --out " + out.string());
+  ASSERT_EQ(o.status, 0) << o.output;
+  const auto result = nlohmann::json::parse(test::read_text((out / "result.json").string()));
+  EXPECT_EQ(result["configurations"].get<size_t>(), 6u);  // psppsll 2, gtao 2, rtao_gpu 2
+  // Every method was measured (the brief stage's records name each pass).
+  std::string measured;
+  for (const auto& entry : fs::recursive_directory_iterator(out / "stages"))
+    if (entry.path().filename() == "records.csv") measured += test::read_text(entry.path().string());
+  for (const char* id : {"cornell-psppsll-ao-n", "cornell-none-gtao-slices=", "cornell-none-rtao_gpu-spp="})
+    EXPECT_NE(measured.find(id), std::string::npos) << id;
+  const std::string recommended = result["recommended"];
+  EXPECT_EQ(recommended.rfind("cornell-", 0), 0u) << recommended;
+  // A mixed question across kinds of reference is refused, naming the option.
+  const Outcome mixed = ldmbench("advise --scene cornell --pass ao,indirect --budget-ms 10 --out " + (dir / "mixed").string());
+  EXPECT_EQ(mixed.status, 2) << mixed.output;
+  EXPECT_NE(mixed.output.find("--pass ao,indirect: only the AO passes"), std::string::npos) << mixed.output;
+}
+
 TEST(AdviseEndToEnd, SmallAdviseOnTheCornellBox) {
   const fs::path dir = test::make_temp_dir("advise-e2e");
   std::ofstream(dir / "space.json")

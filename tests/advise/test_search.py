@@ -12,8 +12,8 @@ import unittest
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts", "advise"))
 
 from ldmadvise.search import Candidate, CensusPlan, Goal, Measurement, Search, pareto_front  # noqa: E402
-from ldmadvise.space import (SpaceError, candidate_assignments, group_of, load_space,  # noqa: E402
-                             sweep_file)
+from ldmadvise.space import (SpaceError, candidate_assignments, check_passes, group_of,  # noqa: E402
+                             load_space, sweep_file)
 
 VIEWS, RES = [4, 8, 16, 32, 64], [32, 64, 128, 256]
 SPEED = {"fast": 1.0, "mid": 1.5, "slow": 2.5}   # frame time per unit of work
@@ -276,6 +276,23 @@ class UncertainAtEveryLevel(unittest.TestCase):
         self.assertIn("verification", outcome.why)
 
 
+    def test_a_better_candidate_straddling_the_budget_is_named_across_the_budget_line(self):
+        """a is surely within the budget; b has less error, but its interval straddles the
+        budget at every level: a is recommended and b named as uncertain (it goes to the
+        repeated verification), never dropped silently; c, worse and straddling, is not."""
+        a, b, c = (Candidate("a-n8-r64", "a", 8, 64), Candidate("b-n8-r64", "b", 8, 64),
+                   Candidate("c-n8-r64", "c", 8, 64))
+        values = {"a": (10, 9, 11, 0.3), "b": (19, 15, 25, 0.1), "c": (20, 16, 24, 0.5)}
+
+        def measure(cands, level, stage):
+            return {x.key: Measurement(values[x.group][0], values[x.group][1], values[x.group][2],
+                                       values[x.group][3], 0.001, 100) for x in cands}
+
+        outcome = Search([a, b, c], Goal(budget_ms=22), 2, measure).run()
+        self.assertEqual(outcome.recommended, a.key)
+        self.assertEqual(outcome.uncertain, [b.key])
+
+
 class NoisyModels(unittest.TestCase):
     def test_noisy_measurements_find_a_tied_optimum(self):
         """With noise, the recommendation is the true optimum or tied with it within the
@@ -315,6 +332,41 @@ class Space(unittest.TestCase):
         self.assertEqual(len(assignments), 2 + 4)
         self.assertTrue(all("ppfla:k" not in a for a in assignments if a["structures"] == "psppsll"))
         self.assertNotEqual(group_of(assignments[2]), group_of(assignments[3]))  # k=4 vs k=8 lattices
+
+    def test_the_method_is_an_axis_with_each_peer_on_its_own_parameters(self):
+        passes = ["ao", "gtao", "rtao_gpu"]
+        registry = ["ao", "hbao", "gtao", "rtao", "rtao_gpu", "indirect"]
+        axes = load_space(None, passes, [], ["psppsll", "ppfla", "psppfla"], registry)
+        self.assertIn("gtao:slices", axes)   # the peers' default knobs join the LDM pass's space
+        self.assertIn("rtao_gpu:spp", axes)
+        assignments = candidate_assignments(axes, passes)
+        peers = [a for a in assignments if a["passes"] != "ao"]
+        self.assertEqual(len([a for a in peers if a["passes"] == "gtao"]),
+                         len(axes["gtao:slices"]) * len(axes["gtao:steps"]))
+        self.assertEqual(len([a for a in peers if a["passes"] == "rtao_gpu"]), len(axes["rtao_gpu:spp"]))
+        for a in peers:  # no structure, N, R_LDM, nor another owner's parameter
+            self.assertFalse({"structures", "views", "r_ldm"} & set(a), a)
+            self.assertTrue(all(k.split(":")[0] == a["passes"] for k in a if ":" in k), a)
+        ldm = [a for a in assignments if a["passes"] == "ao"]
+        self.assertTrue(ldm and all("gtao:slices" not in a and "structures" in a for a in ldm))
+        # Each peer configuration its own lattice (its parameters differ), apart from the LDM ones.
+        groups = {group_of(a) for a in peers}
+        self.assertEqual(len(groups), len(peers))
+        self.assertFalse(groups & {group_of(a) for a in ldm})
+        spec = sweep_file({"scene": "cornell", "pass": ",".join(passes), "image_size": "32x32"}, assignments,
+                          {"name": "brief", "frames": 3, "warmup": 1, "target": 0}, "t")
+        self.assertEqual(spec["axes"]["passes"], "ao")
+        self.assertEqual(sum(1 for b in spec["include"] if b["passes"] == "gtao"), 9)
+
+    def test_passes_are_checked(self):
+        registry = ["ao", "hbao", "gtao", "rtao", "rtao_gpu", "indirect"]
+        self.assertEqual(check_passes(["ao", "gtao"], registry), ["ao", "gtao"])
+        with self.assertRaisesRegex(SpaceError, r"unknown passes 'gtoa', 'hboa'"):
+            check_passes(["ao", "gtoa", "hboa"], registry)
+        with self.assertRaisesRegex(SpaceError, "only the AO passes"):
+            check_passes(["ao", "indirect"], registry)
+        with self.assertRaisesRegex(SpaceError, "twice"):
+            check_passes(["ao", "ao"], registry)
 
     def test_question_axes_refused(self):
         import json

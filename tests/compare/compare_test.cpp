@@ -598,3 +598,49 @@ TEST(CompareCommand, MinTimeChangeHoldsAtItsBoundary) {
 
 }  // namespace
 }  // namespace ldm
+
+namespace ldm {
+namespace {
+
+TEST(CompareRuns, SingleRunsAssumeTheRecordsCalibratedSpreadAndSayHowManyRepetitionsReach10Percent) {
+  std::mt19937 rng(7);
+  json a = record("c", timed(rng, 10, 1, 0.0, 30)), b = record("c", timed(rng, 10.5, 1, 0.0, 30));
+  // Without a calibration: the assumed default, and the warning says so.
+  const ConfigChange assumed = compare_one(a, b);
+  ASSERT_EQ(assumed.times.size(), 1u);
+  EXPECT_EQ(assumed.times[0].spread_source, "default");
+  EXPECT_NEAR(assumed.times[0].process_spread, CompareThresholds::kDefaultProcessSpread, 1e-12);
+  EXPECT_NE(assumed.times[0].warning.find("`ldmbench calibrate` measures it"), std::string::npos)
+      << assumed.times[0].warning;
+  // With one (the spread of a difference of two runs): one run's share, sqrt 2 smaller.
+  a["time_run_to_run_spread"] = 0.3;
+  b["time_run_to_run_spread"] = 0.2;
+  const ConfigChange calibrated = compare_one(a, b);
+  EXPECT_EQ(calibrated.times[0].spread_source, "calibration");
+  EXPECT_NEAR(calibrated.times[0].process_spread, 0.3 / std::sqrt(2.0), 1e-12);
+  EXPECT_GT(calibrated.times[0].minimum_detectable, assumed.times[0].minimum_detectable);
+  // --process-spread wins over the records.
+  CompareThresholds given;
+  given.process_spread = 0.05;
+  given.process_spread_given = true;
+  EXPECT_EQ(compare_one(a, b, given).times[0].spread_source, "--process-spread");
+  // The table names the repetitions that reach 10 % at that spread.
+  CompareThresholds t;
+  t.time_subpasses = {"frame"};
+  const std::string table = comparison_table(compare_runs(run_of({a}), run_of({b}, "bbb"), t));
+  const size_t needed = repetitions_for_detectable_change(0.3 / std::sqrt(2.0), 0.10, 0.05, 0.8);
+  EXPECT_NE(table.find("a 10% change needs about " + std::to_string(needed) + " repetitions per side"),
+            std::string::npos)
+      << table;
+}
+
+TEST(CompareRuns, RepetitionsForADetectableChangeFollowTheNormalApproximation) {
+  // 2 ((1.96 + 0.8416) 0.2 / log 1.1)^2 = 69.1 -> 70.
+  EXPECT_EQ(repetitions_for_detectable_change(0.2, 0.10, 0.05, 0.8), 70u);
+  EXPECT_EQ(repetitions_for_detectable_change(0.01, 0.10, 0.05, 0.8), 2u);  // never fewer than 2
+  EXPECT_LT(repetitions_for_detectable_change(0.2, 0.20, 0.05, 0.8), 70u);
+  EXPECT_GT(repetitions_for_detectable_change(0.2, 0.10, 0.05, 0.9), 70u);
+}
+
+}  // namespace
+}  // namespace ldm

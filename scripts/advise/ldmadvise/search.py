@@ -178,6 +178,10 @@ class Outcome:
     ties: List[str]
     survivors: List[str]
     why: str                       # how the search stopped
+    # Across the budget line: candidates whose interval straddles a budget (neither surely
+    # within nor surely over) that are better than the recommendation, or tied with it, on
+    # the goal's criterion. Measured again with repetitions before they are dropped.
+    uncertain: List[str] = field(default_factory=list)
 
 
 class Search:
@@ -426,7 +430,12 @@ class Search:
         goal = self.goal
         ties = [s.candidate.key for s in self.alive() if s is not best and
                 goal.verdict(s.measurement) == YES and primary_tied(goal, s.measurement, best.measurement)]
-        return Outcome(best.candidate.key, ties, [s.candidate.key for s in self.alive()], why)
+        uncertain = [s.candidate.key for s in self.alive() if s is not best and
+                     goal.verdict(s.measurement) == MAYBE and
+                     (primary_tied(goal, s.measurement, best.measurement) or
+                      primary_value(goal, s.measurement) < primary_value(goal, best.measurement))]
+        uncertain.sort(key=lambda k: rank_key(goal, self.states[k].measurement))
+        return Outcome(best.candidate.key, ties, [s.candidate.key for s in self.alive()], why, uncertain)
 
     def run(self, level=None):
         """The search; with `level`, the race resumed at that level (after a verification
@@ -437,7 +446,7 @@ class Search:
             level = 0
         outcome = self.race(level)
         self.log({"event": "outcome", "recommended": outcome.recommended, "ties": outcome.ties,
-                  "why": outcome.why})
+                  "uncertain": outcome.uncertain, "why": outcome.why})
         return outcome
 
 

@@ -1,0 +1,126 @@
+#include "harness/measure/run_to_run_spread.h"
+
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+
+#include <nlohmann/json.hpp>
+
+#include "harness/util/error.h"
+#include "harness/util/hash.h"
+#include "harness/util/json_input.h"
+
+namespace ldm {
+
+RunToRunSpread spread_from_processes(const std::vector<ProbeMedians>& processes) {
+  RunToRunSpread out;
+  out.processes = processes.size();
+  double sum_of_squares = 0;
+  for (size_t a = 0; a < processes.size(); ++a)
+    for (size_t b = a + 1; b < processes.size(); ++b)
+      for (const auto& [key, median_a] : processes[a]) {
+        const auto other = processes[b].find(key);
+        if (other == processes[b].end() || !(median_a > 0) || !(other->second > 0)) continue;
+        const double log_ratio = std::log(median_a / other->second);
+        sum_of_squares += log_ratio * log_ratio;
+        ++out.pairs;
+      }
+  if (out.pairs) out.spread = std::sqrt(sum_of_squares / double(out.pairs));
+  return out;
+}
+
+std::string calibration_staleness(const RunToRunSpread& cached, int64_t now, double load_average_now) {
+  char text[160];
+  const int64_t age = now - cached.measured_at;
+  if (age > kCalibrationMaxAgeSeconds || age < 0) {
+    std::snprintf(text, sizeof text, "measured %.1f h ago (more than %d h)", double(age) / 3600,
+                  int(kCalibrationMaxAgeSeconds / 3600));
+    return text;
+  }
+  if (std::isfinite(load_average_now) && std::isfinite(cached.load_average) &&
+      std::fabs(load_average_now - cached.load_average) > kCalibrationMaxLoadChange) {
+    std::snprintf(text, sizeof text, "load average %.2f now, %.2f at the probe (differs by more than %.1f)",
+                  load_average_now, cached.load_average, kCalibrationMaxLoadChange);
+    return text;
+  }
+  if (!std::isfinite(cached.spread)) return "no spread measured";
+  return "";
+}
+
+double widened_log_half_width(double within, double spread, size_t repetitions, double z) {
+  if (!std::isfinite(spread) || spread < 0) return within;
+  const double k = double(std::max<size_t>(1, repetitions));
+  // One repetition: this run's offset and the other's are both in the spread.
+  // K repetitions: this run's is in the t interval already; the other run's median of K.
+  const double between = repetitions <= 1 ? z * spread : z * spread / std::sqrt(2 * k);
+  const double w = std::isfinite(within) && within > 0 ? within : 0;
+  return std::sqrt(w * w + between * between);
+}
+
+std::string calibration_key(const std::string& device, const std::string& driver, const std::string& host) {
+  Fnv1a hash;
+  for (const std::string* part : {&device, &driver, &host}) {
+    hash.add_string(*part);
+  }
+  std::string readable;
+  for (char c : host + "-" + driver)
+    readable += std::isalnum(static_cast<unsigned char>(c)) || c == '-' ? c : '_';
+  char digest[20];
+  std::snprintf(digest, sizeof digest, "%016llx", static_cast<unsigned long long>(hash.value()));
+  return "spread-" + readable.substr(0, 60) + "-" + digest + ".json";
+}
+
+std::string spread_to_json(const RunToRunSpread& s) {
+  nlohmann::ordered_json j;
+  j["spread"] = std::isfinite(s.spread) ? nlohmann::ordered_json(s.spread) : nlohmann::ordered_json();
+  j["pairs"] = s.pairs;
+  j["processes"] = s.processes;
+  j["measured_at"] = s.measured_at;
+  j["load_average"] = std::isfinite(s.load_average) ? nlohmann::ordered_json(s.load_average)
+                                                    : nlohmann::ordered_json();
+  j["probe_seconds"] = s.probe_seconds;
+  j["device"] = s.device;
+  j["driver"] = s.driver;
+  j["host"] = s.host;
+  j["commit"] = s.commit;
+  return j.dump(2) + "\n";
+}
+
+RunToRunSpread spread_from_json(const std::string& text, const std::string& origin) {
+  const nlohmann::json j = parse_json_strictly(text, origin);
+  if (!j.is_object()) throw UserError(origin + ": a run-to-run spread must be a JSON object");
+  RunToRunSpread s;
+  auto number = [&](const char* key, bool required) {
+    const auto it = j.find(key);
+    if (it == j.end() || it->is_null()) {
+      if (required) throw UserError(origin + ": \"" + key + "\" is missing");
+      return std::numeric_limits<double>::quiet_NaN();
+    }
+    if (!it->is_number()) throw UserError(origin + ": \"" + key + "\" must be a number");
+    return it->get<double>();
+  };
+  auto text_of = [&](const char* key) {
+    const auto it = j.find(key);
+    if (it == j.end()) return std::string();
+    if (!it->is_string()) throw UserError(origin + ": \"" + key + "\" must be a string");
+    return it->get<std::string>();
+  };
+  s.spread = number("spread", true);
+  if (!(s.spread >= 0) || s.spread > 5)
+    throw UserError(origin + ": \"spread\" must be between 0 and 5 (a log ratio), not " + std::to_string(s.spread));
+  const double pairs = number("pairs", false), processes = number("processes", false);
+  s.pairs = pairs >= 0 ? size_t(pairs) : 0;
+  s.processes = processes >= 0 ? size_t(processes) : 0;
+  const double at = number("measured_at", false);
+  s.measured_at = std::isfinite(at) ? int64_t(at) : 0;
+  s.load_average = number("load_average", false);
+  const double seconds = number("probe_seconds", false);
+  s.probe_seconds = std::isfinite(seconds) ? seconds : 0;
+  s.device = text_of("device");
+  s.driver = text_of("driver");
+  s.host = text_of("host");
+  s.commit = text_of("commit");
+  return s;
+}
+
+}  // namespace ldm

@@ -1,0 +1,67 @@
+#pragma once
+// How far the median time of one run lands from the median of the same configuration run
+// again in another process a few minutes later, on this device, driver and machine: the
+// run-to-run spread. A run's own frames cannot show it (they share its process, its
+// caches, its minute of the machine's load), so a single run's interval of the median is
+// far too narrow to say "run it again and you get this" (docs/timing.md, "Run-to-run
+// spread"). The spread is measured by a probe (harness/app/calibration.h: A/A runs in
+// separate processes), cached, and widens every record's interval
+// (harness/app/timing_columns.h).
+//
+// The spread is the root mean square of log(median_a / median_b) over pairs of processes
+// measuring the same configuration and sub-pass: the standard deviation of the difference
+// between two runs' log medians (drift included), so z * spread is the half-width (in log
+// space) that holds another run's median with probability about that of z.
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace ldm {
+
+struct RunToRunSpread {
+  double spread = std::numeric_limits<double>::quiet_NaN();  // RMS log ratio, see above
+  size_t pairs = 0;              // log ratios it is the RMS of
+  size_t processes = 0;          // probe processes
+  int64_t measured_at = 0;       // Unix time of the probe's end
+  double load_average = std::numeric_limits<double>::quiet_NaN();  // 1-minute, at the probe
+  double probe_seconds = 0;      // the probe's wall time
+  // What it holds for (the cache key, calibration_key(), but for the commit that probed).
+  std::string device, driver, host, commit;
+  std::string source;            // where this value came from: "probe", "cache FILE", "file FILE"
+};
+
+// One probe process's medians: configuration id + "/" + sub-pass -> median ms.
+using ProbeMedians = std::map<std::string, double>;
+
+// The spread from several processes' medians of the same configurations: every pair of
+// processes, every key both hold with positive medians, one log ratio each. NaN (and 0
+// pairs) with fewer than two processes or nothing in common.
+RunToRunSpread spread_from_processes(const std::vector<ProbeMedians>& processes);
+
+// Why a cached spread must be measured again, or "" when it holds: older than
+// kCalibrationMaxAgeSeconds, or the machine's load average now differs from the probe's by
+// more than kCalibrationMaxLoadChange (the spread depends on the load).
+inline constexpr int64_t kCalibrationMaxAgeSeconds = 24 * 3600;
+inline constexpr double kCalibrationMaxLoadChange = 0.5;
+std::string calibration_staleness(const RunToRunSpread& cached, int64_t now, double load_average_now);
+
+// The half-width, relative to the median, of an interval that should hold another run's
+// median: within-run half-width `within` (relative, from the frames or the repetitions'
+// t interval) combined with the run-to-run spread, z * spread / sqrt(2 K) for the other
+// run's own K repetitions, and with one repetition the full z * spread (this run's own
+// process offset is in the spread too, and not in its frames' interval). In log space, then
+// back: the interval is [median * exp(-h), median * exp(h)].
+double widened_log_half_width(double within_log_half_width, double spread, size_t repetitions, double z);
+
+// A file name for the cache entry of this device, driver and host (the build that probed
+// is recorded in the entry, not keyed: the spread is the machine's).
+std::string calibration_key(const std::string& device, const std::string& driver, const std::string& host);
+
+// JSON text of a spread, and back (throws UserError naming `origin` on bad input).
+std::string spread_to_json(const RunToRunSpread& spread);
+RunToRunSpread spread_from_json(const std::string& text, const std::string& origin);
+
+}  // namespace ldm

@@ -1,0 +1,107 @@
+// ldmbench calibrate and --calibration / LDM_CALIBRATION end to end: the probe writes a
+// spread, a run widens its records by it and says so, skip says so too, bad values are
+// refused naming where they came from, and --isolation process hands the parent's spread to
+// every child.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "harness/app/calibration.h"
+#include "harness/measure/run_to_run_spread.h"
+#include "support/test_support.h"
+
+namespace ldm {
+namespace {
+
+using test::ldmbench;
+using test::make_temp_dir;
+using test::read_text;
+
+const char* kTinyRun = "run --scene cornell --structure ppsll -N 4 -R 32 --image-size 32x32 --no-reference --no-images";
+
+nlohmann::json only_record(const std::string& out) {
+  const auto records = nlohmann::json::parse(read_text(out + "/records.json")).at("records");
+  EXPECT_EQ(records.size(), 1u);
+  return records.at(0);
+}
+
+TEST(Calibration, ProbeWritesASpreadThatARunWidensItsIntervalsBy) {
+  const std::string dir = make_temp_dir("calibrate");
+  const auto probe = ldmbench("calibrate --processes 2 --out " + dir + "/spread.json");
+  ASSERT_EQ(probe.status, 0) << probe.output;
+  EXPECT_NE(probe.output.find("run-to-run spread:"), std::string::npos) << probe.output;
+  const RunToRunSpread spread = read_calibration_file(dir + "/spread.json");
+  EXPECT_GT(spread.pairs, 0u);
+  EXPECT_EQ(spread.processes, 2u);
+  EXPECT_GE(spread.spread, 0.0);
+
+  const auto run = ldmbench(std::string(kTinyRun) + " --calibration " + dir + "/spread.json --out " + dir + "/run");
+  ASSERT_EQ(run.status, 0) << run.output;
+  const auto r = only_record(dir + "/run");
+  EXPECT_EQ(r.at("time_interval"), "order_statistics_of_frames+run_to_run_spread");
+  EXPECT_EQ(r.at("time_run_to_run_spread").get<double>(), spread.spread);
+  EXPECT_NE(r.at("time_calibration").get<std::string>().find("file " + dir + "/spread.json"), std::string::npos);
+  EXPECT_GE(r.at("time_half_width").get<double>(), r.at("time_half_width_within_run").get<double>());
+  EXPECT_TRUE(r.contains("load_average_start"));
+}
+
+TEST(Calibration, SkipLeavesIntervalsWithinRunAndEveryRecordSaysSo) {
+  const std::string dir = make_temp_dir("calibrate-skip");
+  const auto run = ldmbench(std::string(kTinyRun) + " --out " + dir, "LDM_CALIBRATION=skip");
+  ASSERT_EQ(run.status, 0) << run.output;
+  const auto r = only_record(dir);
+  EXPECT_EQ(r.at("time_interval"), "order_statistics_of_frames");
+  EXPECT_NE(r.at("time_calibration").get<std::string>().find("skipped (LDM_CALIBRATION skip)"), std::string::npos);
+  EXPECT_FALSE(r.contains("time_run_to_run_spread"));
+}
+
+TEST(Calibration, BadValuesAreRefusedNamingTheirOrigin) {
+  const std::string dir = make_temp_dir("calibrate-bad");
+  const auto option = ldmbench(std::string(kTinyRun) + " --calibration " + dir + "/none.json --out " + dir + "/a");
+  EXPECT_EQ(option.status, 2) << option.output;
+  EXPECT_NE(option.output.find("--calibration " + dir + "/none.json: neither auto, skip nor"), std::string::npos)
+      << option.output;
+  const auto variable = ldmbench(std::string(kTinyRun) + " --out " + dir + "/b", "LDM_CALIBRATION=sometimes");
+  EXPECT_EQ(variable.status, 2) << variable.output;
+  EXPECT_NE(variable.output.find("LDM_CALIBRATION sometimes"), std::string::npos) << variable.output;
+  test::run_shell("printf '{\"spread\": 9}' > " + dir + "/wide.json");
+  const auto file = ldmbench(std::string(kTinyRun) + " --calibration " + dir + "/wide.json --out " + dir + "/c");
+  EXPECT_EQ(file.status, 2) << file.output;
+  EXPECT_NE(file.output.find("wide.json: \"spread\" must be between 0 and 5"), std::string::npos) << file.output;
+  // Nothing was measured into the refused folders.
+  EXPECT_FALSE(std::filesystem::exists(dir + "/a/records.csv"));
+  EXPECT_FALSE(std::filesystem::exists(dir + "/b/records.csv"));
+}
+
+TEST(Calibration, ProcessIsolationHandsTheParentsSpreadToEveryChild) {
+  const std::string dir = make_temp_dir("calibrate-process");
+  test::run_shell("printf '{\"spread\": 0.1, \"measured_at\": 1}' > " + dir + "/spread.json");
+  const auto run = ldmbench(std::string(kTinyRun) + " --repetitions 2 --isolation process --calibration " + dir +
+                            "/spread.json --out " + dir + "/run");
+  ASSERT_EQ(run.status, 0) << run.output;
+  const auto r = only_record(dir + "/run");
+  EXPECT_EQ(r.at("repetitions"), 2);
+  EXPECT_EQ(r.at("time_interval"), "t_on_log_repetition_medians+run_to_run_spread");
+  EXPECT_EQ(r.at("time_run_to_run_spread").get<double>(), 0.1);
+}
+
+TEST(Calibration, AutoReadsAFreshCacheEntryWithoutProbing) {
+  const std::string cache = make_temp_dir("calibrate-cache");
+  // The entry this device would be cached under, fresh and at today's load.
+  setenv("XDG_CACHE_HOME", cache.c_str(), 1);
+  const std::string entry = calibration_cache_file(test::gl_context().device()).string();
+  RunToRunSpread spread;
+  spread.spread = 0.123;
+  spread.measured_at = int64_t(std::time(nullptr));
+  write_calibration_file(entry, spread);  // no load: any load holds
+  const std::string out = make_temp_dir("calibrate-auto");
+  const auto run = ldmbench(std::string(kTinyRun) + " --calibration auto --out " + out, "XDG_CACHE_HOME=" + cache);
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_EQ(run.output.find("calibrating"), std::string::npos) << run.output;
+  const auto r = only_record(out);
+  EXPECT_EQ(r.at("time_run_to_run_spread").get<double>(), 0.123);
+  EXPECT_NE(r.at("time_calibration").get<std::string>().find("cache " + entry), std::string::npos);
+}
+
+}  // namespace
+}  // namespace ldm

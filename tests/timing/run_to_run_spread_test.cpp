@@ -1,0 +1,203 @@
+// The run-to-run spread (harness/measure/run_to_run_spread.h), its cache rules and the
+// widening of a record's intervals (harness/app/timing_columns.h); the machine state beside
+// the times (harness/app/machine_state.h).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "harness/app/machine_state.h"
+#include "harness/app/timing_columns.h"
+#include "harness/measure/run_to_run_spread.h"
+#include "harness/stats/intervals.h"
+#include "harness/util/error.h"
+
+namespace ldm {
+namespace {
+
+TEST(RunToRunSpread, IsTheRmsLogRatioOverEveryPairOfProcesses) {
+  // Three processes; "a/frame" in all (ratios 2 and 4 to the first, 2 between the others),
+  // "b/frame" in two only (ratio 1), "c/frame" in one only (no pair), a 0 ms one ignored.
+  const std::vector<ProbeMedians> processes = {
+      {{"a/frame", 1.0}, {"b/frame", 3.0}, {"c/frame", 5.0}, {"d/frame", 0.0}},
+      {{"a/frame", 2.0}, {"b/frame", 3.0}, {"d/frame", 1.0}},
+      {{"a/frame", 4.0}},
+  };
+  const RunToRunSpread s = spread_from_processes(processes);
+  EXPECT_EQ(s.processes, 3u);
+  EXPECT_EQ(s.pairs, 4u);  // a: (0,1) (0,2) (1,2); b: (0,1)
+  const double l2 = std::log(2.0);
+  EXPECT_NEAR(s.spread, std::sqrt((l2 * l2 + 4 * l2 * l2 + l2 * l2 + 0) / 4), 1e-12);
+}
+
+TEST(RunToRunSpread, NeedsTwoProcessesWithSomethingInCommon) {
+  EXPECT_TRUE(std::isnan(spread_from_processes({{{"a/frame", 1.0}}}).spread));
+  EXPECT_TRUE(std::isnan(spread_from_processes({{{"a/frame", 1.0}}, {{"b/frame", 1.0}}}).spread));
+}
+
+TEST(RunToRunSpread, IsMeasuredAgainWhenOldOrAtAnotherLoad) {
+  RunToRunSpread cached;
+  cached.spread = 0.1;
+  cached.measured_at = 1'000'000;
+  cached.load_average = 1.0;
+  EXPECT_EQ(calibration_staleness(cached, 1'000'000 + 3600, 1.4), "");
+  EXPECT_NE(calibration_staleness(cached, 1'000'000 + kCalibrationMaxAgeSeconds + 1, 1.0).find("h ago"),
+            std::string::npos);
+  EXPECT_NE(calibration_staleness(cached, 1'000'000 + 60, 1.6).find("load average 1.60 now, 1.00"),
+            std::string::npos);
+  EXPECT_NE(calibration_staleness(cached, 1'000'000 + 60, 0.4).find("load average"), std::string::npos);
+  EXPECT_NE(calibration_staleness(cached, 1'000'000 - 60, 1.0), "");  // from the future: a clock moved
+  EXPECT_EQ(calibration_staleness(cached, 1'000'000 + 60, std::nan("")), "");  // no load known now
+}
+
+TEST(RunToRunSpread, WidensOneRepetitionByTheWholeSpreadAndKRepetitionsByTheOtherRunsShare) {
+  const double z = normal_quantile(0.975);
+  EXPECT_NEAR(z, 1.959964, 1e-6);
+  // One repetition: sqrt(within^2 + (z s)^2).
+  EXPECT_NEAR(widened_log_half_width(0.03, 0.2, 1, z), std::hypot(0.03, z * 0.2), 1e-12);
+  // K repetitions: the t interval holds this run's offset; the other run's median of K adds s^2/(2K).
+  EXPECT_NEAR(widened_log_half_width(0.1, 0.2, 4, z), std::hypot(0.1, z * 0.2 / std::sqrt(8.0)), 1e-12);
+  // No spread: unchanged.
+  EXPECT_EQ(widened_log_half_width(0.03, std::nan(""), 1, z), 0.03);
+  // Never narrower than either part.
+  EXPECT_GE(widened_log_half_width(0.5, 0.01, 1, z), 0.5);
+}
+
+TEST(RunToRunSpread, RoundTripsThroughJsonAndRefusesBadFiles) {
+  RunToRunSpread s;
+  s.spread = 0.25;
+  s.pairs = 180;
+  s.processes = 5;
+  s.measured_at = 1796265508;
+  s.load_average = 0.75;
+  s.device = "llvmpipe";
+  s.host = "vm";
+  const RunToRunSpread back = spread_from_json(spread_to_json(s), "x.json");
+  EXPECT_EQ(back.spread, 0.25);
+  EXPECT_EQ(back.pairs, 180u);
+  EXPECT_EQ(back.measured_at, 1796265508);
+  EXPECT_EQ(back.load_average, 0.75);
+  EXPECT_EQ(back.device, "llvmpipe");
+  try {
+    spread_from_json("{\"spread\": -1}", "bad.json");
+    ADD_FAILURE() << "a negative spread was accepted";
+  } catch (const UserError& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.json"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(spread_from_json("{\"pairs\": 3}", "missing.json"), UserError);
+  EXPECT_THROW(spread_from_json("[1]", "array.json"), UserError);
+  EXPECT_THROW(spread_from_json("{\"spread\": \"wide\"}", "text.json"), UserError);
+}
+
+TEST(RunToRunSpread, KeysTheCacheByDeviceDriverAndHost) {
+  const std::string key = calibration_key("llvmpipe (LLVM 15)", "4.5 Mesa", "vm");
+  EXPECT_EQ(key.rfind("spread-vm-4_5_Mesa-", 0), 0u) << key;
+  EXPECT_NE(key, calibration_key("llvmpipe (LLVM 15)", "4.6 Mesa", "vm"));
+  EXPECT_NE(key, calibration_key("llvmpipe (LLVM 15)", "4.5 Mesa", "vm2"));
+  EXPECT_NE(key, calibration_key("zink", "4.5 Mesa", "vm"));
+  EXPECT_EQ(key.find('/'), std::string::npos);
+}
+
+Record timed_record(size_t repetitions) {
+  Record r;
+  r.set("repetitions", repetitions);
+  r.set("time_interval", kFrameInterval);
+  r.set("time_half_width", 0.02);
+  r.set("frame_ms_median", 10.0);
+  r.set("frame_ms_ci_low", 9.8);
+  r.set("frame_ms_ci_high", 10.2);
+  r.set("build_ms_median", 4.0);
+  r.set("build_ms_ci_low", 3.9);
+  r.set("build_ms_ci_high", 4.2);
+  r.set("rebuild_ms_median", 0.0);  // a sub-pass no frame ran
+  r.set("rebuild_ms_ci_low", 0.0);
+  r.set("rebuild_ms_ci_high", 0.0);
+  return r;
+}
+
+double number(const Record& r, const std::string& key) { return std::get<double>(*r.get(key)); }
+
+TEST(WidenTimeIntervals, WidensEverySubpassAndSaysSo) {
+  Record r = timed_record(1);
+  RunToRunSpread spread;
+  spread.spread = 0.2;
+  widen_time_intervals(r, &spread, "file f.json");
+  const double z = normal_quantile(0.975);
+  const double h = widened_log_half_width(std::log(10.0 / 9.8), 0.2, 1, z);  // the wider side
+  EXPECT_NEAR(number(r, "frame_ms_ci_low"), 10.0 * std::exp(-h), 1e-9);
+  EXPECT_NEAR(number(r, "frame_ms_ci_high"), 10.0 * std::exp(h), 1e-9);
+  const double hb = widened_log_half_width(std::log(4.2 / 4.0), 0.2, 1, z);  // the wider side
+  EXPECT_NEAR(number(r, "build_ms_ci_low"), 4.0 * std::exp(-hb), 1e-9);
+  EXPECT_EQ(number(r, "rebuild_ms_ci_high"), 0.0);  // 0 ms stays 0 ms
+  EXPECT_EQ(std::get<std::string>(*r.get("time_interval")), std::string(kFrameInterval) + kRunToRunSuffix);
+  EXPECT_EQ(number(r, "time_half_width_within_run"), 0.02);
+  EXPECT_NEAR(number(r, "time_half_width"), std::exp(h) - 1, 1e-9);
+  EXPECT_EQ(number(r, "time_run_to_run_spread"), 0.2);
+  EXPECT_EQ(std::get<std::string>(*r.get("time_calibration")), "file f.json");
+  // Twice is once: a resumed or combined record is not widened again.
+  const double high = number(r, "frame_ms_ci_high");
+  widen_time_intervals(r, &spread, "file f.json");
+  EXPECT_EQ(number(r, "frame_ms_ci_high"), high);
+}
+
+TEST(WidenTimeIntervals, WithoutASpreadOnlySaysWhy) {
+  Record r = timed_record(1);
+  widen_time_intervals(r, nullptr, "skipped (--calibration skip): intervals are within-run only");
+  EXPECT_EQ(number(r, "frame_ms_ci_high"), 10.2);
+  EXPECT_EQ(std::get<std::string>(*r.get("time_interval")), kFrameInterval);
+  EXPECT_EQ(r.get("time_run_to_run_spread"), nullptr);
+  EXPECT_NE(std::get<std::string>(*r.get("time_calibration")).find("skipped"), std::string::npos);
+  Record failed;  // nothing timed: nothing said
+  widen_time_intervals(failed, nullptr, "skipped");
+  EXPECT_EQ(failed.get("time_calibration"), nullptr);
+}
+
+TEST(MachineState, ReadsNvidiaSmiClocksAndWarnsAboutThrottlingAndClockChanges) {
+  const auto gpu = parse_nvidia_smi_clocks("1980, 312.45, 0x0000000000000000");
+  ASSERT_TRUE(gpu);
+  EXPECT_EQ(gpu->sm_clock_mhz, 1980);
+  EXPECT_NEAR(gpu->power_w, 312.45, 1e-9);
+  EXPECT_EQ(gpu->throttle_reasons, "0x0000000000000000");
+  const auto no_power = parse_nvidia_smi_clocks("1410, [N/A], 0x0000000000000001");
+  ASSERT_TRUE(no_power);
+  EXPECT_TRUE(std::isnan(no_power->power_w));
+  EXPECT_FALSE(parse_nvidia_smi_clocks("garbage"));
+  EXPECT_FALSE(parse_nvidia_smi_clocks("N/A, 1, 0x0"));
+
+  MachineState start, end;
+  start.gpu = *gpu;
+  end.gpu = *gpu;
+  EXPECT_EQ(clock_change_warning(start, end), "");
+  end.gpu->sm_clock_mhz = 1500;
+  EXPECT_NE(clock_change_warning(start, end).find("SM clock changed"), std::string::npos);
+  end.gpu = *gpu;
+  end.gpu->throttle_reasons = "0x0000000000000001";  // idle only: not throttling
+  EXPECT_EQ(clock_change_warning(start, end), "");
+  end.gpu->throttle_reasons = "0x0000000000000020";  // software slowdown
+  EXPECT_NE(clock_change_warning(start, end).find("throttled"), std::string::npos);
+  MachineState cpu_a, cpu_b;
+  cpu_a.cpu_mhz = 3000;
+  cpu_b.cpu_mhz = 2000;
+  EXPECT_NE(clock_change_warning(cpu_a, cpu_b).find("CPU clock changed"), std::string::npos);
+  cpu_b.cpu_mhz = 2900;
+  EXPECT_EQ(clock_change_warning(cpu_a, cpu_b), "");
+}
+
+TEST(MachineState, RecordsBothEndsOfWhatWasRead) {
+  MachineState start, end;
+  start.load_average = 0.5;
+  end.load_average = 1.5;
+  start.cpu_mhz = 2600;  // the end's unknown: no cpu column
+  start.cpu_governor = "performance";
+  Record r;
+  set_machine_state_columns(r, start, end);
+  EXPECT_EQ(std::get<double>(*r.get("load_average_start")), 0.5);
+  EXPECT_EQ(std::get<double>(*r.get("load_average_end")), 1.5);
+  EXPECT_EQ(std::get<std::string>(*r.get("cpu_governor")), "performance");
+  EXPECT_EQ(r.get("cpu_mhz_start"), nullptr);
+  EXPECT_EQ(r.get("gpu_sm_clock_mhz_start"), nullptr);
+  // This machine: a load average is always readable on Linux.
+  EXPECT_TRUE(sample_machine_state({}).load_average.has_value());
+}
+
+}  // namespace
+}  // namespace ldm
