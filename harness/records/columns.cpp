@@ -90,6 +90,7 @@ std::vector<ColumnSpec> main_columns() {
       {"build", "fragments_stored", "fragments", "fragments the last build holds"},
       {"build", "fragments_lost", "fragments", "fragments the last build dropped (counted by the structure)"},
       {"build", "overflow", "", "whether any build found its storage too small"},
+      {"build", "tied_depths", "fragments", "fragments stored at exactly their predecessor's depth (most of any build): coincident surfaces, or in a quantising structure (HA-buffer 24-bit keys) distinct depths collided on one key, flagged in status_detail"},
       {"build", "checksum_changes", "builds", "builds whose lists differed from the first build's (in full, or in the blocks a sampled check visited)"},
       {"build", "lists_checksum", "", "checksum of every pixel's depth list after the first build"},
       {"build", "verify_mode", "", "how builds were checked (--verify): every (the full check after every build) or sampled (in full after the first build and after the sizing policy rebuilt or reallocated; after other builds one 64-pixel block in verify_stride, compared with the last full check's lists)"},

@@ -219,6 +219,38 @@ TEST(ExtremesInvariance, DetailTheMeshFileItselfCannotHoldIsCountedAndFlagged) {
   EXPECT_EQ(load_scene((dir / "geo.json").string()).far_file_vertices, 0u);
 }
 
+// Eight layers 1e-6 apart near the end of a depth range of ~20: floats there hold them
+// apart, the HA-buffer's 24-bit keys (steps of 1.9e-6) cannot. Its record counts the ties
+// and says so in status_detail; PSPPSLL's counts none.
+TEST(ExtremesInvariance, QuantisedDepthCollisionsAreCountedAndFlaggedInTheRecord) {
+  const fs::path dir = test::make_temp_dir("ldm-invariance-ties");
+  {
+    std::ofstream obj(dir / "layers.obj");
+    for (int k = 0; k < 8; ++k) {
+      const std::string y = number(k * 1e-6), b = std::to_string(4 * k + 1);
+      obj << "v -1 " << y << " -1\nv 1 " << y << " -1\nv 1 " << y << " 1\nv -1 " << y << " 1\n";
+      obj << "f " << 4 * k + 1 << " " << 4 * k + 2 << " " << 4 * k + 3 << " " << 4 * k + 4 << "\n";
+    }
+    obj << "v 0 -20 0\nv 0.01 -20 0\nv 0 -20 0.01\nf 33 34 35\n";
+  }
+  std::ofstream(dir / "layers.json")
+      << R"({"meshes": [{"file": "layers.obj"}], "camera": {"eye": [0.3, 3, 1], "target": [0, 0, 0]}})";
+  const fs::path out = dir / "out";
+  const test::Outcome o = test::ldmbench("run --scene " + (dir / "layers.json").string() +
+                                         " --structure psppsll,habuffer -N 1 -R 16 --width 16 "
+                                         "--height 16 --frames 1 --warmup 0 --no-reference --out " +
+                                         out.string());
+  ASSERT_EQ(o.status, 0) << o.output;
+  const Table rows = read_csv(out / "records.csv");
+  ASSERT_EQ(rows.size(), 2u);
+  for (const auto& r : rows) {
+    const bool quantised = r.at("structure") == "habuffer";
+    EXPECT_EQ(r.at("tied_depths") != "0", quantised) << r.at("structure");
+    EXPECT_EQ(r.at("status_detail").find("tied_depths") != std::string::npos, quantised)
+        << r.at("structure") << ": " << r.at("status_detail");
+  }
+}
+
 // Every structure's sorted depth lists, read back through the query API: the same lists at
 // the origin and 1e4 ... 1e7 scene sizes away (the views are fitted to the rebased scene, so
 // depths are comparable value for value), to the float rounding of the rebased vertices.
