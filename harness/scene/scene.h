@@ -155,7 +155,8 @@ struct Scene {
 // bounding sphere is centred on the origin (camera and light with it; frame_origin records
 // the shift). AO is translation invariant, and in this frame float precision depends on the
 // scene's extent, not on its distance from the world origin (32-bit floats 1e5 from the
-// origin are 0.008 apart). The GPU (LdmSetup: geometry, LDM views, G-buffer camera) and the
+// origin are 0.008 apart) — for the placement a scene file gives, which the loader applies
+// in double and rebases (origin_offset); not for detail a mesh file's own floats lost. The GPU (LdmSetup: geometry, LDM views, G-buffer camera) and the
 // reference (render_ao_half) both use it.
 Scene centred_on_bounding_sphere(const Scene& scene);
 

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -141,6 +142,10 @@ void expect_invariant(const std::vector<Placement>& placements, const std::strin
       "--param rtao:spp=8 --param rtao_gpu:spp=8 --cache-dir " + (dir / "cache").string() +
       " --out " + out.string());
   ASSERT_EQ(o.status, 0) << o.output;
+  // LDM_EXTREMES_RECORDS=DIR keeps the records (docs/measured/extremes/).
+  if (const char* keep = std::getenv("LDM_EXTREMES_RECORDS"))
+    fs::copy_file(out / "records.csv", fs::path(keep) / ("invariance-" + placements.back().name + ".csv"),
+                  fs::copy_options::overwrite_existing);
   const Table rows = read_csv(out / "records.csv");
   std::map<std::string, std::map<std::string, std::string>> origin;  // by pass
   for (const auto& r : rows)
