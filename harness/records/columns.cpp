@@ -12,7 +12,7 @@ namespace {
 std::vector<ColumnSpec> scene_profile_columns() {
   return {
       {"profile", "scene_radius", "scene units", "radius of the scene's bounding sphere (what derived settings scale with)"},
-      {"profile", "scene_origin_offset", "scene units", "world position (x y z, double) of the frame the scene is computed in: a scene file with meshes is rebased at load to its bounding-box centre"},
+      {"profile", "scene_origin_offset", "", "world position (x y z in scene units, double) of the frame the scene is computed in: a scene file with meshes is rebased at load to its bounding-box centre"},
       {"profile", "far_file_vertices", "corners", "triangle corners the mesh file itself holds coarser than 2^-16 of the scene's extent (float coordinates far from the file's origin; named in status_detail)"},
       {"profile", "camera_source", "", "where the camera came from: generator <name>, scene file, or derived (framing the bounding sphere)"},
       {"profile", "light_source", "", "where the spot light came from: generator <name>, scene file, or derived (above the bounding sphere, 1 W/m^2 at its centre)"},
