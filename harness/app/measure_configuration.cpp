@@ -99,6 +99,7 @@ void add_measurement(Record& r, const Measurement& m, const TimePrecision& preci
   r.set("fragments_lost", m.last_build.fragments_lost);
   r.set("overflow", m.overflow);
   r.set("checksum_changes", m.checksum_changes);
+  r.set("tied_depths", m.tied_depths);
   r.set("lists_checksum", hex64(m.lists_checksum));
   if (!m.verify_mode.empty()) {  // a structure's builds were checked
     r.set("verify_mode", m.verify_mode);

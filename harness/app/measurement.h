@@ -79,6 +79,7 @@ struct Measurement {
   BuildStats last_build;  // stats() of the last build
   bool overflow = false;
   uint64_t checksum_changes = 0, lists_checksum = 0;
+  uint64_t tied_depths = 0;  // LdmIntegrity::tied_depths, the most of any build
   // How the builds were checked, and the wall time the checks took (warm-up, measured).
   std::string verify_mode;
   uint32_t verify_stride = 0;

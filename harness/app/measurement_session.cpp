@@ -1,5 +1,7 @@
 #include "harness/app/measurement_session.h"
 
+#include <cstdio>
+
 #include <algorithm>
 #include <chrono>
 #include <optional>
@@ -243,6 +245,18 @@ Measurement MeasurementSession::result() const {
     m.status_detail = health.detail();
     m.overflow = health.overflow();
     m.checksum_changes = health.checksum_changes();
+    m.tied_depths = health.tied_depths();
+    // Ties in a structure that quantises depths may be distinct depths collided on one key:
+    // their order is lost, which the record says rather than passing as exact (issue 35).
+    if (const double quantum = s.structure->depth_quantum(s.setup->views.views.front());
+        m.tied_depths > 0 && quantum > 0.0) {
+      char text[200];
+      std::snprintf(text, sizeof text,
+                    "%llu fragments stored at their predecessor's quantised depth (depth_quantum %.3g): "
+                    "distinct depths within one key step collide, their order lost (tied_depths)",
+                    static_cast<unsigned long long>(m.tied_depths), quantum);
+      m.status_detail += std::string(m.status_detail.empty() ? "" : "; ") + text;
+    }
     m.verify_mode = verify_mode_name(s.verifier->mode());
     m.verify_stride = s.verifier->stride();
     m.verify_counts = s.verifier->counts();

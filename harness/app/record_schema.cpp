@@ -7,6 +7,29 @@
 
 namespace ldm {
 
+const std::vector<std::string>& always_written_columns() {
+  static const std::vector<std::string> columns = {
+      "config_id", "status", "status_detail", "scene", "structure", "pass", "n_views", "r_ldm",
+      "width", "height", "ldmbench_version", "git_commit", "wall_seconds"};
+  return columns;
+}
+
+namespace {
+std::string joined(const std::vector<std::string>& names) {
+  std::string text;
+  for (const auto& name : names) text += (text.empty() ? "" : " ") + name;
+  return text;
+}
+}  // namespace
+
+std::string declared_columns_text() {
+  std::vector<std::string> names;
+  for (const auto& column : record_columns()) names.push_back(column.name);
+  return joined(names);
+}
+
+std::string always_written_columns_text() { return joined(always_written_columns()); }
+
 const std::vector<ColumnSpec>& record_columns() {
   static const std::vector<ColumnSpec> columns = [] {
     std::vector<ColumnSpec> passes;

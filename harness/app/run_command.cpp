@@ -1,5 +1,7 @@
 #include "harness/app/run_command.h"
 
+#include "harness/app/record_schema.h"
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -502,6 +504,8 @@ int run_configurations(const ConfigurationRun& job, const std::string& command_l
   run.set("egl_platform", device.egl_platform);
   run.set("git_commit", git_commit());
   run.set("ldmbench_version", ldmbench_version());
+  run.set("schema_columns", declared_columns_text());
+  run.set("schema_always_written", always_written_columns_text());
   run.set("repetitions", uint64_t(repetitions));
   run.set("isolation", repetition_isolation_name(job.isolation));
   run.set("resumed_records", uint64_t(records.size()));

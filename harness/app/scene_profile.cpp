@@ -45,6 +45,11 @@ void add_scene_profile(Record& r, const Scene& scene, const Configuration& confi
   r.set("camera_source", scene.sources.camera);
   r.set("light_source", scene.sources.light);
   r.set("d_max_source", config.d_max ? std::string("run (--d-max)") : scene.sources.d_max);
+  char offset[96];
+  std::snprintf(offset, sizeof offset, "%.17g %.17g %.17g", scene.origin_offset.x,
+                scene.origin_offset.y, scene.origin_offset.z);
+  r.set("scene_origin_offset", std::string(offset));
+  r.set("far_file_vertices", scene.far_file_vertices);
   if (config.structure == kNoStructure) return;  // no census, no LDM pixels
 
   const DepthProfile& profile = m.census.profile;

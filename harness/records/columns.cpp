@@ -12,6 +12,8 @@ namespace {
 std::vector<ColumnSpec> scene_profile_columns() {
   return {
       {"profile", "scene_radius", "scene units", "radius of the scene's bounding sphere (what derived settings scale with)"},
+      {"profile", "scene_origin_offset", "", "world position (x y z in scene units, double) of the frame the scene is computed in: a scene file with meshes is rebased at load to its bounding-box centre"},
+      {"profile", "far_file_vertices", "corners", "triangle corners the mesh file itself holds coarser than 2^-16 of the scene's extent (float coordinates far from the file's origin; named in status_detail)"},
       {"profile", "camera_source", "", "where the camera came from: generator <name>, scene file, or derived (framing the bounding sphere)"},
       {"profile", "light_source", "", "where the spot light came from: generator <name>, scene file, or derived (above the bounding sphere, 1 W/m^2 at its centre)"},
       {"profile", "d_max_source", "", "where d_max came from: generator <name>, scene file, run (--d-max), or derived (0.2 x the radius)"},
@@ -90,6 +92,7 @@ std::vector<ColumnSpec> main_columns() {
       {"build", "fragments_stored", "fragments", "fragments the last build holds"},
       {"build", "fragments_lost", "fragments", "fragments the last build dropped (counted by the structure)"},
       {"build", "overflow", "", "whether any build found its storage too small"},
+      {"build", "tied_depths", "fragments", "fragments stored at exactly their predecessor's depth (most of any build): coincident surfaces, or in a quantising structure (HA-buffer 24-bit keys) distinct depths collided on one key, flagged in status_detail"},
       {"build", "checksum_changes", "builds", "builds whose lists differed from the first build's (in full, or in the blocks a sampled check visited)"},
       {"build", "lists_checksum", "", "checksum of every pixel's depth list after the first build"},
       {"build", "verify_mode", "", "how builds were checked (--verify): every (the full check after every build) or sampled (in full after the first build and after the sizing policy rebuilt or reallocated; after other builds one 64-pixel block in verify_stride, compared with the last full check's lists)"},

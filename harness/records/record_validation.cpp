@@ -100,6 +100,53 @@ void check_records_schema(const std::vector<Record>& records, const std::vector<
                       ": " + problem);
 }
 
+namespace {
+std::vector<std::string> words(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string word; in >> word;) out.push_back(word);
+  return out;
+}
+}  // namespace
+
+void check_journal_records(const JournalContents& contents, const std::vector<ColumnSpec>& columns,
+                           const std::vector<std::string>& always_written, const std::string& journal) {
+  for (size_t i = 0; i < contents.records.size(); ++i) {
+    const Record& r = contents.records[i];
+    const std::string id = text_of(r, "config_id");
+    const std::string where = journal + ":" +
+                              (i < contents.record_lines.size() ? std::to_string(contents.record_lines[i]) : "?") +
+                              (id.empty() ? "" : " (" + id + ")");
+    const std::vector<ColumnSpec>* schema = &columns;
+    const std::vector<std::string>* always = &always_written;
+    std::vector<ColumnSpec> declared;
+    std::vector<std::string> declared_always;
+    if (from_other_build(r)) {
+      const Record* run = nullptr;
+      for (auto it = contents.runs.rbegin(); it != contents.runs.rend() && !run; ++it)
+        if (text_of(*it, "git_commit") == text_of(r, "git_commit") &&
+            text_of(*it, "ldmbench_version") == text_of(r, "ldmbench_version") &&
+            !text_of(*it, "schema_columns").empty())
+          run = &*it;
+      if (!run)
+        throw UserError(where + ": written by ldmbench " + clipped(text_of(r, "ldmbench_version")) + " (commit " +
+                        clipped(text_of(r, "git_commit")) +
+                        "), whose run entry declares no schema (schema_columns) to check its columns "
+                        "against: merge it with the build that wrote it");
+      for (const auto& name : words(text_of(*run, "schema_columns"))) declared.push_back({"", name, "", ""});
+      declared_always = words(text_of(*run, "schema_always_written"));
+      schema = &declared;
+      always = &declared_always;
+    }
+    if (const std::string problem = schema_problem(r, *schema, false); !problem.empty())
+      throw UserError(where + ": " + problem +
+                      (schema == &declared ? " (the schema its build's run entry declares)" : ""));
+    for (const auto& name : *always)
+      if (!r.get(name))
+        throw UserError(where + ": column '" + name + "' is missing, which every record of its build carries");
+  }
+}
+
 Record record_from_json(const nlohmann::json& object, const std::string& where) {
   if (!object.is_object()) throw UserError(where + ": a record is not a JSON object");
   Record r;

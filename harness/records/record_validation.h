@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "harness/records/columns.h"
+#include "harness/records/journal.h"
 #include "harness/records/record.h"
 
 namespace ldm {
@@ -32,6 +33,14 @@ bool from_other_build(const Record& record);
 // (unknown columns allowed in records of another build).
 void check_records_schema(const std::vector<Record>& records, const std::vector<ColumnSpec>& columns,
                           const std::string& where);
+// `ldmbench merge`'s check of a journal (issue 35): every record against the schema of the
+// build that wrote it, this build's (`columns`, `always_written`) or, for a record of another
+// build, the one that build's run entry declares (schema_columns, schema_always_written):
+// no column it does not declare, none it always writes missing. Throws UserError
+// "<journal>:<line> (<config_id>): column '<name>' ..."; a record of another build whose run
+// entry declares no schema is refused too (nothing to check it against).
+void check_journal_records(const JournalContents& contents, const std::vector<ColumnSpec>& columns,
+                           const std::vector<std::string>& always_written, const std::string& journal);
 // A records.json record (an object of values) as a Record; throws UserError naming `where`
 // for a value that is an array or an object.
 Record record_from_json(const nlohmann::json& object, const std::string& where);

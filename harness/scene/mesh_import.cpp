@@ -235,9 +235,10 @@ void check_obj_placement(const std::string& text, const std::string& path,
     }
   }();
   for (size_t i = 0; i < syntax.vertices.size(); ++i) {
-    const glm::vec3 p = syntax.vertices[i] * options.scale + options.translate;
-    const float largest = std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)});
-    if (!(largest <= kMaxSceneCoordinate))
+    const glm::dvec3 placed = glm::dvec3(syntax.vertices[i]) * options.scale + options.translate;
+    const glm::vec3 p(placed);
+    const double largest = std::max({std::abs(placed.x), std::abs(placed.y), std::abs(placed.z)});
+    if (!(largest <= double(kMaxSceneCoordinate)))
       throw UserError(path + ":" + std::to_string(syntax.vertex_lines[i]) + ": the vertex lies at " +
                       format_point(p) + " after " + context +
                       "'s scale and translate, beyond the representable scene extent (|x| <= " +
@@ -276,8 +277,7 @@ void append_imported_model(Scene& scene, const ImportedModel& model, const std::
   // mesh is large), and the largest coordinate placed.
   uint64_t collapsed_by_placement = 0;
   float largest_placed = 0.0f;
-  const glm::mat4 placement =
-      glm::translate(glm::mat4(1.0f), options.translate) * glm::scale(glm::mat4(1.0f), options.scale);
+  const glm::vec3 float_scale(options.scale);
   for (size_t n = 0; n < model.nodes.size(); ++n) {
     const ImportedNode& node = model.nodes[n];
     if (node.parent >= int32_t(n) || node.parent < -1)
@@ -290,11 +290,11 @@ void append_imported_model(Scene& scene, const ImportedModel& model, const std::
                         " of " + std::to_string(model.meshes.size()));
       const ImportedMesh& mesh = model.meshes[mesh_index];
       const std::string place = describe_place(model, mesh_index, n);
-      const glm::mat4 to_scene = placement * world[n];
+      const glm::mat4& to_file = world[n];  // the file's own frame, in its float
       for (int c = 0; c < 4; ++c)
-        if (!finite(glm::vec3(to_scene[c])) || !std::isfinite(to_scene[c][3]))
+        if (!finite(glm::vec3(to_file[c])) || !std::isfinite(to_file[c][3]))
           throw UserError(where + ": " + place + " has a non-finite node transform");
-      const glm::mat3 linear(to_scene);
+      const glm::mat3 linear = glm::mat3(glm::scale(glm::mat4(1.0f), float_scale)) * glm::mat3(to_file);
       const bool invertible = std::abs(glm::determinant(linear)) > 0.0f;
       const glm::mat3 normal_matrix = invertible ? glm::transpose(glm::inverse(linear)) : glm::mat3(1.0f);
       const bool smooth = !mesh.normals.empty();
@@ -312,15 +312,18 @@ void append_imported_model(Scene& scene, const ImportedModel& model, const std::
         if (!finite(local))
           throw UserError(where + ": " + place + ": vertex " + std::to_string(i) + " is not finite " +
                           format_point(local));
-        const glm::vec3 p = glm::vec3(to_scene * glm::vec4(local, 1.0f));
+        const glm::vec3 in_file = glm::vec3(to_file * glm::vec4(local, 1.0f));
+        const glm::dvec3 placed = glm::dvec3(in_file) * options.scale + options.translate;
+        const glm::vec3 p(placed - options.anchor);
+        const double largest_world = std::max({std::abs(placed.x), std::abs(placed.y), std::abs(placed.z)});
         const float largest = std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)});
         largest_placed = std::max(largest_placed, largest);
-        if (!(largest <= kMaxSceneCoordinate))  // also catches inf and NaN
+        if (!(largest_world <= double(kMaxSceneCoordinate)) || !(largest <= kMaxSceneCoordinate))  // also catches inf and NaN
           throw UserError(where + ": " + place + ": vertex " + std::to_string(i) + " lies at " +
-                          format_point(p) + " after the node transforms and " + context +
+                          format_point(glm::vec3(placed)) + " after the node transforms and " + context +
                           "'s scale and translate, beyond the representable scene extent (|x| <= " +
                           format_float(kMaxSceneCoordinate) + ")");
-        return p;
+        return std::pair(p, in_file);
       };
 
       size_t corner = 0;
@@ -335,7 +338,9 @@ void append_imported_model(Scene& scene, const ImportedModel& model, const std::
         if (corners > 3)
           throw UserError(where + ": " + place + ": face " + std::to_string(f) + " has " +
                           std::to_string(corners) + " corners, which the importer did not triangulate");
-        const glm::vec3 a = vertex(idx[0]), b = vertex(idx[1]), c = vertex(idx[2]);
+        const auto [a, file_a] = vertex(idx[0]);
+        const auto [b, file_b] = vertex(idx[1]);
+        const auto [c, file_c] = vertex(idx[2]);
         const glm::vec3 face = glm::cross(b - a, c - a);
         if (!(glm::length(face) > 0.0f)) {  // zero area: no surface to rasterise or hit
           ++degenerate;
@@ -351,6 +356,12 @@ void append_imported_model(Scene& scene, const ImportedModel& model, const std::
         auto& m = scene.mesh;
         const auto base = uint32_t(m.positions.size());
         m.positions.insert(m.positions.end(), {a, b, c});
+        if (options.file_spacing)
+          for (const glm::vec3& q : {file_a, file_b, file_c}) {
+            const float largest = std::max({std::abs(q.x), std::abs(q.y), std::abs(q.z)});
+            const double scale = std::max({std::abs(options.scale.x), std::abs(options.scale.y), std::abs(options.scale.z)});
+            options.file_spacing->push_back(float(double(std::nextafter(largest, INFINITY) - largest) * scale));
+          }
         const glm::vec3 face_normal = glm::normalize(face);
         for (int k = 0; k < 3; ++k) {
           glm::vec3 n = face_normal;

@@ -17,6 +17,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -27,8 +28,17 @@
 namespace ldm {
 
 struct MeshImportOptions {
-  glm::vec3 scale{1.0f};
-  glm::vec3 translate{0.0f};
+  // The scene file's placement, applied in double precision: a mesh moved 1e7 of its sizes
+  // away keeps its detail, which 32-bit floats there cannot hold (issue 35).
+  glm::dvec3 scale{1.0};
+  glm::dvec3 translate{0.0};
+  // Vertices are stored as 32-bit floats relative to this point (the scene loader passes
+  // the translate, then rebases every mesh to the scene's centre: scene_loader.cpp).
+  glm::dvec3 anchor{0.0};
+  // If set, receives for every vertex appended the float spacing of its coordinate in the
+  // mesh file (after the node transforms, times the scale): the precision the file itself
+  // holds it to, which no placement can restore.
+  std::vector<float>* file_spacing = nullptr;
   // Use this scene material for every triangle instead of the file's own.
   std::optional<std::string> override_material;
   // An OBJ's materials that its .mtl files define: a `usemtl` name outside it (an undefined

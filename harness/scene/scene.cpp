@@ -96,6 +96,8 @@ uint64_t Scene::identity_hash() const {
   h.add_string(sources.light);
   h.add_string(sources.d_max);
   h.add(frame_origin);
+  h.add(origin_offset);
+  h.add(far_file_vertices);
   return h.value();
 }
 

@@ -88,6 +88,11 @@ struct BoundingSphere {
   float radius = 1.0f;
 };
 
+// The precision a mesh file must hold its coordinates to, relative to the scene's extent
+// (bounding-box diagonal): 2^-16, the AO trace's own depth resolution (range / 65536), so a
+// coarser rounding is detail the LDMs would resolve.
+inline constexpr double kFarFileSpacing = 1.0 / 65536.0;
+
 struct Bounds {
   glm::vec3 lo{0.0f}, hi{0.0f};
 };
@@ -111,6 +116,16 @@ struct Scene {
   // bounding-sphere centre for the centred copy that the GPU and the reference compute in
   // (centred_on_bounding_sphere). World point = scene point + frame_origin.
   glm::vec3 frame_origin{0.0f};
+  // World position (the scene file's coordinates, in double precision) of the loaded scene's
+  // origin: a scene file with meshes is rebased at load to the centre of its bounding box,
+  // computed in double from the meshes' `translate` (scene_loader.cpp), so that its floats
+  // hold the scene's detail wherever the file places it. Zero for a built-in scene.
+  glm::dvec3 origin_offset{0.0};
+  // Triangle corners whose coordinates the mesh file itself holds (as 32-bit floats, after
+  // its node transforms and the scale) coarser than kFarFileSpacing of the scene's extent:
+  // detail lost before any placement (a mesh file in georeferenced coordinates), counted and
+  // named in the scene's warnings.
+  uint64_t far_file_vertices = 0;
   // What the scene was made from: a generator's name and parameters, or a scene file's JSON
   // (canonical: formatting and key order do not count) and the bytes of every mesh file it
   // names (and an OBJ's .mtl files), or a mesh file's bytes. Set by the loader
@@ -140,7 +155,8 @@ struct Scene {
 // bounding sphere is centred on the origin (camera and light with it; frame_origin records
 // the shift). AO is translation invariant, and in this frame float precision depends on the
 // scene's extent, not on its distance from the world origin (32-bit floats 1e5 from the
-// origin are 0.008 apart). The GPU (LdmSetup: geometry, LDM views, G-buffer camera) and the
+// origin are 0.008 apart) — for the placement a scene file gives, which the loader applies
+// in double and rebases (origin_offset); not for detail a mesh file's own floats lost. The GPU (LdmSetup: geometry, LDM views, G-buffer camera) and the
 // reference (render_ao_half) both use it.
 Scene centred_on_bounding_sphere(const Scene& scene);
 

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -69,6 +70,27 @@ class Fields {
       fail(key, "must be an array of 3 numbers");
     return {to_float(v[0], key + "/0"), to_float(v[1], key + "/1"), to_float(v[2], key + "/2")};
   }
+  // Three numbers (or one for all three) in double precision, as the file gives them: a
+  // placement far from the origin keeps the digits a float would round away.
+  glm::dvec3 dvec3(const std::string& key, glm::dvec3 fallback) const {
+    if (!has(key)) return fallback;
+    const json& v = object_.at(key);
+    if (v.is_number()) return glm::dvec3(checked_float_range(v, key));
+    if (!v.is_array() || v.size() != 3 || !v[0].is_number() || !v[1].is_number() ||
+        !v[2].is_number())
+      fail(key, "must be an array of 3 numbers");
+    return {checked_float_range(v[0], key + "/0"), checked_float_range(v[1], key + "/1"),
+            checked_float_range(v[2], key + "/2")};
+  }
+  // A point of the file's world, in the scene's rebased frame (Scene::origin_offset).
+  glm::vec3 point(const std::string& key, glm::vec3 fallback, glm::dvec3 origin_offset) const {
+    if (!has(key)) return fallback;
+    const glm::dvec3 rebased = dvec3(key, glm::dvec3(0.0)) - origin_offset;
+    for (int i = 0; i < 3; ++i)
+      if (!std::isfinite(float(rebased[i])))
+        fail(key, "lies beyond the 32-bit float range from the scene's centre");
+    return glm::vec3(rebased);
+  }
   const json& at(const std::string& key) const { return object_.at(key); }
   Fields child(const std::string& key) const { return Fields(object_.at(key), file_, path_ + "/" + key); }
   const std::string& file() const { return file_; }
@@ -87,15 +109,19 @@ class Fields {
     }
     return x;
   }
+  double checked_float_range(const json& v, const std::string& key) const {
+    to_float(v, key);  // the same range as every other number
+    return v.get<double>();
+  }
   const json& object_;
   std::string file_;
   std::string path_;
 };
 
-void read_camera(const Fields& f, Camera& camera) {
+void read_camera(const Fields& f, Camera& camera, glm::dvec3 origin_offset) {
   f.only({"eye", "target", "up", "fov_y_deg"});
-  camera.eye = f.vec3("eye", camera.eye);
-  camera.target = f.vec3("target", camera.target);
+  camera.eye = f.point("eye", camera.eye, origin_offset);
+  camera.target = f.point("target", camera.target, origin_offset);
   camera.up = f.vec3("up", camera.up);
   camera.fov_y_deg = f.number("fov_y_deg", camera.fov_y_deg);
   if (!(camera.fov_y_deg > 0 && camera.fov_y_deg < 180)) f.fail("fov_y_deg", "must lie in (0, 180)");
@@ -106,10 +132,10 @@ void read_camera(const Fields& f, Camera& camera) {
                  "defined roll; give an up vector that is not along the view direction");
 }
 
-void read_light(const Fields& f, SpotLight& light) {
+void read_light(const Fields& f, SpotLight& light, glm::dvec3 origin_offset) {
   f.only({"type", "position", "direction", "intensity", "inner_angle_deg", "outer_angle_deg"});
   if (f.has("type") && f.string("type") != "spot") f.fail("type", "must be \"spot\"");
-  light.position = f.vec3("position", light.position);
+  light.position = f.point("position", light.position, origin_offset);
   light.direction = f.vec3("direction", light.direction);
   if (glm::length(light.direction) == 0.0f) f.fail("direction", "must not be zero");
   light.direction = glm::normalize(light.direction);
@@ -150,21 +176,79 @@ uint64_t file_bytes_hash(const std::string& path) {
   return h.value();
 }
 
+// Where the meshes' vertices were placed: each mesh's floats are relative to its own
+// translate (its anchor), until rebase_to_centre moves them all into one frame.
+struct Placements {
+  struct Range {
+    size_t begin, end;
+    glm::dvec3 anchor;
+  };
+  std::vector<Range> ranges;
+  std::vector<float> file_spacing;  // per vertex: MeshImportOptions::file_spacing (0: generated)
+};
+
 void append_mesh(Scene& scene, const Fields& f, const std::filesystem::path& base_dir,
-                 Fnv1a& source) {
+                 Fnv1a& source, Placements& placements) {
   f.only({"file", "material", "scale", "translate"});
   const std::string file = f.string("file");
   std::filesystem::path path = file;
   if (path.is_relative()) path = base_dir / path;
   MeshImportOptions options;
-  options.scale = f.vec3("scale", glm::vec3(1.0f));
-  if (options.scale.x == 0.0f || options.scale.y == 0.0f || options.scale.z == 0.0f)
+  options.scale = f.dvec3("scale", glm::dvec3(1.0));
+  if (options.scale.x == 0.0 || options.scale.y == 0.0 || options.scale.z == 0.0)
     f.fail("scale", "must be non-zero in every component (a zero scale flattens the mesh "
                     "into zero-area triangles)");
-  options.translate = f.vec3("translate", glm::vec3(0.0f));
+  options.translate = f.dvec3("translate", glm::dvec3(0.0));
+  options.anchor = options.translate;
   if (f.has("material")) options.override_material = f.string("material");
+  placements.file_spacing.resize(scene.mesh.positions.size(), 0.0f);
+  options.file_spacing = &placements.file_spacing;
+  const size_t begin = scene.mesh.positions.size();
   import_mesh_into(scene, path.string(), options, f.file() + ": " + f.path() + "/file");
+  placements.ranges.push_back({begin, scene.mesh.positions.size(), options.anchor});
   source.add(file_bytes_hash(path.string()));
+}
+
+// Moves the scene (its vertices, and the camera and light it has so far) to the centre of
+// its bounding box, computed in double precision from every vertex's anchored position, and
+// records that centre as origin_offset; counts the far_file_vertices. Afterwards 32-bit
+// floats hold the scene to its extent's precision wherever the file placed it (issue 35).
+void rebase_to_centre(Scene& scene, Placements& placements, const std::string& where) {
+  auto& positions = scene.mesh.positions;
+  std::vector<glm::dvec3> anchor(positions.size(), glm::dvec3(0.0));
+  for (const auto& r : placements.ranges)
+    for (size_t i = r.begin; i < r.end; ++i) anchor[i] = r.anchor;
+  glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+  for (size_t i = 0; i < positions.size(); ++i) {
+    const glm::dvec3 p = glm::dvec3(positions[i]) + anchor[i];
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  if (positions.empty()) return;
+  const glm::dvec3 centre = 0.5 * (lo + hi);
+  for (size_t i = 0; i < positions.size(); ++i)
+    positions[i] = glm::vec3(glm::dvec3(positions[i]) + anchor[i] - centre);
+  scene.camera.eye = glm::vec3(glm::dvec3(scene.camera.eye) - centre);
+  scene.camera.target = glm::vec3(glm::dvec3(scene.camera.target) - centre);
+  scene.light.position = glm::vec3(glm::dvec3(scene.light.position) - centre);
+  scene.origin_offset += centre;
+
+  const double extent = glm::length(hi - lo), limit = extent * kFarFileSpacing;
+  placements.file_spacing.resize(positions.size(), 0.0f);
+  uint64_t far = 0;
+  float coarsest = 0.0f;
+  for (float spacing : placements.file_spacing)
+    if (double(spacing) > limit) ++far, coarsest = std::max(coarsest, spacing);
+  scene.far_file_vertices = far;
+  if (far > 0) {
+    char text[256];
+    std::snprintf(text, sizeof text,
+                  "%llu triangle corners lie so far from the origin in their mesh file that its "
+                  "32-bit floats hold them only to %.3g, coarser than 2^-16 of the scene's extent "
+                  "%.3g (far_file_vertices): detail lost in the file itself",
+                  static_cast<unsigned long long>(far), double(coarsest), extent);
+    scene.warnings.push_back(where + ": " + text);
+  }
 }
 
 }  // namespace
@@ -205,19 +289,22 @@ Scene parse_scene_file(const std::string& text, const std::string& path) {
     const json& meshes = root.at("meshes");
     if (!meshes.is_array()) throw UserError(path + ": /meshes must be an array");
     const auto base = std::filesystem::path(path).parent_path();
+    Placements placements;
     for (size_t i = 0; i < meshes.size(); ++i)
-      append_mesh(scene, Fields(meshes[i], path, "/meshes/" + std::to_string(i)), base, source);
+      append_mesh(scene, Fields(meshes[i], path, "/meshes/" + std::to_string(i)), base, source,
+                  placements);
+    rebase_to_centre(scene, placements, path);
   }
   // Without a generator, nothing but the geometry is known yet: what the file does not
   // set follows the scene's size (harness/scene/scene_defaults.h). The file's own keys are
   // applied over that.
   if (!top.has("generator")) derive_size_defaults(scene, {});
   if (top.has("camera")) {
-    read_camera(top.child("camera"), scene.camera);
+    read_camera(top.child("camera"), scene.camera, scene.origin_offset);
     scene.sources.camera = "scene file";
   }
   if (top.has("light")) {
-    read_light(top.child("light"), scene.light);
+    read_light(top.child("light"), scene.light, scene.origin_offset);
     scene.sources.light = "scene file";
   }
   if (top.has("ao")) {
@@ -251,7 +338,11 @@ Scene load_mesh_scene(const std::string& path) {
   Scene scene;
   scene.name = std::filesystem::path(path).stem().string();
   scene.origin = path;
-  import_mesh_into(scene, path, {}, "--scene " + path);
+  Placements placements;
+  MeshImportOptions options;
+  options.file_spacing = &placements.file_spacing;
+  import_mesh_into(scene, path, options, "--scene " + path);
+  rebase_to_centre(scene, placements, path);
   scene.source_hash = file_bytes_hash(path);
   derive_size_defaults(scene, {});
   scene.validate();

@@ -23,6 +23,7 @@ BuildHealth::BuildHealth(const FragmentCensus& census) : census_(census) {
 void BuildHealth::observe(const BuildStats& stats, const LdmIntegrity& integrity) {
   ++builds_;
   max_lost_ = std::max(max_lost_, stats.fragments_lost);
+  max_tied_ = std::max(max_tied_, integrity.tied_depths);
   overflow_ = overflow_ || stats.overflow;
   if (stats.fragments_rasterized != census_.total_fragments)
     report_problem("the build rasterised " + std::to_string(stats.fragments_rasterized) +

@@ -41,6 +41,7 @@ class BuildHealth {
   uint64_t builds() const { return builds_; }  // fully checked builds
   uint64_t sampled_builds() const { return sampled_builds_; }
   uint64_t checksum_changes() const { return checksum_changes_; }
+  uint64_t tied_depths() const { return max_tied_; }  // the most of any checked build
   uint64_t first_checksum() const { return first_checksum_; }
   bool overflow() const { return overflow_; }
   const std::vector<std::string>& problems() const { return problems_; }
@@ -48,6 +49,7 @@ class BuildHealth {
  private:
   const FragmentCensus& census_;
   uint64_t builds_ = 0, sampled_builds_ = 0, max_lost_ = 0, checksum_changes_ = 0, first_checksum_ = 0;
+  uint64_t max_tied_ = 0;
   bool overflow_ = false;
   std::vector<std::string> problems_;
 };

@@ -87,6 +87,7 @@ LdmIntegrity integrity_from(const std::vector<uint32_t>& totals) {
   r.unsorted_pixels = totals[1];
   r.overlong_pixels = totals[2];
   r.checksum = (uint64_t(totals[4]) << 32) | totals[3];
+  r.tied_depths = totals[7];
   return r;
 }
 }  // namespace

@@ -15,6 +15,10 @@ struct LdmIntegrity {
   uint64_t unsorted_pixels = 0;  // pixels whose depths are not ascending
   uint64_t overlong_pixels = 0;  // pixels longer than the bound (corrupt lists)
   uint64_t checksum = 0;         // of every pixel's depth sequence; equal builds, equal sums
+  // Fragments stored at exactly their predecessor's depth in a list: coincident surfaces,
+  // or, where the structure quantises depths (depth_quantum() > 0: the HA-buffer's 24-bit
+  // keys), distinct depths that collided on one key and whose order is lost.
+  uint64_t tied_depths = 0;
   bool operator==(const LdmIntegrity&) const = default;
 };
 

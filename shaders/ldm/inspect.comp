@@ -13,7 +13,7 @@ layout(local_size_x = 64) in;
 
 layout(std430, binding = LDM_VALIDATION_BINDING) restrict buffer Inspect {
   // 0 nodes, 1 unsorted pixels, 2 over-long pixels, 3-4 checksums, 5 changed blocks,
-  // 6 pixels visited
+  // 6 pixels visited, 7 tied depths (a fragment stored at its predecessor's depth)
   uint inspect_totals[8];
   uint inspect_data[];     // lengths (mode 0) or offsets then depths (mode 1)
 };
@@ -62,6 +62,7 @@ void main() {
 #else
   bool sorted = true;
   float previous = -1.0 / 0.0;
+  uint ties = 0u;
   uint hash = 0x811c9dc5u;
 #endif
   if (in_range) {
@@ -72,6 +73,7 @@ void main() {
       inspect_data[inspect_pixel_count + out_at + length] = floatBitsToUint(depth);
 #else
       sorted = sorted && depth >= previous;
+      if (length > 0u && depth == previous) ++ties;
       previous = depth;
       hash = mix_hash(hash, floatBitsToUint(depth));
 #endif
@@ -84,6 +86,7 @@ void main() {
     atomicAdd(inspect_totals[0], length);
     atomicAdd(inspect_totals[6], 1u);
     if (!sorted) atomicAdd(inspect_totals[1], 1u);
+    if (ties > 0u) atomicAdd(inspect_totals[7], ties);
     if (length > LDM_MAX_LIST_LENGTH) atomicAdd(inspect_totals[2], 1u);
     if (length > 0u) {
       atomicAdd(inspect_totals[3], mix_hash(hash, pixel));

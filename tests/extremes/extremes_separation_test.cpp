@@ -83,3 +83,39 @@ TEST(ExtremesSeparation, EveryStructureKeepsLayersAFewUlpsApart) {
 
 }  // namespace
 }  // namespace ldm
+
+namespace ldm {
+namespace {
+
+// Depths closer than one of the HA-buffer's 24-bit key steps collide on one key: the
+// integrity check counts them (tied_depths), which the record then flags (issue 35); a
+// structure that stores the float keeps them apart and counts none.
+TEST(ExtremesSeparation, DepthsCollidedOnOneQuantisedKeyAreCounted) {
+  // The two layers 1e-6 apart near one end of a depth range of ~20 (a small triangle 20
+  // below them stretches it): floats there are ~1e-7 apart, the 24-bit key steps 1.9e-6 (measured: of 72
+  // fragments the HA-buffer ties 36, PSPPSLL none).
+  Scene scene = planes(1.0e-6f);
+  for (const glm::vec3 far_point : {glm::vec3(0.0f, -20.0f, 0.0f), glm::vec3(0.01f, -20.0f, 0.0f),
+                                  glm::vec3(0.0f, -20.0f, 0.01f)}) {
+    scene.mesh.positions.push_back(far_point);
+    scene.mesh.normals.push_back({0.0f, 1.0f, 0.0f});
+  }
+  const auto base = uint32_t(scene.mesh.positions.size() - 3);
+  scene.mesh.triangles.emplace_back(base, base + 1, base + 2);
+  scene.mesh.triangle_materials.push_back(scene.mesh.triangle_materials.front());
+  const test::LdmFixture fixture(scene, 1, kResolution);
+  for (const char* structure : {"psppsll", "habuffer"}) {
+    const auto s = fixture.build(structure);
+    const LdmIntegrity integrity = LdmInspector(*s, *fixture.inputs).check();
+    std::printf("%s: %llu fragments, %llu tied, quantum %g\n", structure,
+                (unsigned long long)integrity.fragments, (unsigned long long)integrity.tied_depths,
+                s->depth_quantum(fixture.views.views[0]));
+    if (s->depth_quantum(fixture.views.views[0]) > 0.0)
+      EXPECT_GT(integrity.tied_depths, integrity.fragments / 4) << structure;
+    else
+      EXPECT_EQ(integrity.tied_depths, 0u) << structure;
+  }
+}
+
+}  // namespace
+}  // namespace ldm

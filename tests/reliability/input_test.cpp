@@ -110,11 +110,16 @@ TEST(ReliabilityInput, MessagesSayWhatIsWrong) {
   const std::string obj = write_file(dir / "nul.obj", nul);
   expect_refused(test::ldmbench("run --scene " + obj + " -N 2" + kTiny + "--dry-run"),
                  {"nul.obj:4", "\\x00' is not a number"}, "nul");
-  // translate 1e18 said "zero area": it places the mesh where floats are far apart.
+  // translate 1e18 said "zero area": it placed the mesh in float, where floats are far
+  // apart. Placed in double and rebased (issue 35), 1e15 away loads; past the extent
+  // (1e18 is past the float 1e18 bound) is refused naming the vertex's line and the limit.
   write_file(dir / "tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
   const std::string far = write_file(dir / "far.json", R"({"meshes": [{"file": "tri.obj", "translate": [1e18, 0, 0]}]})");
   expect_refused(test::ldmbench("run --scene " + far + " -N 2" + kTiny + "--dry-run"),
-                 {"far.json", "scale and translate", "32-bit floats are", "apart"}, "translate");
+                 {"tri.obj:1", "far.json", "scale and translate", "beyond the representable scene extent"},
+                 "translate");
+  const std::string placed = write_file(dir / "placed.json", R"({"meshes": [{"file": "tri.obj", "translate": [1e15, 0, 0]}]})");
+  EXPECT_EQ(test::ldmbench("run --scene " + placed + " -N 2" + kTiny + "--dry-run").status, 0);
   // --d-max 3e38 printed its range as a 40-digit number; now one range for every source.
   Outcome o = test::ldmbench("run -N 2 --d-max 3e38" + kTiny + "--dry-run");
   expect_refused(o, {"--d-max", "[1e-30, 1e+30]"}, "--d-max");

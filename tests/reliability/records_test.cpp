@@ -4,6 +4,10 @@
 // records must follow the column schema and the tables must be what the journal gives.
 #include <gtest/gtest.h>
 
+#include <map>
+#include <regex>
+#include <sstream>
+
 #include "reliability_support.h"
 
 namespace ldm::reliability {
@@ -35,6 +39,87 @@ TEST(ReliabilityRecords, MergeRefusesAColumnOutsideTheSchema) {
   EXPECT_NE(o.output.find("column 'st###ture_params' is not in the record schema"), std::string::npos) << o.output;
   EXPECT_NE(o.output.find("records.jsonl"), std::string::npos) << o.output;
   EXPECT_FALSE(fs::exists(dir / "merged" / "records.csv"));
+}
+
+// The journal's lines, one string each.
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+std::string joined_lines(const std::vector<std::string>& lines) {
+  std::string text;
+  for (const auto& line : lines) text += line + "\n";
+  return text;
+}
+
+// Every file under `dir` with its bytes: a refused merge must leave its OUT as it was.
+std::map<std::string, std::string> snapshot(const fs::path& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& entry : fs::recursive_directory_iterator(dir))
+    files[entry.path().string()] = entry.is_regular_file() ? test::read_text(entry.path().string()) : "<dir>";
+  return files;
+}
+
+// Issue 35: records of another build were exempt from the schema check (its schema could
+// differ), so a corrupted column name in them went through. Now every run entry declares its
+// build's schema and each record is checked against its own build's: a column it does not
+// declare, or one it always writes missing, is refused naming the file, line and column,
+// and an existing OUT is left exactly as it was.
+TEST(ReliabilityRecords, MergeChecksEveryRecordAgainstItsOwnBuildsSchema) {
+  const fs::path dir = test::make_temp_dir("ldm-records");
+  const fs::path run = small_run(dir, "run");
+  // As written by another build: its git_commit everywhere (run entry and records).
+  const std::string other = std::regex_replace(test::read_text((run / "records.jsonl").string()),
+                                               std::regex("\"git_commit\":\"[^\"]*\""),
+                                               "\"git_commit\":\"another-build\"");
+  const std::vector<std::string> lines = lines_of(other);
+  std::vector<size_t> record_lines;
+  for (size_t i = 0; i < lines.size(); ++i)
+    if (lines[i].rfind("{\"record\":", 0) == 0) record_lines.push_back(i);
+  ASSERT_EQ(record_lines.size(), 2u);
+  const fs::path out = dir / "merged";
+  fs::create_directories(out);
+  write_file(out / "notes.txt", "kept\n");
+  const auto before = snapshot(out);
+  auto merge_with = [&](const std::vector<std::string>& journal) {
+    write_file(run / "records.jsonl", joined_lines(journal));
+    return test::ldmbench("merge " + out.string() + " " + run.string());
+  };
+
+  // Intact, another build's records merge (into a fresh folder).
+  {
+    write_file(run / "records.jsonl", other);
+    const Outcome o = test::ldmbench("merge " + (dir / "fresh").string() + " " + run.string());
+    EXPECT_EQ(o.status, 0) << o.output;
+  }
+  // A corrupted column name in the last record.
+  std::vector<std::string> journal = lines;
+  journal[record_lines[1]] = replaced(journal[record_lines[1]], "\"structure_params\":", "\"st###ture_params\":");
+  Outcome o = merge_with(journal);
+  EXPECT_EQ(o.status, 2) << o.output;
+  const std::string at = "records.jsonl:" + std::to_string(record_lines[1] + 1);
+  EXPECT_NE(o.output.find(at), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("column 'st###ture_params' is not in the record schema"), std::string::npos) << o.output;
+  EXPECT_EQ(snapshot(out), before);
+  // An always-written column missing from the first record.
+  journal = lines;
+  journal[record_lines[0]] = std::regex_replace(journal[record_lines[0]], std::regex(",\"wall_seconds\":[^,}]*"), "");
+  o = merge_with(journal);
+  EXPECT_EQ(o.status, 2) << o.output;
+  EXPECT_NE(o.output.find("records.jsonl:" + std::to_string(record_lines[0] + 1)), std::string::npos) << o.output;
+  EXPECT_NE(o.output.find("column 'wall_seconds' is missing"), std::string::npos) << o.output;
+  EXPECT_EQ(snapshot(out), before);
+  // A run entry of another build that declares no schema: nothing to check against.
+  journal = lines;
+  for (auto& line : journal)
+    if (line.rfind("{\"run\":", 0) == 0)
+      line = std::regex_replace(line, std::regex(",\"schema_columns\":\"[^\"]*\""), "");
+  o = merge_with(journal);
+  EXPECT_EQ(o.status, 2) << o.output;
+  EXPECT_NE(o.output.find("declares no schema"), std::string::npos) << o.output;
+  EXPECT_EQ(snapshot(out), before);
 }
 
 TEST(ReliabilityRecords, ReportAndCompareRefuseTablesThatDisagreeWithTheJournal) {

@@ -110,8 +110,11 @@ TEST(SceneFile, ObjMeshesWithMaterials) {
   EXPECT_EQ(scene.materials[scene.mesh.triangle_materials[0]].name, "blue");
   EXPECT_FLOAT_EQ(scene.materials[scene.mesh.triangle_materials[0]].albedo.z, 0.9f);
   EXPECT_EQ(scene.materials[scene.mesh.triangle_materials[2]].name, "grey");
-  EXPECT_FLOAT_EQ(scene.bounds().hi.x, 2.0f);
-  EXPECT_FLOAT_EQ(scene.bounds().hi.z, 1.0f);
+  // Rebased at load to the bounding-box centre (1, 1, 0.5), recorded as origin_offset.
+  EXPECT_EQ(scene.origin_offset, glm::dvec3(1.0, 1.0, 0.5));
+  EXPECT_FLOAT_EQ(scene.bounds().hi.x + float(scene.origin_offset.x), 2.0f);
+  EXPECT_FLOAT_EQ(scene.bounds().hi.z + float(scene.origin_offset.z), 1.0f);
+  EXPECT_FLOAT_EQ(scene.camera.eye.z, 4.5f);  // the file's (0, 0, 5), rebased
   EXPECT_FLOAT_EQ(scene.mesh.normals[0].z, 1.0f);
 }
 
