@@ -128,7 +128,8 @@ def collision_note(table):
 def runs_info_from_runs(runs):
     return [{"label": r.label, "records_file": r.records_file,
              "records": len(r.rows), **{k: str(r.metadata.get(k, "")) for k in
-                                         ("device", "git_commit", "command")}} for r in runs]
+                                         ("device", "git_commit", "command", "started",
+                                          "resumed_records")}} for r in runs]
 
 
 def runs_info_from_table(table, tidy_path):

@@ -193,6 +193,19 @@ class Grids(unittest.TestCase):
         self.assertEqual([g.exposure for g in groups if g.passes == ["indirect"]], [25.0])
 
 
+class Warnings(unittest.TestCase):
+    """Issue 37: the page says first when its intervals cover one run only, or a run was resumed."""
+
+    def test_single_repetition_and_resumed_runs_are_named(self):
+        once = table([record(config_id="a", repetitions=1), record(config_id="b", repetitions=1)])
+        said = pages.warnings(once, [{"label": "run1", "resumed_records": "2", "started": "t0"}])
+        self.assertTrue(any("2 of 2 records were measured in one repetition" in w and
+                            "not between runs" in w for w in said), said)
+        self.assertTrue(any("run run1 was resumed" in w and "t0" in w for w in said), said)
+        repeated = table([record(config_id="a", repetitions=3)])
+        self.assertEqual(pages.warnings(repeated, [{"label": "run1", "resumed_records": "0"}]), [])
+
+
 class FrontTable(unittest.TestCase):
     """Item 5: per scene the non-dominated configurations (time, memory, error), ties shown."""
 
