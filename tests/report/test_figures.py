@@ -206,6 +206,16 @@ class Warnings(unittest.TestCase):
         self.assertEqual(pages.warnings(repeated, [{"label": "run1", "resumed_records": "0"}]), [])
 
 
+class SceneNames(unittest.TestCase):
+    """Issue 37: a scene file is shown (titles, groups, file names) by its name, not its path."""
+
+    def test_a_scene_file_is_shown_by_its_name(self):
+        t = table([record(scene="/usr/share/assimp/models/FBX/cubes_with_names.fbx",
+                          scene_name="cubes_with_names")])
+        self.assertEqual(list(t.text("scene")), ["cubes_with_names"])
+        self.assertTrue(all("/usr/share" not in label for label, _ in pages.ranking_groups(t)))
+
+
 class FrontTable(unittest.TestCase):
     """Item 5: per scene the non-dominated configurations (time, memory, error), ties shown."""
 
