@@ -53,7 +53,7 @@ def main(path):
         rows = [r for r in csv.DictReader(f)]
     print(measured_with(rows))
     print()
-    print("| scene | method | status | build ms | query ms | frame ms | MiB allocated | MiB used "
+    print("| scene | method | status | build ms | pass ms | frame ms | MiB allocated | MiB used "
           "| MSE | MSSIM | reference noise MSE |")
     print("| --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")
     for r in rows:

@@ -33,7 +33,7 @@ struct PrefixedRecord {
 
 void add_accuracy(Record& record, const ReferenceResult& reference, const Image& image,
                   const OutputFolder* images, const std::string& stem,
-                  const std::string& prefix, double ssim_exposure) {
+                  const std::string& prefix, double ssim_exposure, const Image* coverage) {
   PrefixedRecord r{record, prefix};
   // The noise floor: how far two independent halves of the reference differ.
   MetricOptions options;
@@ -72,6 +72,14 @@ void add_accuracy(Record& record, const ReferenceResult& reference, const Image&
   r.set("psnr", metrics.psnr);
   r.set("mssim", metrics.mssim);
   r.set("ssim_exposure", metrics.ssim_exposure);
+  if (coverage && !coverage->pixels.empty()) {
+    // Beside the whole image's: a model covering a small share of the image would otherwise
+    // have its error diluted by background pixels both images agree on.
+    const CoveredComparison covered = compare_covered(reference.image, image, metrics, *coverage);
+    r.set("mse_covered", covered.mse);
+    r.set("nrmse_covered", covered.nrmse);
+    r.set("mssim_covered", covered.mssim);
+  }
   // MSE against the converged image is about mse - ref_noise_mse; below a few times the
   // floor, differences between configurations are noise of the reference.
   r.set("mse_over_noise", reference.noise_mse > 0 ? metrics.mse / reference.noise_mse : INFINITY);

@@ -18,10 +18,13 @@ namespace ldm {
 // or infinity is not measured: the record gets metrics_error and its status becomes
 // "invalid".
 // Every column name is prefixed with `column_prefix` (a further reference of the pass, e.g.
-// "multi_"); SSIM sees both images scaled by `ssim_exposure`.
+// "multi_"); SSIM sees both images scaled by `ssim_exposure`. With a non-empty `coverage`
+// (Pass::coverage()), the errors over its covered pixels too: mse_covered, nrmse_covered,
+// mssim_covered (compare_covered, harness/metrics/image_metrics.h).
 void add_accuracy(Record& record, const ReferenceResult& reference, const Image& image,
                   const OutputFolder* images, const std::string& image_stem,
-                  const std::string& column_prefix = "", double ssim_exposure = 1.0);
+                  const std::string& column_prefix = "", double ssim_exposure = 1.0,
+                  const Image* coverage = nullptr);
 
 // Appends `text` to the record's status_detail ("; "-separated) unless it is already there.
 void append_status_detail(Record& record, const std::string& text);

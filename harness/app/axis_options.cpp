@@ -42,6 +42,21 @@ std::string axis_help(const AxisSpec& spec) {
 // duplicates refused, "all" structures expanded.
 std::vector<std::string> axis_values_given(const AxisSpec& spec, const std::vector<std::string>& texts) {
   const std::string option = long_flag(spec.flags);
+  if (spec.kind == AxisKind::Choice) {  // every unknown name of the list at once
+    const auto names = axis_choices(spec);
+    std::vector<std::string> unknown;
+    for (const std::string& text : texts)
+      if (std::find(names.begin(), names.end(), text) == names.end() &&
+          !(spec.key == "structures" && text == "all"))
+        unknown.push_back("'" + text + "'");
+    if (unknown.size() > 1) {
+      std::string list;
+      for (size_t i = 0; i < unknown.size(); ++i) list += (i ? ", " : "") + unknown[i];
+      std::string known;
+      for (size_t i = 0; i < names.size(); ++i) known += (i ? ", " : "") + names[i];
+      throw UserError(option + ": unknown " + spec.display_name() + "s " + list + " (known: " + known + ")");
+    }
+  }
   std::vector<std::string> values;
   for (const std::string& text : texts) {
     std::vector<std::string> items = {text};

@@ -183,7 +183,7 @@ Record measure_configuration(const Scene& scene, const Configuration& config,
     for (const auto& scored : pass->references(scene, image.width, image.height, settings.reference))
       add_accuracy(r, scored.reference, image, settings.write_images ? &folder : nullptr,
                    stem + (scored.column_prefix.empty() ? "" : "-" + scored.column_prefix),
-                   scored.column_prefix, scored.ssim_exposure);
+                   scored.column_prefix, scored.ssim_exposure, &m.coverage);
   }
   flag_degenerate_measurement(r);
   // Last, so that a configuration abandoned on the way (an interrupted reference) leaves no

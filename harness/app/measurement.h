@@ -107,6 +107,7 @@ struct Measurement {
 
   std::vector<PassImage> images;
   std::vector<std::pair<std::string, RecordValue>> pass_results;  // Pass::results()
+  Image coverage;  // Pass::coverage(): where the camera sees a surface (empty: not known)
 
   TimingSeries series() const;  // the measured frames
   // Sum over the measured frames of every timed sub-pass (the frame and the baselines).

@@ -218,6 +218,7 @@ Measurement MeasurementSession::result() const {
   Measurement m = s.m;
   m.images = s.pass->images();
   m.pass_results = s.pass->results();
+  m.coverage = s.pass->coverage();
   if (m.images.empty()) throw std::logic_error("pass " + s.request.pass + " produced no image");
   const std::vector<std::string> problems = image_problems(m.images);
   if (!s.setup) {

@@ -344,6 +344,11 @@ int finish_run(const std::vector<Record>& records, size_t configurations, int in
     log << (first ? "" : ", ") << count << " " << status;
     first = false;
   }
+  // An ok record with a flag (degenerate, time target missed, ...) is not a plain ok.
+  const auto flagged = std::count_if(records.begin(), records.end(), [](const Record& r) {
+    return status_of(r) == "ok" && !status_flags(r).empty();
+  });
+  if (flagged > 0) log << "; " << flagged << " ok with flags, see the status column";
   log << ")\n";
   log << harness_cost_line(cost);
   if (interrupted_by) {
@@ -742,7 +747,7 @@ int run_configurations(const ConfigurationRun& job, const std::string& command_l
       cost.add(record);
       const std::string status = status_of(record);
       begin_line();
-      log << status << timed_sums(record);
+      log << status_cell(record) << timed_sums(record);
       if (status != "ok") log << "  (" << std::get<std::string>(*record.get("status_detail")) << ")";
       log << "\n" << std::flush;
       progress.finished_one();

@@ -28,14 +28,21 @@ AoRange ao_range(const Image& ao, const Image& positions) {
   return range;
 }
 
-double covered_pixel_fraction(const Image& positions) {
+Image coverage_mask(const Image& positions) {
   require_nonempty(positions, "G-buffer positions");
   if (positions.channels != 4)
-    throw UserError("covered_pixel_fraction: expected 4-channel positions, got " + shape_string(positions));
-  uint64_t covered = 0;
+    throw UserError("coverage: expected 4-channel positions, got " + shape_string(positions));
+  Image mask(positions.width, positions.height, 1);
   for (int y = 0; y < positions.height; ++y)
-    for (int x = 0; x < positions.width; ++x) covered += positions.at(x, y, 3) != 0.0f;
-  return double(covered) / (double(positions.width) * double(positions.height));
+    for (int x = 0; x < positions.width; ++x) mask.at(x, y) = positions.at(x, y, 3) != 0.0f ? 1.0f : 0.0f;
+  return mask;
+}
+
+double covered_pixel_fraction(const Image& positions) {
+  const Image mask = coverage_mask(positions);
+  double covered = 0;
+  for (float v : mask.pixels) covered += v;
+  return covered / double(mask.pixel_count());
 }
 
 }  // namespace ldm

@@ -22,4 +22,8 @@ AoRange ao_range(const Image& ao, const Image& positions);
 // != 0): 0 means the image measures nothing (the record's covered_pixel_fraction).
 double covered_pixel_fraction(const Image& positions);
 
+// The same pixels as a mask: one channel, 1 where the camera sees a surface, 0 elsewhere
+// (the error over the covered pixels, mse_covered ..., is measured on it).
+Image coverage_mask(const Image& positions);
+
 }  // namespace ldm

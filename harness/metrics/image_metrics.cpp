@@ -135,6 +135,51 @@ ImageComparison compare_images(const Image& reference, const Image& test,
   return result;
 }
 
+CoveredComparison compare_covered(const Image& reference, const Image& test,
+                                  const ImageComparison& whole, const Image& mask) {
+  if (mask.channels != 1 || mask.width != reference.width || mask.height != reference.height ||
+      !reference.same_shape(test))
+    throw UserError("coverage mask is " + shape_string(mask) + ", the images " +
+                    shape_string(reference) + " and " + shape_string(test) +
+                    " (expected one channel of the images' size)");
+  CoveredComparison out;
+  const int channels = reference.channels;
+  std::vector<double> squared(size_t(channels), 0.0), lowest(size_t(channels), INFINITY),
+      highest(size_t(channels), -INFINITY);
+  uint64_t covered = 0;
+  double ssim_sum = 0.0;
+  uint64_t ssim_pixels = 0;
+  for (int y = 0; y < reference.height; ++y)
+    for (int x = 0; x < reference.width; ++x) {
+      if (mask.at(x, y) == 0.0f) continue;
+      ++covered;
+      for (int c = 0; c < channels; ++c) {
+        const double d = double(reference.at(x, y, c)) - double(test.at(x, y, c));
+        squared[size_t(c)] += d * d;
+        lowest[size_t(c)] = std::min(lowest[size_t(c)], double(reference.at(x, y, c)));
+        highest[size_t(c)] = std::max(highest[size_t(c)], double(reference.at(x, y, c)));
+      }
+      const bool in_crop = x >= kSsimWindowRadius && y >= kSsimWindowRadius &&
+                           x < reference.width - kSsimWindowRadius &&
+                           y < reference.height - kSsimWindowRadius;
+      if (in_crop) {
+        ssim_sum += whole.ssim_map.at(x, y);
+        ++ssim_pixels;
+      }
+    }
+  if (covered == 0) return {kNaN, kNaN, kNaN};
+  std::vector<double> mse(static_cast<size_t>(channels)), nrmse(static_cast<size_t>(channels));
+  for (int c = 0; c < channels; ++c) {
+    mse[size_t(c)] = squared[size_t(c)] / double(covered);
+    const double range = highest[size_t(c)] - lowest[size_t(c)];
+    nrmse[size_t(c)] = range > 0.0 ? std::sqrt(mse[size_t(c)]) / range : kNaN;
+  }
+  out.mse = mean_of(mse);
+  out.nrmse = mean_of_defined(nrmse);
+  out.mssim = ssim_pixels > 0 ? ssim_sum / double(ssim_pixels) : kNaN;
+  return out;
+}
+
 double luminance(const Image& image, int x, int y) {
   if (image.channels == 1) return image.at(x, y);
   if (image.channels == 3 || image.channels == 4)

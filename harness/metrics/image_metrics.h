@@ -59,6 +59,23 @@ ImageComparison compare_images(const Image& reference, const Image& test,
 // any, is ignored). Other channel counts throw UserError.
 double luminance(const Image& image, int x, int y);
 
+// The errors over the covered pixels alone (mask != 0: where the camera sees a surface), so
+// that an object covering a small share of the image is not diluted by background pixels
+// both images agree on:
+//   MSE     mean over covered pixels and channels of (I - K)^2;
+//   NRMSE   per channel sqrt(MSE_c over covered) / (range of I_c over covered), averaged over
+//           the channels where that range is not 0 (NaN when it is 0 in every channel);
+//   MSSIM   mean of `whole.ssim_map` over the covered pixels inside the crop MSSIM uses
+//           (kSsimWindowRadius on every side), so that with every pixel covered it equals
+//           `whole.mssim` (to the map's float precision); the SSIM windows still see the neighbouring background.
+// NaN for each when no pixel (or no pixel inside the crop, for MSSIM) is covered. `mask`:
+// one channel, the images' size (UserError otherwise).
+struct CoveredComparison {
+  double mse = 0.0, nrmse = 0.0, mssim = 0.0;
+};
+CoveredComparison compare_covered(const Image& reference, const Image& test,
+                                  const ImageComparison& whole, const Image& mask);
+
 // The exposure that maps the reference's 99th-percentile luminance to 1, so that a few hot
 // pixels (fireflies, light sources) do not darken the whole image before SSIM's clamp. The
 // percentile is numpy's default ('linear'): with the n luminances sorted ascending as L[i],

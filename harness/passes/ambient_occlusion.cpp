@@ -90,6 +90,8 @@ std::vector<std::string> AmbientOcclusion::warnings() const {
   return {};
 }
 
+Image AmbientOcclusion::coverage() const { return coverage_mask(gbuffer_->read_positions()); }
+
 std::vector<std::pair<std::string, RecordValue>> AmbientOcclusion::results() const {
   // Eq. 13 may exceed 1 (a quadrature of the cosine): say how far, over covered pixels.
   const AoRange range = ao_range(ao_->read_image(), gbuffer_->read_positions());

@@ -34,6 +34,7 @@ class AmbientOcclusion : public Pass {
   void render(GpuTimer* timer) override;
   std::vector<PassImage> images() const override;
   std::vector<std::pair<std::string, RecordValue>> results() const override;
+  Image coverage() const override;
   std::vector<std::string> warnings() const override;
   std::vector<std::string> problems() const override;
   ReferenceResult reference(const Scene& scene, int width, int height,

@@ -169,6 +169,8 @@ std::vector<BufferMemory> Gtao::memory() const {
   return targets;
 }
 
+Image Gtao::coverage() const { return coverage_mask(gbuffer_->read_positions()); }
+
 std::vector<std::pair<std::string, RecordValue>> Gtao::results() const {
   const Image positions = gbuffer_->read_positions();
   const AoRange range = ao_range(images().front().image, positions);

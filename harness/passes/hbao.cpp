@@ -152,6 +152,8 @@ std::vector<BufferMemory> Hbao::memory() const {
   return targets;
 }
 
+Image Hbao::coverage() const { return coverage_mask(gbuffer_->read_positions()); }
+
 std::vector<std::pair<std::string, RecordValue>> Hbao::results() const {
   const AoRange range = ao_range(images().front().image, gbuffer_->read_positions());
   return {{"ao_max", range.max},

@@ -40,6 +40,7 @@ class Hbao : public Pass {
   void render(GpuTimer* timer) override;
   std::vector<PassImage> images() const override;
   std::vector<std::pair<std::string, RecordValue>> results() const override;
+  Image coverage() const override;
   std::vector<BufferMemory> memory() const override;
   ReferenceResult reference(const Scene& scene, int width, int height,
                             const ReferenceSettings& settings) const override;

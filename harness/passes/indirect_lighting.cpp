@@ -200,6 +200,8 @@ std::vector<PassImage> IndirectLighting::images() const {
           {"sum", lighting_->read_sum()}};
 }
 
+Image IndirectLighting::coverage() const { return coverage_mask(gbuffer_->read_positions()); }
+
 std::vector<std::pair<std::string, RecordValue>> IndirectLighting::results() const {
   const PhotonCounts c = lighting_->counts();
   std::vector<std::pair<std::string, RecordValue>> out = {

@@ -42,6 +42,7 @@ class IndirectLighting : public Pass {
   void render(GpuTimer* timer) override;
   std::vector<PassImage> images() const override;
   std::vector<std::pair<std::string, RecordValue>> results() const override;
+  Image coverage() const override;
   std::string loss() const override;
   std::vector<std::string> problems() const override;
   std::vector<BufferMemory> memory() const override;

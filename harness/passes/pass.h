@@ -94,6 +94,10 @@ class Pass {
   virtual std::vector<PassImage> images() const = 0;
   // Record fields computed from the last render() (e.g. AO's range of values); none by default.
   virtual std::vector<std::pair<std::string, RecordValue>> results() const { return {}; }
+  // The pixels of the last render() where the camera sees a surface (one channel, 1 or 0:
+  // covered_pixel_fraction's pixels), over which mse_covered, nrmse_covered and
+  // mssim_covered are measured; empty (not measured) by default.
+  virtual Image coverage() const { return {}; }
   // Settings that run but are known to give a biased image, one sentence each, for the
   // record's status_detail; none by default.
   virtual std::vector<std::string> warnings() const { return {}; }

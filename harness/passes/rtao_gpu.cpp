@@ -344,6 +344,8 @@ std::vector<PassImage> RtaoGpu::images() const {
   return {{"ao", image_from_gl_rows(ao_target_.read_floats(1), width_, height_, 1)}};
 }
 
+Image RtaoGpu::coverage() const { return coverage_mask(read_positions()); }
+
 std::vector<std::pair<std::string, RecordValue>> RtaoGpu::results() const {
   const RtaoGpuWork& w = work();
   return {{"rtao_gpu_bvh_ms", bvh_.build_ms},

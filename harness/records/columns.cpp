@@ -1,6 +1,7 @@
 #include "harness/records/columns.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <sstream>
 
 namespace ldm {
@@ -159,6 +160,9 @@ std::vector<ColumnSpec> main_columns() {
       {"accuracy", "nrmse", "", "sqrt(MSE) over the reference's range"},
       {"accuracy", "psnr", "dB", "peak signal-to-noise ratio with the reference's peak"},
       {"accuracy", "mssim", "", "mean SSIM (Wang et al. 2004, skimage's Gaussian variant)"},
+      {"accuracy", "mse_covered", "", "mse over the covered pixels alone (covered_pixel_fraction's: where the camera sees a surface), not diluted by the background"},
+      {"accuracy", "nrmse_covered", "", "sqrt(mse_covered) over the reference's range on the covered pixels"},
+      {"accuracy", "mssim_covered", "", "mean of the SSIM map over the covered pixels (inside mssim's 5-pixel crop)"},
       {"accuracy", "ssim_exposure", "", "exposure scale applied before SSIM (1 for AO)"},
       {"accuracy", "mse_over_noise", "", "mse over ref_noise_mse: how far the error stands above the reference's noise"},
       {"accuracy", "bias", "", "mean of image - reference over every pixel and channel (the error's systematic part; bias^2 is the MSE averaging cannot remove)"},
@@ -199,6 +203,56 @@ const ColumnSpec* find_column_in(const std::vector<ColumnSpec>& columns, const s
   for (const auto& c : columns)
     if (matches(c.name, column)) return &c;
   return nullptr;
+}
+
+const std::vector<ColumnLabel>& column_labels() {
+  static const std::vector<ColumnLabel> labels = {
+      {"config_id", "configuration"},
+      {"status", "status"},
+      {"build_ms_median", "build ms", -1},
+      {"pass_ms_median", "pass ms", -1},
+      {"frame_ms_median", "frame ms", -1},
+      {"bytes_allocated", "MiB allocated", -1, 1.0 / (1024.0 * 1024.0)},
+      {"bytes_used", "MiB used", -1, 1.0 / (1024.0 * 1024.0)},
+      {"mse", "MSE", -1},
+      {"nrmse", "NRMSE", -1},
+      {"mssim", "MSSIM", +1},
+      {"mse_covered", "MSE covered", -1},
+      {"nrmse_covered", "NRMSE covered", -1},
+      {"mssim_covered", "MSSIM covered", +1},
+      {"mse_over_noise", "MSE / ref noise", -1},
+      {"ref_noise_mse", "ref noise MSE", -1},
+      {"covered_pixel_fraction", "covered share", 0},
+  };
+  return labels;
+}
+
+const ColumnLabel& column_label(const std::string& column) {
+  for (const auto& l : column_labels())
+    if (l.column == column) return l;
+  static thread_local ColumnLabel unnamed;
+  unnamed = {column, column};
+  return unnamed;
+}
+
+std::string column_heading(const std::string& column) {
+  const ColumnLabel& l = column_label(column);
+  return l.label + (l.better < 0 ? " ↓" : l.better > 0 ? " ↑" : "");
+}
+
+std::string column_labels_json() {
+  std::ostringstream out;
+  out << "{\n  \"arrows\": {\"lower\": \"↓\", \"higher\": \"↑\"},\n  \"columns\": [\n";
+  const auto& labels = column_labels();
+  for (size_t i = 0; i < labels.size(); ++i) {
+    char scale[32];
+    std::snprintf(scale, sizeof scale, "%.17g", labels[i].scale);
+    out << "    {\"column\": \"" << labels[i].column << "\", \"label\": \"" << labels[i].label
+        << "\", \"better\": " << labels[i].better << ", \"scale\": " << scale << "}"
+        << (i + 1 < labels.size() ? "," : "") << "\n";
+  }
+  out << "  ]\n}\n";
+  return out.str();
 }
 
 std::string columns_markdown(const std::vector<ColumnSpec>& columns) {

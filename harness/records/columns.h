@@ -21,6 +21,23 @@ struct ColumnSpec {
 };
 
 const std::vector<ColumnSpec>& harness_record_columns();
+
+// The short names the console's end-of-run table, the report (scripts/report/ldmreport/
+// labels.json, generated from `ldmbench columns --labels`) and the docs give the headline
+// columns, and which way is better: one vocabulary. `scale` turns the column's unit into the
+// label's (bytes -> MiB).
+struct ColumnLabel {
+  std::string column, label;
+  int better = 0;  // -1 lower is better, +1 higher is better, 0 neither
+  double scale = 1.0;
+};
+const std::vector<ColumnLabel>& column_labels();
+// The label of `column` ("MSE" for mse), the column's own name when it has none.
+const ColumnLabel& column_label(const std::string& column);
+// The label with its direction: "MSE ↓", "MSSIM ↑", "configuration".
+std::string column_heading(const std::string& column);
+// The labels as JSON ({"columns": [{"column", "label", "better", "scale"}...], "arrows"}).
+std::string column_labels_json();
 // The spec in `columns` describing `column` (exact names first, then patterns), or null.
 const ColumnSpec* find_column_in(const std::vector<ColumnSpec>& columns, const std::string& column);
 // The records table (Markdown) and the plain listing of `ldmbench columns`.

@@ -142,7 +142,8 @@ def cross_platform_note(table):
 def runs_info_from_runs(runs):
     return [{"label": r.label, "records_file": r.records_file,
              "records": len(r.rows), **{k: str(r.metadata.get(k, "")) for k in
-                                         ("device", "gl_driver", "git_commit", "command")}} for r in runs]
+                                         ("device", "gl_driver", "git_commit", "command", "started",
+                                          "resumed_records")}} for r in runs]
 
 
 def runs_info_from_table(table, tidy_path):

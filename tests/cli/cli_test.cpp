@@ -210,6 +210,8 @@ TEST(Cli, BadInputIsRejectedBeforeAnythingIsWritten) {
   expect_rejected("--scene nosuchscene", "nosuchscene");
   expect_rejected("--scene cornell --trace nearest", "--trace");
   expect_rejected("--scene cornell --ao-estimator mean", "--ao-estimator");
+  // Every unknown name of a list at once, not only the first (issue 37).
+  expect_rejected("--scene cornell --structure ppsll,foo,bar", "unknown structures 'foo', 'bar'");
 }
 
 // --gpu and LDM_GPU (issue 31): a bad value names its source, a GPU no device answers lists

@@ -35,6 +35,17 @@ TEST(Columns, DocsTableIsTheSchema) {
          "(`build/ldmbench columns --markdown`)";
 }
 
+// The report's labels are the console's (one vocabulary), and each labels a real column.
+TEST(Columns, ReportLabelsAreTheSchemas) {
+  const fs::path path = fs::path(LDM_TEST_SOURCE_DIR) / ".." / "scripts" / "report" / "ldmreport" / "labels.json";
+  EXPECT_EQ(read_file(path), column_labels_json())
+      << "regenerate scripts/report/ldmreport/labels.json with scripts/update_docs.py";
+  for (const auto& label : column_labels()) EXPECT_NE(find_column(label.column), nullptr) << label.column;
+  EXPECT_EQ(column_heading("mse"), "MSE ↓");
+  EXPECT_EQ(column_heading("mssim_covered"), "MSSIM covered ↑");
+  EXPECT_EQ(column_heading("config_id"), "configuration");
+}
+
 TEST(Columns, PatternsMatchOnlyTheirOwnColumns) {
   ASSERT_NE(find_column("counter_pool_rebuilds"), nullptr);
   EXPECT_EQ(find_column("counter_pool_rebuilds")->name, "counter_<name>");

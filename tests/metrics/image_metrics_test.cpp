@@ -156,6 +156,45 @@ TEST(ImageMetrics, ConstantImagesGiveFiniteSsim) {
   EXPECT_EQ(compare_images(Image(16, 16, 1, 0.0f), Image(16, 16, 1, 0.0f), kDefaults).mssim, 1.0);
 }
 
+// The error over the covered pixels (compare_covered): a 16x16 image whose left 4 columns
+// are background, identical in both images; the covered pixels differ by +-1/8 or 3/8.
+TEST(ImageMetrics, CoveredErrorIsOverTheCoveredPixelsAlone) {
+  const Image mask = make_image(16, 16, 1, [](int x, int, int) { return x >= 4 ? 1.0f : 0.0f; });
+  const Image reference = make_image(16, 16, 1, [](int x, int y, int) {
+    return x < 4 ? 0.0f : float((x + y) % 5) / 4.0f;
+  });
+  const Image test = make_image(16, 16, 1, [&](int x, int y, int) {
+    if (x < 4) return 0.0f;
+    return reference.at(x, y) + (y % 2 == 0 ? 0.125f : -0.375f);
+  });
+  const ImageComparison whole = compare_images(reference, test, kDefaults);
+  const CoveredComparison covered = compare_covered(reference, test, whole, mask);
+  // Covered: 12 x 16 = 192 pixels, half at (1/8)^2 = 1/64, half at (3/8)^2 = 9/64: the mean is
+  // 5/64. Over the whole image the 64 background pixels add nothing: 192/256 x 5/64 = 15/256.
+  EXPECT_EQ(covered.mse, 5.0 / 64.0);
+  EXPECT_EQ(whole.mse, 15.0 / 256.0);
+  // NRMSE: sqrt(5/64) over the reference's range on the covered pixels, 1 - 0.
+  EXPECT_DOUBLE_EQ(covered.nrmse, std::sqrt(5.0 / 64.0));
+  // MSSIM: the map's mean over covered pixels inside the 5-pixel crop (x in [5, 10], y in
+  // [5, 10]: 6 x 6 pixels), by hand from the map.
+  double sum = 0;
+  for (int y = 5; y <= 10; ++y)
+    for (int x = 5; x <= 10; ++x) sum += whole.ssim_map.at(x, y);
+  EXPECT_DOUBLE_EQ(covered.mssim, sum / 36.0);
+  EXPECT_NE(covered.mssim, whole.mssim);
+  // Every pixel covered: the whole image's numbers (the MSSIM to the map's float precision).
+  const Image all = make_image(16, 16, 1, [](int, int, int) { return 1.0f; });
+  const CoveredComparison every = compare_covered(reference, test, whole, all);
+  EXPECT_EQ(every.mse, whole.mse);
+  EXPECT_DOUBLE_EQ(every.nrmse, whole.nrmse);
+  EXPECT_NEAR(every.mssim, whole.mssim, 1e-6);
+  // No pixel covered: nothing to measure.
+  const Image none = make_image(16, 16, 1, [](int, int, int) { return 0.0f; });
+  EXPECT_TRUE(std::isnan(compare_covered(reference, test, whole, none).mse));
+  const Image small = make_image(8, 8, 1, [](int, int, int) { return 1.0f; });
+  expect_user_error([&] { compare_covered(reference, test, whole, small); }, {"coverage mask is 8x8x1"});
+}
+
 TEST(ImageMetrics, ShapeMismatchNamesBothShapes) {
   expect_user_error([] { compare_images(Image(16, 16, 3), Image(16, 12, 3), kDefaults); },
                     {"reference is 16x16x3", "test is 16x12x3"});

@@ -193,6 +193,33 @@ class Grids(unittest.TestCase):
         self.assertEqual([g.exposure for g in groups if g.passes == ["indirect"]], [25.0])
 
 
+class Warnings(unittest.TestCase):
+    """Issue 37: the page says first when its intervals cover one run only, or a run was resumed."""
+
+    def test_single_repetition_and_resumed_runs_are_named(self):
+        once = table([record(config_id="a", repetitions=1), record(config_id="b", repetitions=1)])
+        said = pages.warnings(once, [{"label": "run1", "resumed_records": "2", "started": "t0"}])
+        self.assertTrue(any("2 of 2 records were measured in one repetition" in w and
+                            "not between runs" in w for w in said), said)
+        self.assertTrue(any("run run1 was resumed" in w and "t0" in w for w in said), said)
+        widened = table([record(config_id="a", repetitions=1, time_run_to_run_spread=0.2)])
+        said = pages.warnings(widened, [])
+        self.assertTrue(any("widened by the machine's calibrated run-to-run spread" in w for w in said), said)
+        self.assertFalse(any("not between runs" in w for w in said), said)
+        repeated = table([record(config_id="a", repetitions=3)])
+        self.assertEqual(pages.warnings(repeated, [{"label": "run1", "resumed_records": "0"}]), [])
+
+
+class SceneNames(unittest.TestCase):
+    """Issue 37: a scene file is shown (titles, groups, file names) by its name, not its path."""
+
+    def test_a_scene_file_is_shown_by_its_name(self):
+        t = table([record(scene="/usr/share/assimp/models/FBX/cubes_with_names.fbx",
+                          scene_name="cubes_with_names")])
+        self.assertEqual(list(t.text("scene")), ["cubes_with_names"])
+        self.assertTrue(all("/usr/share" not in label for label, _ in pages.ranking_groups(t)))
+
+
 class FrontTable(unittest.TestCase):
     """Item 5: per scene the non-dominated configurations (time, memory, error), ties shown."""
 

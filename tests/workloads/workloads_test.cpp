@@ -177,6 +177,30 @@ TEST(Workloads, DegenerateMeasurementsAreFlaggedAndNeverRanked) {
     EXPECT_NE(panels.find(scene), std::string::npos) << panels;
 }
 
+// The error over the covered pixels on a model that covers part of the image: the
+// background is the same in both images, so mse is mse_covered scaled by the covered share;
+// the console shows the columns with which way is better.
+TEST(Workloads, ErrorOverTheCoveredPixels) {
+  const fs::path dir = test::make_temp_dir("ldm-workloads");
+  write_file(dir, "tri.ply", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                             "property float z\nelement face 2\nproperty list uchar int vertex_indices\n"
+                             "end_header\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n3 0 2 3\n");
+  const RunResult r = run("--scene " + (dir / "tri.ply").string() + " -N 4 -R 32 --width 32 --height 32 "
+                          "--reference-spp 16 --cache-dir " + test::make_temp_dir("ldm-cache"));
+  ASSERT_EQ(r.outcome.status, 0) << r.outcome.output;
+  const json& record = r.records.at(0);
+  const double covered = record["covered_pixel_fraction"].get<double>();
+  ASSERT_GT(covered, 0.0);
+  ASSERT_LT(covered, 1.0);
+  EXPECT_GT(record["mse_covered"].get<double>(), record["mse"].get<double>());
+  EXPECT_NEAR(record["mse_covered"].get<double>() * covered, record["mse"].get<double>(),
+              1e-12 + 1e-9 * record["mse"].get<double>());
+  EXPECT_TRUE(record.contains("nrmse_covered"));
+  EXPECT_NE(record["mssim_covered"].get<double>(), record["mssim"].get<double>());
+  EXPECT_NE(r.outcome.output.find("MSE covered ↓"), std::string::npos) << r.outcome.output;
+  EXPECT_NE(r.outcome.output.find("MSSIM covered ↑"), std::string::npos) << r.outcome.output;
+}
+
 TEST(Workloads, AMeshFileIsAScene) {
   const fs::path dir = test::make_temp_dir("ldm-workloads");
   write_file(dir, "tri.ply", "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"

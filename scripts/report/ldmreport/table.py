@@ -83,6 +83,12 @@ class Table:
     def __init__(self, columns, rows, extra_axes=()):
         self.columns = list(columns)
         self.df = pd.DataFrame(rows, columns=self.columns).fillna("")
+        # Titles, groups and file names show a scene file by its name (scene_name:
+        # "cubes_with_names", not /usr/share/assimp/models/FBX/cubes_with_names.fbx);
+        # tidy.csv keeps the --scene value (runs.py writes the rows, not this table).
+        if self.has("scene") and self.has("scene_name"):
+            named = self.df["scene_name"].astype(str) != ""
+            self.df.loc[named, "scene"] = self.df.loc[named, "scene_name"]
         self.extra_axes = [a for a in extra_axes if a not in declared().columns]
 
     def __len__(self):
