@@ -39,7 +39,18 @@ def method(row):
         return row["structure"]
     if row["pass"] == "rtao":
         return f"rtao (peer, {row.get('rtao_spp') or '1'} spp, CPU)"
+    if row["pass"] == "rtao_gpu":
+        return f"rtao_gpu (peer, {row.get('rtao_gpu_spp') or '1'} spp)"
     return f"{row['pass']} (peer)"
+
+
+def build(row):
+    """An LDM structure's build per frame; GPU RTAO's BVH build (CPU wall time, once per
+    static scene, so not in its frame) in parentheses; '–' for a peer that builds nothing."""
+    if row["pass"] == "ao":
+        return timed(row, "build")
+    bvh = number(row, "rtao_gpu_bvh_ms")
+    return f"({bvh:.2g} ms BVH, once)" if row["pass"] == "rtao_gpu" and bvh is not None else "–"
 
 
 def measured_with(rows):
@@ -62,7 +73,7 @@ def main(path):
         # peer has no build, and its whole frame is its query.
         query = timed(r, "pass") if ldm else timed(r, "frame")
         allocated, used = number(r, "bytes_allocated"), number(r, "bytes_used")
-        print(f"| {r['scene']} | {method(r)} | {r['status']} | {timed(r, 'build') if ldm else '–'} | {query} "
+        print(f"| {r['scene']} | {method(r)} | {r['status']} | {build(r)} | {query} "
               f"| {timed(r, 'frame')} | {fmt(None if allocated is None else allocated / MIB)} "
               f"| {fmt(None if used is None else used / MIB)} | {fmt(number(r, 'mse'))} "
               f"| {fmt(number(r, 'mssim'))} | {fmt(number(r, 'ref_noise_mse'), 2)} |")
