@@ -18,7 +18,6 @@ Usage: advise_vs_exhaustive.py --ldmbench BIN --space FILE --out DIR [--scene S]
 """
 import argparse
 import json
-import math
 import os
 import subprocess
 import sys

@@ -2,13 +2,13 @@
 """Prints the AO estimator table of docs/measured/trace-variants.md from a run of
 docs/measured/ao-estimator/sweep.json: per scene and estimator, the MSE against the
 reference at every N, and the ratio normalized / eq13 (below 1: normalized is better)."""
-import csv
 import sys
 from collections import defaultdict
+import ldmrecords
 
 
 def main(path):
-    rows = list(csv.DictReader(open(path)))
+    rows = ldmrecords.read(path)
     mse = defaultdict(dict)
     noise = {}
     views = sorted({int(r["n_views"]) for r in rows})

@@ -15,6 +15,7 @@ import sys
 
 import numpy as np
 import pandas as pd
+import ldmrecords
 
 
 def fit(x, y):
@@ -23,7 +24,7 @@ def fit(x, y):
 
 
 def main(path):
-    records = pd.read_csv(path)
+    records = ldmrecords.dataframe(path)
     records = records[records["status"] == "ok"]
     rows = []
     for structure, group in records.groupby("structure", sort=False):

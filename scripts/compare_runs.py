@@ -17,6 +17,7 @@ import os
 import re
 import subprocess
 import sys
+import ldmrecords
 
 # Columns that differ between two runs of the same build, or between two builds by design.
 VOLATILE = re.compile(
@@ -27,9 +28,9 @@ VOLATILE = re.compile(
 
 
 def read_records(folder):
-    with open(os.path.join(folder, "records.csv"), newline="") as f:
-        rows = list(csv.reader(f))
-    return rows[0], [dict(zip(rows[0], row)) for row in rows[1:]]
+    with open(ldmrecords.records_path(folder), newline="") as f:
+        header = next(csv.reader(f))
+    return header, ldmrecords.read(folder)
 
 
 def same_image(a, b, ldmbench):

@@ -15,26 +15,20 @@ with the reference's own noise (ref_noise_mse) beside it; a method with no confi
 within a budget shows "-". Prints Markdown.
 """
 import argparse
-import csv
 import math
 import sys
 from collections import defaultdict
+import ldmrecords
+from ldmrecords import value
 
 METHODS = [  # (label, pass, frame time of a record)
-    ("LDM AO (best structure)", "ao", lambda r: num(r, "frame_ms_median")),
-    ("HBAO", "hbao", lambda r: num(r, "frame_ms_median")),
-    ("GTAO", "gtao", lambda r: num(r, "frame_ms_median")),
-    ("GPU RTAO", "rtao_gpu", lambda r: num(r, "frame_ms_median")),
-    ("GPU RTAO + BVH build", "rtao_gpu", lambda r: num(r, "frame_ms_median") + num(r, "rtao_gpu_bvh_ms")),
+    ("LDM AO (best structure)", "ao", lambda r: value(r, "frame_ms_median")),
+    ("HBAO", "hbao", lambda r: value(r, "frame_ms_median")),
+    ("GTAO", "gtao", lambda r: value(r, "frame_ms_median")),
+    ("GPU RTAO", "rtao_gpu", lambda r: value(r, "frame_ms_median")),
+    ("GPU RTAO + BVH build", "rtao_gpu", lambda r: value(r, "frame_ms_median") + value(r, "rtao_gpu_bvh_ms")),
 ]
 GTAO_DEFAULT = {"gtao_slices": 8, "gtao_steps": 16}  # harness/passes/gtao.h's defaults
-
-
-def num(row, key):
-    try:
-        return float(row.get(key, ""))
-    except ValueError:
-        return math.nan
 
 
 def unit_time(rows, reference_config):
@@ -44,11 +38,11 @@ def unit_time(rows, reference_config):
         chosen = [r for r in gtao if reference_config in r["config_id"]]
     else:
         # The defaults, read from the records' own parameter columns.
-        chosen = [r for r in gtao if num(r, "gtao_slices") == GTAO_DEFAULT["gtao_slices"]
-                  and num(r, "gtao_steps") == GTAO_DEFAULT["gtao_steps"]]
+        chosen = [r for r in gtao if value(r, "gtao_slices") == GTAO_DEFAULT["gtao_slices"]
+                  and value(r, "gtao_steps") == GTAO_DEFAULT["gtao_steps"]]
     if not chosen:
         return None, None
-    return num(chosen[0], "frame_ms_median"), chosen[0]["config_id"]
+    return value(chosen[0], "frame_ms_median"), chosen[0]["config_id"]
 
 
 def short(config_id, scene):
@@ -58,7 +52,7 @@ def short(config_id, scene):
 def table(rows, factors, reference_config):
     by_scene = defaultdict(list)
     for r in rows:
-        if r.get("status") == "ok" and math.isfinite(num(r, "mse")):
+        if r.get("status") == "ok" and math.isfinite(value(r, "mse")):
             by_scene[r["scene_name"] or r["scene"]].append(r)
     out = []
     for scene, srows in by_scene.items():
@@ -66,7 +60,7 @@ def table(rows, factors, reference_config):
         if unit is None or not math.isfinite(unit):
             out.append(f"{scene}: no GTAO record at its defaults to set the unit of time; skipped\n")
             continue
-        noise = min((num(r, "ref_noise_mse") for r in srows if math.isfinite(num(r, "ref_noise_mse"))),
+        noise = min((value(r, "ref_noise_mse") for r in srows if math.isfinite(value(r, "ref_noise_mse"))),
                     default=math.nan)
         out.append(f"**{scene}**: unit = GTAO at its defaults ({short(unit_id, scene)}), {unit:.3g} ms a frame; "
                    f"the reference's noise {noise:.2g} in MSE.\n")
@@ -79,8 +73,8 @@ def table(rows, factors, reference_config):
                 if not within:
                     cells.append("-")
                     continue
-                best = min(within, key=lambda r: num(r, "mse"))
-                cells.append(f"{num(best, 'mse'):.3g} ({short(best['config_id'], scene)}, {frame(best):.3g} ms)")
+                best = min(within, key=lambda r: value(r, "mse"))
+                cells.append(f"{value(best, 'mse'):.3g} ({short(best['config_id'], scene)}, {frame(best):.3g} ms)")
             out.append(f"| {label} | " + " | ".join(cells) + " |")
         out.append("")
     return "\n".join(out)
@@ -92,8 +86,7 @@ def main():
     p.add_argument("--reference-config", default="")
     p.add_argument("--factors", default="1,2,4")
     a = p.parse_args()
-    with open(a.records, newline="", encoding="utf-8") as f:
-        rows = list(csv.DictReader(f))
+    rows = ldmrecords.read(a.records)
     factors = [float(x) for x in a.factors.split(",")]
     text = table(rows, factors, a.reference_config)
     if not text.strip():

@@ -16,17 +16,11 @@ Usage: scripts/gtao_rtao_gpu_tables.py headline|beside|floor|bvh|fit RECORDS.csv
 
 Reads the CSV alone (docs/measured/gtao-rtao-gpu/headline-llvmpipe.csv).
 """
-import csv
 import math
 import os
 import sys
-
-
-def number(row, key):
-    try:
-        return float(row.get(key, ""))
-    except ValueError:
-        return None
+import ldmrecords
+from ldmrecords import number
 
 
 def scene(row):
@@ -189,8 +183,7 @@ def main():
     commands = {"headline": headline, "beside": beside, "floor": floor, "bvh": bvh, "fit": fit}
     if len(sys.argv) != 3 or sys.argv[1] not in commands:
         sys.exit(__doc__)
-    with open(sys.argv[2], newline="") as f:
-        rows = [r for r in csv.DictReader(f) if r["status"] == "ok"]
+    rows = ldmrecords.with_status(ldmrecords.read(sys.argv[2]), "ok")
     commands[sys.argv[1]](rows)
 
 

@@ -22,6 +22,7 @@ import math
 import os
 import subprocess
 import sys
+import ldmrecords
 
 ROOT = os.path.normpath(os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
 SCENES = ["cornell", "atrium"] + [os.path.join(ROOT, "scenes", f + ".json") for f in
@@ -65,15 +66,13 @@ KEPT = ["block", "scene", "status", "mse", "mssim", "ref_noise_mse"]
 def block_rows(out):
     """{block: [record]} from a folder of runs or from a collected CSV."""
     if out.endswith(".csv"):
-        with open(out, newline="") as f:
-            rows = list(csv.DictReader(f))
+        rows = ldmrecords.read(out)
         return {b: [r for r in rows if r["block"] == b] for b in BLOCKS}
     blocks = {}
     for block in BLOCKS:
         path = os.path.join(out, block, "records.csv")
         if os.path.exists(path):
-            with open(path, newline="") as f:
-                blocks[block] = [dict(r, block=block) for r in csv.DictReader(f)]
+            blocks[block] = [dict(r, block=block) for r in ldmrecords.read(path)]
     return blocks
 
 

@@ -14,6 +14,7 @@ import sys
 from pathlib import Path
 
 import pandas as pd
+import ldmrecords
 
 # A frame's timed work: its "frame" sum (every sub-pass but the baselines) and the baselines.
 TIMED = {"frame", "raster_baseline", "raster_touch"}
@@ -35,7 +36,7 @@ def main(argv):
         label, _, rest = arg.partition("=")
         path, _, wall = rest.partition(":")
         run = Path(path)
-        records = pd.read_csv(run / "records.csv")
+        records = ldmrecords.dataframe(run)
         runs[label] = records.set_index("config_id")
         timed = timed_ms(run, records) / 1000
         verify = records.get("verify_ms", pd.Series(dtype=float)).sum() / 1000

@@ -7,16 +7,9 @@ One row per record, in the file's order: fragments and depth complexity from the
 build and AO medians, the build over both raster baselines, memory and accuracy. Reads the
 CSV alone, so the table regenerates from a committed run.
 """
-import csv
 import sys
-
-
-def number(row, key):
-    value = row.get(key, "")
-    try:
-        return float(value)
-    except ValueError:
-        return None
+import ldmrecords
+from ldmrecords import number
 
 
 def fmt(value, spec):
@@ -24,8 +17,7 @@ def fmt(value, spec):
 
 
 def main(path):
-    with open(path, newline="") as f:
-        rows = list(csv.DictReader(f))
+    rows = ldmrecords.read(path)
     print("| scene | structure | status | fragments (max depth) | build ms | × raster touch "
           "| AO ms | allocated MiB | used MiB | MSE | MSSIM |")
     print("| --- | --- | --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |")

@@ -11,18 +11,12 @@ deposited flux over it.
 
 usage: scripts/indirect_energy_table.py RECORDS_CSV [--sphere-radius R] [KEY=VALUE ...]
   KEY=VALUE: the base point's columns where they differ from N=32, R_LDM=64, R_light=64, s=4"""
-import csv
 import math
 import sys
+import ldmrecords
+from ldmrecords import value
 
 BASE = {"n_views": "32", "r_ldm": "64", "r_light": "64", "splat_scale": "4"}
-
-
-def f(r, k):
-    try:
-        return float(r[k])
-    except (KeyError, ValueError):
-        return float("nan")
 
 
 def varied(r, base):
@@ -31,27 +25,27 @@ def varied(r, base):
 
 
 def main(path, base, radius):
-    rows = [r for r in csv.DictReader(open(path)) if r["status"] in ("ok", "lossy")]
+    rows = ldmrecords.with_status(ldmrecords.read(path), "ok", "lossy")
     print("| configuration | emission | mean ratio ± 2 SE | MSE / noise | bias² / MSE | emitted / ρΦ₁ "
           "| stored | escaped | outside | hidden | backside | deposited / stored | unseen | clipped by a | outside quad | area gain |"
           + (" stored / ideal | deposited / ideal |" if radius else ""))
     print("| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
           + (" ---: | ---: |" if radius else ""))
     for r in rows:
-        e = f(r, "flux_emitted")
-        s = f(r, "flux_stored")
+        e = value(r, "flux_emitted")
+        s = value(r, "flux_stored")
         cells = [varied(r, base), r.get("emission", ""),
-                 f"{f(r, 'mean_ratio'):.4f} ± {2 * f(r, 'mean_ratio_se'):.4f}",
-                 f"{f(r, 'mse_over_noise'):.1f}", f"{f(r, 'bias_share'):.2f}",
-                 f"{e / f(r, 'flux_reflected'):.3f}"]
-        cells += [f"{f(r, k) / e:.3f}" for k in ("flux_stored", "flux_escaped", "flux_culled_outside",
+                 f"{value(r, 'mean_ratio'):.4f} ± {2 * value(r, 'mean_ratio_se'):.4f}",
+                 f"{value(r, 'mse_over_noise'):.1f}", f"{value(r, 'bias_share'):.2f}",
+                 f"{e / value(r, 'flux_reflected'):.3f}"]
+        cells += [f"{value(r, k) / e:.3f}" for k in ("flux_stored", "flux_escaped", "flux_culled_outside",
                                                   "flux_culled_hidden", "flux_culled_backside")]
-        cells += [f"{f(r, 'flux_deposited') / s:.3f}"]
-        cells += [f"{f(r, k) / s:.3f}" for k in ("flux_splat_unseen", "flux_splat_clipped",
+        cells += [f"{value(r, 'flux_deposited') / s:.3f}"]
+        cells += [f"{value(r, k) / s:.3f}" for k in ("flux_splat_unseen", "flux_splat_clipped",
                                                   "flux_splat_outside_quad", "flux_splat_surface_area")]
         if radius:
-            ideal = f(r, "flux_reflected") * f(r, "visible_area") / (4 * math.pi * radius * radius)
-            cells += [f"{s / ideal:.3f}", f"{f(r, 'flux_deposited') / ideal:.3f}"]
+            ideal = value(r, "flux_reflected") * value(r, "visible_area") / (4 * math.pi * radius * radius)
+            cells += [f"{s / ideal:.3f}", f"{value(r, 'flux_deposited') / ideal:.3f}"]
         print("| " + " | ".join(cells) + " |")
 
 

@@ -11,15 +11,9 @@ Usage: scripts/peers_tables.py headline|dmax|samples RECORDS.csv
 Reads the CSV alone, so the tables regenerate from the committed records
 (docs/measured/peers-*-llvmpipe.csv).
 """
-import csv
 import sys
-
-
-def number(row, key):
-    try:
-        return float(row.get(key, ""))
-    except ValueError:
-        return None
+import ldmrecords
+from ldmrecords import number
 
 
 def fmt(value, spec):
@@ -105,8 +99,7 @@ def sample_counts(rows):
 
 
 def main(kind, path):
-    with open(path, newline="") as f:
-        rows = [r for r in csv.DictReader(f) if r["status"] == "ok"]
+    rows = ldmrecords.with_status(ldmrecords.read(path), "ok")
     {"headline": headline, "dmax": dmax, "samples": sample_counts}[kind](rows)
 
 

@@ -11,21 +11,15 @@ half-width); memory is exact; MSE and MSSIM are against the Embree reference, wh
 noise floor (ref_noise_mse) is the last column. Reads the CSV alone, so the table
 regenerates from the committed run.
 """
-import csv
 import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "report"))
 from ldmreport.pages import fmt, fmt_time  # noqa: E402  (the report's own formatting)
+import ldmrecords
+from ldmrecords import number
 
 MIB = float(1 << 20)
-
-
-def number(row, key):
-    try:
-        return float(row.get(key, ""))
-    except ValueError:
-        return None
 
 
 def timed(row, subpass):
@@ -60,8 +54,7 @@ def measured_with(rows):
 
 
 def main(path):
-    with open(path, newline="") as f:
-        rows = [r for r in csv.DictReader(f)]
+    rows = ldmrecords.read(path)
     print(measured_with(rows))
     print()
     print("| scene | method | status | build ms | pass ms | frame ms | MiB allocated | MiB used "

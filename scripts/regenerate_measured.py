@@ -32,6 +32,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import ldmrecords
 
 # Options of a recorded command that name where it wrote, not what it measured.
 OUT_OPTIONS = ("--out",)
@@ -44,9 +45,8 @@ def committed_runs(root):
         if "records.json" not in files:
             continue
         try:
-            with open(os.path.join(folder, "records.json")) as f:
-                run = json.load(f).get("run", {})
-        except (OSError, ValueError) as e:
+            run, _records = ldmrecords.read_run(folder)
+        except (OSError, ValueError, KeyError) as e:
             raise SystemExit(f"regenerate_measured.py: {os.path.join(folder, 'records.json')}: {e}")
         command = run.get("command", "")
         if command:

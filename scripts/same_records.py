@@ -24,11 +24,11 @@ Columns left out, and why (everything else, present in either record, must be eq
 The image and sample files the records name must exist in both folders (their paths are
 compared as columns; the sample files hold frame times and are not compared).
 """
-import json
 import math
 import re
 import sys
 from pathlib import Path
+import ldmrecords
 
 TIME_COLUMNS = re.compile(
     r"^(.+_ms_(median|ci_low|ci_high|rep_spread|min|max|stddev)"
@@ -53,7 +53,7 @@ class Unreadable(Exception):
 def load_records(run):
     path = Path(run) / "records.json"
     try:
-        records = json.loads(path.read_text())["records"]
+        _run, records = ldmrecords.read_run(path)
     except (OSError, ValueError, KeyError, TypeError) as error:
         raise Unreadable(f"{path}: cannot read its records ({error})") from None
     by_id = {}

@@ -7,16 +7,15 @@
             (memory-vs-r_ldm-llvmpipe.csv: sweeps/memory-vs-r_ldm.json)
   fit       the thesis's Table 5 M_Lists figures fitted by M = a + b R^2 (no CSV: the
             thesis's own numbers, quoted)"""
-import csv
 import sys
+import ldmrecords
 
 MIB = float(1 << 20)
 DOCS = "docs/measured/scenes/"
 
 
 def rows(path):
-    with open(path, newline="") as f:
-        return list(csv.DictReader(f))
+    return ldmrecords.read(path)
 
 
 def profiles(path):

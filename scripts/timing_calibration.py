@@ -39,6 +39,7 @@ import statistics
 import subprocess
 import sys
 import time
+import ldmrecords
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 CALIBRATION = ["--scene", "cornell," + os.path.join(HERE, "..", "scenes", "knot_in_box.json"),
@@ -104,8 +105,7 @@ def measure_trial(kind, folder, ldmbench):
             out = os.path.join(folder, isolation)
             run([ldmbench, "run", *CALIBRATION, "-N", "16", "--repetitions", "6", "--isolation", isolation,
                  "--out", out], log)
-            with open(os.path.join(out, "records.json")) as f:
-                spreads[isolation] = {r["config_id"]: r.get("frame_ms_rep_spread") for r in json.load(f)["records"]}
+            spreads[isolation] = {r["config_id"]: r.get("frame_ms_rep_spread") for r in ldmrecords.read_run(out)[1]}
         return {"isolation": spreads}
     if kind in ("aa-single", "aa-repetitions", "power-repetitions"):
         reps = [] if kind == "aa-single" else ["--repetitions", REPETITIONS]

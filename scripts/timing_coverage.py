@@ -15,7 +15,6 @@ that covers another run's median cannot be much narrower than. Writes DIR/first,
 (the runs), DIR/summary.json and DIR/summary.md. Not part of CI: it measures this machine.
 """
 import argparse
-import csv
 import json
 import math
 import os
@@ -23,6 +22,8 @@ import statistics
 import subprocess
 import sys
 import time
+import ldmrecords
+from ldmrecords import number
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SWEEP = ["--scene", "cornell,atrium," + os.path.join(HERE, "..", "scenes", "teapots.json"), "--structure", "all", "-N", "8,32", "-R", "64",
@@ -43,15 +44,7 @@ def run(ldmbench, out, extra, log):
 
 
 def records(folder):
-    with open(os.path.join(folder, "records.csv"), newline="") as f:
-        return {r["config_id"]: r for r in csv.DictReader(f) if r["status"] == "ok"}
-
-
-def number(row, key):
-    try:
-        return float(row[key])
-    except (KeyError, ValueError):
-        return None
+    return {r["config_id"]: r for r in ldmrecords.with_status(ldmrecords.read(folder), "ok")}
 
 
 def coverage(a, b, subpass):

@@ -53,3 +53,10 @@ TEST(RegenerateMeasured, RemovedImagesComeBackByteForByteAndRecordsStayUntouched
   EXPECT_GE(compared, 4) << "the AO image, its reference and maps in PNG and EXR";
   EXPECT_EQ(test::read_text((run / "records.jsonl").string()), records) << "the committed records were rewritten";
 }
+
+// scripts/ldmrecords (issue 32, item 5): its readers, and no script in scripts/ reading records
+// its own way (tests/measured/test_ldmrecords.py, Python's unittest).
+TEST(Ldmrecords, OneReaderForEveryScript) {
+  const auto o = test::run_shell(std::string(LDM_PYTHON) + " " + LDM_TEST_SOURCE_DIR + "/measured/test_ldmrecords.py");
+  EXPECT_EQ(o.status, 0) << o.output;
+}
