@@ -169,7 +169,7 @@ fi
 write_ao_sweep() {
   cat > "$dir/ao-sweep.json" <<EOF
 {
-  "description": "gpu-suite.sh: AO on the Cornell box and the atrium, every structure, N and R_LDM each varied around N = $ao_base_n, R_LDM = $ao_base_r, $image images, the peers HBAO and RTAO at the base point",
+  "description": "gpu-suite.sh: AO on the Cornell box and the atrium, every structure, N and R_LDM each varied around N = $ao_base_n, R_LDM = $ao_base_r, $image images, the peers HBAO, GTAO, GPU RTAO (1, 4, 16 spp) and the CPU RTAO at the base point",
   "axes": {
     "scenes": ["cornell", "atrium"],
     "passes": "ao",
@@ -183,7 +183,8 @@ write_ao_sweep() {
   "include": [
     {"comment": "N (thesis Table 3)", $n_scenes"views": $ao_ns},
     {"comment": "R_LDM (Table 4)", $r_scenes"r_ldm": $ao_rs},
-    {"comment": "the peers, which read no LDM", "passes": ["hbao", "rtao"]}
+    {"comment": "the peers, which read no LDM", "passes": ["hbao", "gtao", "rtao"]},
+    {"comment": "GPU RTAO at 1, 4 and 16 rays per pixel (its BVH built once per scene)", "passes": "rtao_gpu", "rtao_gpu:spp": [1, 4, 16]}
   ],
   "settings": {"reference": {"max_spp": $ao_spp}, "timing": {"target": 0}}
 }
