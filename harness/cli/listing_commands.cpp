@@ -3,7 +3,7 @@
 #include <memory>
 
 #include "harness/app/axis_registry.h"
-#include "harness/app/run_command.h"
+#include "harness/app/exit_codes.h"
 #include "harness/cli/commands.h"
 #include "harness/gl/driver_probe.h"
 #include "harness/gl/egl_context.h"

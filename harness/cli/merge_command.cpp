@@ -3,7 +3,7 @@
 #include <iostream>
 #include <memory>
 
-#include "harness/app/run_command.h"
+#include "harness/app/exit_codes.h"
 #include "harness/cli/commands.h"
 #include "harness/records/run_merge.h"
 

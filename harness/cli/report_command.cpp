@@ -14,7 +14,7 @@
 #include <sstream>
 
 #include "harness/app/axis_registry.h"
-#include "harness/app/run_command.h"
+#include "harness/app/exit_codes.h"
 #include "harness/cli/commands.h"
 #include "harness/cli/python_tool.h"
 #include "harness/compare/run_comparison.h"

@@ -21,7 +21,7 @@ namespace ldm {
 
 inline constexpr const char* kLockFile = ".ldmbench.lock";
 
-// Another process holds the folder (exit status kExitBusy, run_command.h). The message
+// Another process holds the folder (exit status kExitBusy, app/exit_codes.h). The message
 // names the folder and the holder: "--out 'OUT' is in use by PID 1234 on host h since
 // 2024-05-01T10:00:00+0200: ldmbench sweep ...; wait for it to end, or choose another folder".
 class FolderInUse : public UserError {

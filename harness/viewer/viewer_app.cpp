@@ -25,7 +25,7 @@
 #include "harness/app/ldm_setup.h"
 #include "harness/app/measure_configuration.h"
 #include "harness/app/measurement_session.h"
-#include "harness/app/run_command.h"
+#include "harness/app/exit_codes.h"
 #include "harness/app/run_command_line.h"
 #include "harness/gl/bindings.h"
 #include "harness/gl/egl_context.h"
