@@ -174,9 +174,10 @@ def place_legend(ax, inside=4, columns=1):
 
 def figure_legend(fig, handles):
     """One legend for every panel of a figure, below them (the figure keeps its width)."""
-    if handles:
+    if handles:  # as many columns as the figure's width holds (a column of entries: ~2.3 in)
+        columns = max(1, min(3, int(fig.get_size_inches()[0] / 2.3)))
         fig.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, 0.0),
-                   ncol=min(3, len(handles)), frameon=False)
+                   ncol=min(columns, len(handles)), frameon=False)
 
 
 def wide_span(values):
