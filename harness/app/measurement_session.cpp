@@ -109,7 +109,7 @@ MeasurementSession::MeasurementSession(const Scene& scene, const MeasurementRequ
   m.pass = request.pass;
   m.pass_settings = s.pass->describe(scene);
   for (const auto& sub : s.pass->subpasses()) m.pass_subpasses.push_back(sub.name);
-  m.scene_attributes = needs.scene_attributes.describe();
+  m.scene_attributes = needs.scene_attributes.describe(scene.derived_normal_triangles, scene.mesh.triangle_count());
   m.timer = timer_source;
   if (needs.runs_on_cpu) m.device = cpu_model_name();
 

@@ -83,7 +83,7 @@ std::vector<ColumnSpec> main_columns() {
       {"scene", "scene_name", "", "the scene's own name"},
       {"scene", "scene_hash", "", "64-bit hash of the scene's content (geometry, camera, settings)"},
       {"scene", "triangles", "triangles", "triangles in the scene"},
-      {"scene", "scene_attributes", "", "vertex attributes uploaded, as the pass requires (position+normal, ...)"},
+      {"scene", "scene_attributes", "", "vertex attributes uploaded, as the pass requires (position+normal, ...); normals the mesh file lacked and the importer derived from the faces say so: +normal(derived), or +normal(derived for D of T triangles)"},
       {"scene", "scene_gpu_bytes", "bytes", "geometry buffers on the device"},
       {"scene", "payload", "", "what the structure stores per fragment, as the pass requires (depth, ...)"},
       {"census", "fragments", "fragments", "fragments of all views, counted by the census before allocation"},

@@ -2,9 +2,14 @@
 
 namespace ldm {
 
-std::string AttributeSet::describe() const {
+std::string AttributeSet::describe(uint64_t derived_normal_triangles, uint64_t triangles) const {
   std::string s = "position";
   if (normals) s += "+normal";
+  if (normals && derived_normal_triangles > 0)
+    s += derived_normal_triangles >= triangles
+             ? std::string("(derived)")
+             : "(derived for " + std::to_string(derived_normal_triangles) + " of " + std::to_string(triangles) +
+                   " triangles)";
   if (materials) s += "+material";
   return s;
 }

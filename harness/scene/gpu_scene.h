@@ -19,7 +19,10 @@ struct AttributeSet {
     materials = materials || o.materials;
     return *this;
   }
-  std::string describe() const;  // "position", "position+normal", ...
+  // "position", "position+normal", ...; normals the importer derived from faces are said so:
+  // "+normal(derived)" when every triangle's were, "+normal(derived for D of T triangles)"
+  // when some were (Scene::derived_normal_triangles).
+  std::string describe(uint64_t derived_normal_triangles = 0, uint64_t triangles = 0) const;
 };
 
 class GpuScene {

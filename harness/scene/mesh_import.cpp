@@ -363,15 +363,22 @@ void append_imported_model(Scene& scene, const ImportedModel& model, const std::
             options.file_spacing->push_back(float(double(std::nextafter(largest, INFINITY) - largest) * scale));
           }
         const glm::vec3 face_normal = glm::normalize(face);
+        bool derived = false;
         for (int k = 0; k < 3; ++k) {
           glm::vec3 n = face_normal;
+          bool from_file = false;
           if (smooth && invertible) {
             const glm::vec3 file_normal = normal_matrix * mesh.normals[idx[k]];
             // A zero or non-finite normal in the file says nothing: the face's own.
-            if (finite(file_normal) && glm::length(file_normal) > 0.0f) n = glm::normalize(file_normal);
+            if (finite(file_normal) && glm::length(file_normal) > 0.0f) {
+              n = glm::normalize(file_normal);
+              from_file = true;
+            }
           }
+          derived = derived || !from_file;
           m.normals.push_back(n);
         }
+        if (derived) ++scene.derived_normal_triangles;
         m.triangles.emplace_back(base, base + 1, base + 2);
         m.triangle_materials.push_back(material);
       }

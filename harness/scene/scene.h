@@ -126,6 +126,12 @@ struct Scene {
   // detail lost before any placement (a mesh file in georeferenced coordinates), counted and
   // named in the scene's warnings.
   uint64_t far_file_vertices = 0;
+  // Triangles whose normals the mesh file did not give (none in the file, or a zero or
+  // non-finite one at a corner) and the importer derived from the face: recorded in
+  // scene_attributes ("position+normal(derived)"), since a pass reading normals then shades
+  // flat what the file may have meant smooth (issue 37). Zero for a built-in scene, whose
+  // generators define face normals. A function of the source bytes: not in identity_hash.
+  uint64_t derived_normal_triangles = 0;
   // What the scene was made from: a generator's name and parameters, or a scene file's JSON
   // (canonical: formatting and key order do not count) and the bytes of every mesh file it
   // names (and an OBJ's .mtl files), or a mesh file's bytes. Set by the loader
@@ -153,10 +159,12 @@ struct Scene {
 
 // The one frame every computation on a scene works in: the scene translated so that its
 // bounding sphere is centred on the origin (camera and light with it; frame_origin records
-// the shift). AO is translation invariant, and in this frame float precision depends on the
-// scene's extent, not on its distance from the world origin (32-bit floats 1e5 from the
-// origin are 0.008 apart) — for the placement a scene file gives, which the loader applies
-// in double and rebases (origin_offset); not for detail a mesh file's own floats lost. The GPU (LdmSetup: geometry, LDM views, G-buffer camera) and the
+// the shift). AO is translation invariant. The loader has already placed a scene file's
+// meshes in double and rebased the scene to its bounding-box centre (origin_offset), so its
+// floats hold each coordinate to 2^-24 of the scene's half-extent wherever the file places
+// it; this frame is a float shift of that (one more rounding of the same size). Not
+// covered: detail a mesh file's own floats (coordinates, node transforms) lost
+// (far_file_vertices). The GPU (LdmSetup: geometry, LDM views, G-buffer camera) and the
 // reference (render_ao_half) both use it.
 Scene centred_on_bounding_sphere(const Scene& scene);
 

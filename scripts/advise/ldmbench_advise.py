@@ -30,7 +30,7 @@ from ldmadvise.measure import (CENSUS, LEVELS, VERIFY, VERIFY_UNCERTAIN, Measure
 from ldmadvise.search import YES, CensusPlan, Goal, Search, choose_best, primary_tied, primary_value  # noqa: E402
 from ldmadvise.space import (SpaceError, candidate_assignments, candidate_of, check_passes,  # noqa: E402
                              load_space, sweep_file)
-from ldmadvise.report import fmt_bytes, write_report  # noqa: E402
+from ldmadvise.report import counts_of, counts_sentence, fmt_bytes, write_report  # noqa: E402
 
 EXIT_USAGE, EXIT_NONE = 2, 1
 # scripts/slurm-sweep.sh beside this script's folder (the source tree), or installed beside it.
@@ -259,12 +259,14 @@ def main(argv):
               "search_uncertain_unverified": [k for k in outcome.uncertain if k not in verified],
               "search_ties_unverified": [k for k in outcome.ties if k not in verified],
               "why_stopped": outcome.why, "configurations": len(ids),
-              "measured": sum(c["configurations"] for c in runner.costs if not c.get("planned_only")),
-              "planned": sum(c["configurations"] for c in runner.costs if c.get("planned_only")),
               "plan_differs": search.plan_differences,
-              "wall_s_recorded": round(sum(c["wall_s_recorded"] or 0 for c in runner.costs), 2),
               "wall_s_this_call": round(elapsed, 2), "resumed": resumed,
               "pruned": {k: s.pruned for k, s in search.states.items() if s.pruned}}
+    # Every count the outputs say, from the stages' costs alone (ldmadvise/report.py counts_of):
+    # the console, summary.md and result.json say the same numbers.
+    counts = counts_of(runner.costs, len(ids))
+    result.update(counts=counts, measured=counts["measured"], planned=counts["planned"],
+                  wall_s_recorded=counts["wall_s_recorded"])
     if recommended:
         m = verified[recommended]
         surely = goal.verdict(m) == YES
@@ -311,9 +313,7 @@ def main(argv):
     os.replace(os.path.join(a.out, RESULT_FILE + ".tmp"), os.path.join(a.out, RESULT_FILE))
     log({"event": "finished", "recommended": recommended, "wall_s": round(elapsed, 2)})
     print("\n".join(answer))
-    print(f"planned {result['planned']} and measured {result['measured']} configurations in {len(runner.costs)} "
-          f"stages, of {len(ids)} in the space; "
-          f"recorded wall time {result['wall_s_recorded']} s; report: {folder}/summary.md")
+    print(f"{counts_sentence(counts)}; report: {folder}/summary.md")
     return 0 if recommended else EXIT_NONE
 
 

@@ -148,6 +148,17 @@ TEST(AdviseEndToEnd, SmallAdviseOnTheCornellBox) {
   for (const char* part : {"## Front found", "## Pruned, and why", "## Time spent", "(recommended)"})
     EXPECT_NE(summary.find(part), std::string::npos) << part << "\n" << summary;
   EXPECT_GT(fs::file_size(out / "report" / "front.png"), 1000u);
+  // One source for the counts (issue 37): the console's counts line is summary.md's, word
+  // for word, and its stages are the folders that measured (the census plans, apart).
+  const size_t at = first.output.find("The census planned");
+  ASSERT_NE(at, std::string::npos) << first.output;
+  const std::string counts_line = first.output.substr(at, first.output.find("; report: ", at) - at);
+  EXPECT_NE(summary.find(counts_line + "."), std::string::npos) << counts_line << "\n" << summary;
+  size_t measuring_stages = 0;
+  for (const auto& stage : fs::directory_iterator(out / "stages"))
+    if (stage.path().filename().string().find("census") == std::string::npos) ++measuring_stages;
+  EXPECT_EQ(result["counts"]["stages"].get<size_t>(), measuring_stages) << result["counts"].dump();
+  EXPECT_NE(counts_line.find(std::to_string(measuring_stages) + " measuring stage"), std::string::npos) << counts_line;
   const std::string journal = test::read_text((out / "advise.jsonl").string());
   EXPECT_NE(journal.find("\"event\": \"started\""), std::string::npos);
   EXPECT_NE(journal.find("\"event\": \"pruned\""), std::string::npos);

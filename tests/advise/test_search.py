@@ -11,6 +11,7 @@ import unittest
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts", "advise"))
 
+from ldmadvise.report import counts_of, counts_sentence, write_report  # noqa: E402
 from ldmadvise.search import Candidate, CensusPlan, Goal, Measurement, Search, pareto_front  # noqa: E402
 from ldmadvise.space import (SpaceError, candidate_assignments, check_passes, group_of,  # noqa: E402
                              load_space, sweep_file)
@@ -386,6 +387,62 @@ class Space(unittest.TestCase):
         self.assertEqual(spec["axes"]["structures"], "ppfla")
         self.assertEqual(spec["include"], [a[1]])
         self.assertEqual(spec["settings"]["reference"]["spp"], 16)
+
+
+class CountsFromOneSource(unittest.TestCase):
+    """advise's counts (issue 37): the console's line, summary.md and result.json say the
+    numbers counts_of() derives from the stages' costs; the census plans and is no
+    measuring stage; "the front: N of M" heads a table of N rows."""
+
+    def stages(self):
+        model, costs = Model(noise=0.3), []
+
+        def measure(cands, level, stage):
+            costs.append({"stage": stage, "configurations": len(cands), "keys": [c.key for c in cands],
+                          "precision": f"level {level}", "wall_s_this_call": 1.0, "wall_s_recorded": 0.5})
+            return model(cands, level, stage)
+
+        cands = space()
+        costs.append({"stage": "census", "configurations": len(cands), "keys": [c.key for c in cands],
+                      "planned_only": True, "precision": "memory plan", "wall_s_this_call": 0.25,
+                      "wall_s_recorded": 0.25})
+        goal = Goal(budget_ms=40)
+        search = Search(cands, goal, 3, measure, lambda e: None)
+        outcome = search.run()
+        return cands, costs, goal, search, outcome
+
+    def test_counts_and_sentences_agree(self):
+        cands, costs, goal, search, outcome = self.stages()
+        counts = counts_of(costs, len(cands))
+        measuring = [c for c in costs if not c.get("planned_only")]
+        self.assertEqual(counts["stages"], len(measuring))
+        self.assertEqual(counts["census_stages"], 1)
+        self.assertEqual(counts["planned"], len(cands))
+        self.assertEqual(counts["measured"], sum(c["configurations"] for c in measuring))
+        distinct = {k for c in measuring for k in c["keys"]}
+        self.assertEqual(counts["configurations"], len(distinct))
+        self.assertLess(counts["configurations"], counts["measured"])  # some measured at two levels
+        self.assertEqual(counts["wall_s_recorded"], 0.25 + 0.5 * len(measuring))
+        sentence = counts_sentence(counts)
+        self.assertIn(f"{len(distinct)} configurations of {len(cands)} measured, {counts['measured']} "
+                      f"measurements in {len(measuring)} measuring stages", sentence)
+        self.assertTrue(sentence.startswith(f"The census planned {len(cands)} configurations"), sentence)
+        import tempfile
+        with tempfile.TemporaryDirectory() as out:
+            result = {"recommended": outcome.recommended, "answer_lines": ["answer"], "counts": counts}
+            folder = write_report(out, result, search, goal, "mse", costs, "title")
+            with open(os.path.join(folder, "summary.md"), encoding="utf-8") as f:
+                summary = f.read()
+        self.assertIn(sentence + ".", summary)
+        # "The front: N configurations of the M measured ..." and then N rows
+        head = next(line for line in summary.splitlines() if line.startswith("The front: "))
+        n_front = int(head.split()[2])
+        section = summary.split("## Front found")[1].split("## Pruned")[0]
+        rows = [line for line in section.splitlines() if line.startswith("| ") and not line.startswith("| configuration")]
+        self.assertEqual(len(rows), n_front, summary)
+        # no other count of configurations or stages in the summary than these
+        self.assertNotIn("Among the", summary)
+        self.assertNotIn("Configurations measured:", summary)
 
 
 if __name__ == "__main__":

@@ -3,12 +3,14 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <map>
 
 #include "harness/app/measurement.h"
 #include "harness/app/measurement_session.h"
 #include "harness/passes/pass.h"
 #include "harness/records/output_folder.h"
+#include "harness/scene/gpu_scene.h"
 #include "harness/scene/scene_loader.h"
 #include "harness/util/error.h"
 #include "support/test_support.h"
@@ -168,6 +170,39 @@ TEST(Measurement, KeepsEveryFrameAndSplitsBuildFromThePass) {
   EXPECT_EQ(m.images[0].image.width, 32);
   EXPECT_GT(m.bytes_allocated(), 0u);
   EXPECT_EQ(m.scene_attributes, "position+normal");
+}
+
+// Normals the importer derived (issue 37): an OBJ without `vn` gets face normals, and the
+// record says so in scene_attributes; the same mesh with its normals says plain "+normal".
+TEST(Measurement, DerivedNormalsAreRecordedInSceneAttributes) {
+  test::gl_context();
+  const std::filesystem::path dir = test::make_temp_dir("ldm-derived-normals");
+  const std::string corners = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 0.5 0.6\n";
+  std::ofstream(dir / "bare.obj") << corners << "f 1 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\nf 1 4 3 2\n";
+  std::ofstream(dir / "smooth.obj") << corners << "vn 0 0 1\n"
+                                    << "f 1//1 2//1 5//1\nf 2//1 3//1 5//1\nf 3//1 4//1 5//1\nf 4//1 1//1 5//1\n"
+                                    << "f 1//1 4//1 3//1 2//1\n";
+  const Scene bare = load_scene((dir / "bare.obj").string());
+  const Scene smooth = load_scene((dir / "smooth.obj").string());
+  EXPECT_EQ(bare.derived_normal_triangles, bare.mesh.triangle_count());
+  EXPECT_EQ(smooth.derived_normal_triangles, 0u);
+  MeasurementRequest request;
+  request.structure = "dfbuffer";
+  request.views = 2;
+  request.resolution = 16;
+  request.width = request.height = 16;
+  request.warmup = 0;
+  request.frames = 1;
+  const Measurement derived = measure(bare, request);
+  EXPECT_EQ(derived.status, BuildStatus::Ok) << derived.status_detail;
+  EXPECT_EQ(derived.scene_attributes, "position+normal(derived)");
+  EXPECT_EQ(measure(smooth, request).scene_attributes, "position+normal");
+  // Some triangles' normals derived: how many of how many.
+  AttributeSet normals;
+  normals.normals = true;
+  EXPECT_EQ(normals.describe(2, 6), "position+normal(derived for 2 of 6 triangles)");
+  EXPECT_EQ(normals.describe(0, 6), "position+normal");
+  EXPECT_EQ(AttributeSet{}.describe(6, 6), "position");  // no normals uploaded: nothing derived to say
 }
 
 TEST(Measurement, AnExternalLoopDecidesHowManyFramesRun) {

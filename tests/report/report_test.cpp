@@ -353,6 +353,32 @@ TEST(ReportFigures, ShowWhatAPaperNeeds) {
   EXPECT_NE(o.output.find("OK"), std::string::npos) << o.output;
 }
 
+// No overlapping text (issue 37): the figures of real runs, the small Cornell run above and
+// one structure on a mesh file (a title that wraps over a narrow image grid, a d_max derived
+// from the model's size), drawn by the report while tests/report/check_text_overlap.py
+// takes matplotlib's own bounding box of every drawn text and names any two that overlap.
+TEST(ReportFigures, NoTextOverlapsInTheFiguresOfRealRuns) {
+  const fs::path cornell = small_run();
+  const fs::path dir = test::make_temp_dir("ldm-report-overlap");
+  const Outcome mesh = ldmbench("run --scene " + std::string(LDM_TEST_SOURCE_DIR) +
+                                "/../scenes/meshes/torus_knot.obj --structure psppsll -N 4,8 -R 32 --width 64 "
+                                "--height 64 --frames 2 --warmup 1 --reference-spp 16 --cache-dir " +
+                                (dir / "cache").string() + " --out " + (dir / "knot").string());
+  ASSERT_EQ(mesh.status, 0) << mesh.output;
+  const Outcome axes = shell(std::string(LDM_BINARY_PATH) + " axes --json > " + (dir / "axes.json").string());
+  ASSERT_EQ(axes.status, 0) << axes.output;
+  int report = 0;
+  for (const std::string runs : {cornell.string() + " " + (dir / "knot").string(), (dir / "knot").string()}) {
+    const std::string out = (dir / ("report-" + std::to_string(++report))).string();
+    const Outcome o = shell(std::string(LDM_PYTHON) + " " + LDM_TEST_SOURCE_DIR + "/report/check_text_overlap.py " +
+                            runs + " --axes " + (dir / "axes.json").string() + " --out " + out);
+    EXPECT_EQ(o.status, 0) << o.output;
+    EXPECT_NE(o.output.find("figures checked: tradeoff-time-vs-mse"), std::string::npos) << o.output;
+    EXPECT_NE(o.output.find("grid-torus_knot-n_views"), std::string::npos) << o.output;
+    EXPECT_EQ(o.output.find("OVERLAP"), std::string::npos) << o.output;
+  }
+}
+
 // The ties of rankings and fronts, and the time digits, on hand-made tables
 // (tests/report/test_ties.py, Python's unittest).
 TEST(ReportTies, TiesAreShownAsTies) {

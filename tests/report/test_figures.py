@@ -240,6 +240,92 @@ class FrontTable(unittest.TestCase):
         self.assertEqual(cut, [])
 
 
+class Issue37(unittest.TestCase):
+    """Issue 37: numbers to the digits they support, error bars on error axes and sub-pass
+    bars, a legend that matches the markers (every front-table member ringed, the ring in
+    the legend)."""
+
+    def front_rows(self):
+        # "small" is on the front table only by its memory: on no time/error front
+        return [record(config_id="fast", frame_ms_median=1, frame_ms_ci_low=0.9, frame_ms_ci_high=1.1, mse=4e-3),
+                record(config_id="good", frame_ms_median=5, frame_ms_ci_low=4.9, frame_ms_ci_high=5.1, mse=1e-3),
+                record(config_id="worse", frame_ms_median=6, frame_ms_ci_low=5.9, frame_ms_ci_high=6.1, mse=2e-3),
+                record(config_id="small", frame_ms_median=9, frame_ms_ci_low=8.9, frame_ms_ci_high=9.1, mse=3e-3,
+                       bytes_allocated=1000)]
+
+    def test_derived_values_are_shown_to_their_digits(self):
+        from ldmreport.table import describe, shown_value
+        self.assertEqual(shown_value("4.393941402435303"), "4.394")
+        for typed in ("0.5", "1e-3", "128", "1.25", "plane"):
+            self.assertEqual(shown_value(typed), typed)
+        self.assertEqual(describe({"d_max": "4.393941402435303"}), "d_max=4.394")
+        self.assertEqual(shown_value("guess: 1 fragment(s) per LDM pixel"), "1 fragment/LDM pixel")
+        self.assertEqual(shown_value("guess: 4 fragment(s) per LDM pixel"), "4 fragments/LDM pixel")
+        rows = [record(d_max=4.393941402435303, config_id="a"), record(d_max=4.393941402435303, n_views=16, config_id="b")]
+        groups = [g for g, _ in pages.ranking_groups(table(rows))]
+        self.assertEqual(groups, ["cornell: ao at d_max 4.394"])
+
+    def test_every_front_table_member_is_ringed_and_the_ring_is_in_the_legend(self):
+        t = table(self.front_rows())
+        listed = pages.front_table_members(t)
+        self.assertEqual({t.text("config_id")[i] for i in listed}, {"fast", "good", "small"})
+        rings = []
+
+        class Rings(Inspecting):
+            def inspect(self, fig, name):
+                super().inspect(fig, name)
+                for ax in fig.axes:
+                    for c in ax.collections:
+                        if type(c).__name__ == "PathCollection" and len(c.get_sizes()) and \
+                                c.get_sizes()[0] == figures.RING_SIZE:
+                            rings.extend(tuple(p) for p in c.get_offsets())
+
+        canvas = Rings()
+        figures.draw_tradeoffs(t, canvas)
+        seen = canvas.seen["tradeoff-time-vs-mse"]
+        self.assertEqual(sorted(rings), sorted([(1.0, 4e-3), (5.0, 1e-3), (9.0, 3e-3)]))
+        self.assertIn("ringed: on the front table (time, memory, error)", seen["legend"])
+        self.assertIn("Pareto front, time and this error (ok; ties kept)", seen["legend"])
+
+    def test_error_axes_carry_the_reference_noise(self):
+        t = table(self.front_rows())
+        bars = []
+
+        class Bars(Inspecting):
+            def inspect(self, fig, name):
+                super().inspect(fig, name)
+                for ax in fig.axes:
+                    for c in ax.collections:
+                        if type(c).__name__ == "LineCollection":
+                            for seg in c.get_segments():
+                                if len(seg) == 2 and seg[0][0] == seg[1][0]:  # vertical: an error bar
+                                    bars.append(abs(seg[1][1] - seg[0][1]))
+
+        figures.draw_tradeoffs(t, Bars())
+        # each point's bar spans its reference noise either side (ref_noise_mse 1e-6)
+        self.assertEqual(len(bars), 4)
+        for b in bars:
+            self.assertAlmostEqual(b, 2e-6, places=12)
+
+    def test_sub_pass_bars_carry_their_intervals(self):
+        seen = {}
+
+        class Bars(Inspecting):
+            def inspect(self, fig, name):
+                super().inspect(fig, name)
+                seen[name] = [seg for ax in fig.axes for c in ax.collections
+                              if type(c).__name__ == "LineCollection" for seg in c.get_segments()]
+
+        rows = [dict(r, construct_ms_median=1.0, construct_ms_ci_low=0.9, construct_ms_ci_high=1.1,
+                     ao_ms_median=5.0, ao_ms_ci_low=4.5, ao_ms_ci_high=5.5) for r in self.front_rows()]
+        figures.draw_subpass_bars(table(rows), Bars())
+        # construct and ao of each of the 4 records: an interval at the end of each segment
+        segments = seen["subpasses-cornell"]
+        self.assertEqual(len(segments), 8)
+        first = sorted(((s[0][0], s[1][0]) for s in segments if s[0][1] == 0))
+        self.assertEqual(first, [(0.9, 1.1), (5.5, 6.5)])  # construct 1 [0.9, 1.1]; ao 5 [4.5, 5.5] from 1
+
+
 class Style(unittest.TestCase):
     """Items 4 and 6: one title scheme; formats; paper widths."""
 

@@ -115,7 +115,7 @@ class StageRunner:
         path, seconds = self._launch(self.launcher.plan, folder, sweep_path, keys, stage)
         rows = read_records(path)
         self.costs.append({"stage": stage, "folder": folder, "records": path, "configurations": len(keys),
-                           "planned_only": True,
+                           "keys": list(keys), "planned_only": True,
                            "precision": "memory plan (nothing built)", "wall_s_this_call": round(seconds, 2),
                            "wall_s_recorded": round(seconds, 2)})
         self.log({"event": "planned", "stage": stage, "folder": folder, "configurations": len(keys),
@@ -133,7 +133,7 @@ class StageRunner:
             raise MeasureError(f"stage {stage}: {run}/records.csv lacks {', '.join(missing)}")
         recorded = sum(number(rows[k], "wall_seconds") for k in keys)
         self.costs.append({"stage": stage, "folder": folder, "records": run, "configurations": len(keys),
-                           "precision": precision["name"], "wall_s_this_call": round(seconds, 2),
+                           "keys": list(keys), "precision": precision["name"], "wall_s_this_call": round(seconds, 2),
                            "wall_s_recorded": round(recorded, 2) if math.isfinite(recorded) else None})
         self.log({"event": "measured", "stage": stage, "folder": folder, "records": run,
                   "configurations": len(keys), "wall_s": round(seconds, 2)})

@@ -10,6 +10,38 @@ def fmt_bytes(b):
     return f"{b / 2**20:.4g} MiB"
 
 
+def counts_of(costs, space):
+    """The counts every output of an advise says (the console's last line, summary.md,
+    result.json), from its stages' costs alone: one source, so they cannot disagree.
+    planned: configurations the census planned (nothing built); measured: stage
+    measurements (a configuration measured at two levels counts twice); configurations:
+    the distinct configurations measured; stages: the stages that measured (the census
+    plans, it is not one of them); census_stages: the census's (0 or 1)."""
+    measuring = [c for c in costs if not c.get("planned_only")]
+    planning = [c for c in costs if c.get("planned_only")]
+    distinct = set()
+    for c in measuring:
+        distinct.update(c.get("keys", ()))
+    return {"space": space, "planned": sum(c["configurations"] for c in planning),
+            "census_stages": len(planning), "measured": sum(c["configurations"] for c in measuring),
+            "configurations": len(distinct), "stages": len(measuring),
+            "wall_s_recorded": round(sum(c["wall_s_recorded"] or 0 for c in costs), 2)}
+
+
+def plural(n, word, words=None):
+    return f"{n} {word if n == 1 else (words or word + 's')}"
+
+
+def counts_sentence(counts):
+    """The one sentence of the counts, word for word the same on the console and in summary.md."""
+    planned = (f"The census planned {plural(counts['planned'], 'configuration')} of the space without building "
+               "them; " if counts["census_stages"] else "")
+    return (f"{planned}{plural(counts['configurations'], 'configuration')} of {counts['space']} measured, "
+            f"{plural(counts['measured'], 'measurement')} in {plural(counts['stages'], 'measuring stage')} "
+            "(a configuration measured at two precisions counts twice); "
+            f"recorded wall time {counts['wall_s_recorded']:.1f} s")
+
+
 def write_front_plot(path, goal, measured, front, recommended, metric, title):
     import matplotlib
     matplotlib.use("Agg")
@@ -61,8 +93,9 @@ def write_report(out, result, search, goal, metric, costs, title):
     lines += result["answer_lines"] + [""]
     lines += ["![front](front.png)", "",
               "## Front found", "",
-              f"Among the {len(ok)} configurations measured without loss"
-              + (" within the memory budget" if goal.budget_bytes is not None else "") + ", at each one's last precision "
+              f"The front: {plural(len(front), 'configuration')} of the {len(ok)} measured without loss"
+              + (" within the memory budget" if goal.budget_bytes is not None else "") + ", the others "
+              "slower or with more error than one of these; each at its last precision "
               "(time: median and 95 % interval; error: value and the reference's noise band):", "",
               "| configuration | frame ms [interval] | error ± band | memory | precision |",
               "|---|---|---|---|---|"]
@@ -87,12 +120,7 @@ def write_report(out, result, search, goal, metric, costs, title):
     for c in costs:
         lines.append(f"| {c['stage']} | {c['configurations']} | {c['precision']} | {c['wall_s_this_call']} | "
                      f"{c['wall_s_recorded']} |")
-    total = sum(c["wall_s_recorded"] or 0 for c in costs)
-    measured = [c for c in costs if not c.get("planned_only")]
-    planned = sum(c["configurations"] for c in costs if c.get("planned_only"))
-    lines += ["", f"Configurations measured: {sum(c['configurations'] for c in measured)} in {len(measured)} stages "
-                  f"(of {len(search.states)} in the space; {planned} planned by the census without building); "
-                  f"recorded wall time {total:.1f} s.", ""]
+    lines += ["", counts_sentence(result["counts"]) + ".", ""]
     with open(os.path.join(folder, "summary.md"), "w", encoding="utf-8") as f:
         f.write("\n".join(lines))
     return folder

@@ -7,12 +7,14 @@ distinct values is skipped with a note, never drawn empty. Records that are not 
 of fitted slopes."""
 import math
 import os
+import textwrap
 
 import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import matplotlib.ticker  # noqa: E402
+import matplotlib.transforms  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 import numpy as np  # noqa: E402
 
@@ -39,6 +41,7 @@ class Canvas:
     def save(self, fig, name, title, caption, section, tight=True):
         if tight:  # titles and labels of stacked panels must not overlap
             fig.tight_layout()
+        thin_tick_labels(fig)
         files = []
         for ext in self.formats:
             rel = f"figures/{name}.{ext}"
@@ -57,6 +60,33 @@ class Canvas:
 
     def note(self, text):
         self.notes.append(text)
+
+
+def thin_tick_labels(fig):
+    """Minor tick labels (a narrow log axis labels them: 0.8, 0.9, 1) left out where they
+    would overlap a major tick label or a minor one kept before them: the formatter is
+    wrapped to give "" at those values (tick labels are made anew at every draw)."""
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    for ax in fig.axes:
+        for axis in (ax.xaxis, ax.yaxis):
+            drawn = [t for t in axis._update_ticks() if t.label1.get_visible() and t.label1.get_text().strip()]
+            majors = set(axis.get_majorticklocs())
+            kept = [t.label1.get_window_extent(renderer) for t in drawn if t.get_loc() in majors]
+            hidden = []
+            for t in drawn:
+                if t.get_loc() in majors:
+                    continue
+                box = t.label1.get_window_extent(renderer)
+                if any(box.overlaps(k) for k in kept):
+                    hidden.append(t.get_loc())
+                else:
+                    kept.append(box)
+            if hidden:
+                original = axis.get_minor_formatter()
+                axis.set_minor_formatter(matplotlib.ticker.FuncFormatter(
+                    lambda v, pos, f=original, h=tuple(hidden): "" if any(
+                        math.isclose(v, x, rel_tol=1e-9) for x in h) else f(v, pos)))
 
 
 def method_styles(table):
@@ -115,6 +145,10 @@ def plain_log_ticks(ax, axis_values=None):
             ax.xaxis.set_minor_locator(matplotlib.ticker.NullLocator())
 
 
+LEGEND_CHARS_PER_INCH = 22  # characters of a 6 pt legend entry per inch, about (style.RC)
+LEGEND_DROP_PT = 30  # a legend below the axes starts this far below them
+
+
 def place_legend(ax, inside=4, columns=1):
     """A legend inside the axes when short, below them when long (never beside: the figure
     keeps its paper width), so that it never hides the data."""
@@ -125,15 +159,25 @@ def place_legend(ax, inside=4, columns=1):
     if entries <= inside and max(len(t) for t in labels) <= 32:
         ax.legend(loc="best", framealpha=0.8)
     else:
-        ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.3 if columns == 1 else -0.18),
+        # Below the axes, each entry wrapped to the axes' width (its columns' share): a long
+        # entry would run into the legend of the panel beside it.
+        handles, labels = ax.get_legend_handles_labels()
+        width_in = ax.get_position().width * ax.figure.get_size_inches()[0]
+        chars = max(16, int(width_in * LEGEND_CHARS_PER_INCH / columns) - 4)
+        wrapped = [textwrap.fill(t, chars, break_long_words=False) for t in labels]
+        # its top a fixed distance below the axes: under the tick labels and the axis label
+        # (7 pt and 8 pt with their pads), whatever the panel's height
+        below = matplotlib.transforms.offset_copy(ax.transAxes, fig=ax.figure, y=-LEGEND_DROP_PT, units="points")
+        ax.legend(handles, wrapped, loc="upper center", bbox_to_anchor=(0.5, 0.0), bbox_transform=below,
                   ncol=columns, frameon=False)
 
 
 def figure_legend(fig, handles):
     """One legend for every panel of a figure, below them (the figure keeps its width)."""
-    if handles:
+    if handles:  # as many columns as the figure's width holds (a column of entries: ~2.3 in)
+        columns = max(1, min(3, int(fig.get_size_inches()[0] / 2.3)))
         fig.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, 0.0),
-                   ncol=min(3, len(handles)), frameon=False)
+                   ncol=min(columns, len(handles)), frameon=False)
 
 
 def wide_span(values):
@@ -148,6 +192,19 @@ def scatter(ax, x, y, colour, marker, measured):
     if (~measured).any():
         ax.scatter(x[~measured], y[~measured], facecolors="none", edgecolors=[colour],
                    marker=marker, s=16, zorder=3, linewidths=0.8)
+
+
+RING_SIZE = 45  # points^2: the ring around a point the front table lists
+
+
+def error_bands(table, rows, column, prefix, metric, values):
+    """Error bars (2 x n) of an error axis: the reference's own noise, the tie band of
+    ties.error_measure (ref_noise_mse for MSE; (1 - ref_noise_mssim) / 4 for MSSIM); the
+    lower bar kept above zero (log axes). Zeros where a record has none."""
+    band = np.array([ties.error_measure(table, r, column, prefix, metric).band for r in rows], dtype=float)
+    band = np.nan_to_num(band)
+    below = np.minimum(band, np.abs(values) * 0.999) if metric == "mse" else band
+    return np.nan_to_num(np.vstack([below, band]))
 
 
 def time_errors(table, subpass, rows, values):
@@ -233,8 +290,10 @@ def draw_tradeoffs(table, canvas):
     """Time per frame against each image metric, per method (colour) and run (marker), each
     point labelled and with its time interval as an error bar, and the Pareto front of the
     ok records (faster and better)."""
+    from .pages import front_table_members
     styles = method_styles(table)
     markers_of_run = run_markers(table)
+    listed = front_table_members(table)  # ringed: the front table lists them
     methods = table.methods()
     runs = table.text("run")
     measured = table.measured().to_numpy()
@@ -249,13 +308,14 @@ def draw_tradeoffs(table, canvas):
             continue
         higher = metric == "mssim"
         fig, axes = subplot_grid(len(groups))
-        drawn_methods, drawn_runs, any_hollow = [], [], False
+        drawn_methods, drawn_runs, any_hollow, any_ringed = [], [], False, False
         for ax, (title, mask) in zip(axes, groups):
             x, y = time[mask].to_numpy(), table.num(column)[mask].to_numpy()
             ok, m, rn = measured[mask.to_numpy()], methods[mask].to_numpy(), runs[mask].to_numpy()
             any_hollow |= not ok.all()
             rows = list(mask[mask].index)
             errors = time_errors(table, "frame", mask, x)
+            y_errors = error_bands(table, rows, column, prefix, metric, y)
             for method in sorted(set(m)):
                 colour, marker = styles[method]
                 drawn_methods += [method] if method not in drawn_methods else []
@@ -264,8 +324,8 @@ def draw_tradeoffs(table, canvas):
                     if not sel.any():
                         continue
                     drawn_runs += [run] if run not in drawn_runs else []
-                    ax.errorbar(x[sel], y[sel], xerr=errors[:, sel], fmt="none", ecolor=colour,
-                                elinewidth=0.7, capsize=1.5, alpha=0.8, zorder=2)
+                    ax.errorbar(x[sel], y[sel], xerr=errors[:, sel], yerr=y_errors[:, sel], fmt="none",
+                                ecolor=colour, elinewidth=0.7, capsize=1.5, alpha=0.8, zorder=2)
                     scatter(ax, x[sel], y[sel], colour, markers_of_run.get(run, marker), ok[sel])
             ok_rows = [r for r, good in zip(rows, ok) if good]
             if ok_rows:
@@ -275,8 +335,11 @@ def draw_tradeoffs(table, canvas):
                 px = np.array([xs[k].value for k in front])
                 py = np.array([ys[k].value for k in front])
                 ax.step(px, py, where="post", color="black", linestyle="--", linewidth=0.8, zorder=2)
-                ax.scatter(px, py, s=45, facecolors="none", edgecolors="black",
+            ringed = [k for k, r in enumerate(rows) if r in listed]
+            if ringed:
+                ax.scatter(x[ringed], y[ringed], s=RING_SIZE, facecolors="none", edgecolors="black",
                            linewidths=0.7, zorder=4)
+                any_ringed = True
             # Every point is labelled in small panels; in crowded ones the front's.
             varying = label_axes(table, mask)
             labelled = rows if len(rows) <= 30 else [ok_rows[k] for k in front] if ok_rows else []
@@ -303,17 +366,26 @@ def draw_tradeoffs(table, canvas):
                     None, True) for method in drawn_methods]
         entries += [(f"run {run}", "0.35", markers_of_run[run], None, True)
                     for run in drawn_runs if markers_of_run]
-        entries.append(("Pareto front (ok; ties kept)", "black", None, "--", True))
+        entries.append(("Pareto front, time and this error (ok; ties kept)", "black", None, "--", True))
+        handles = legend_handles(entries)
+        if any_ringed:
+            handles.append(Line2D([], [], color="black", marker="o", linestyle="none", markerfacecolor="none",
+                                  markersize=RING_SIZE ** 0.5, markeredgewidth=0.7,
+                                  label="ringed: on the front table (time, memory, error)"))
         if any_hollow:
-            entries.append(("hollow: not ok", "0.35", "o", None, False))
-        figure_legend(fig, legend_handles(entries))
+            handles += legend_handles([("hollow: not ok", "0.35", "o", None, False)])
+        figure_legend(fig, handles)
         name = f"tradeoff-time-vs-{column}"
         canvas.save(fig, name, f"Frame time vs {column}",
                     f"Per method (colour{', and run: marker' if markers_of_run else ''}), frame "
-                    f"time with its 95 % interval as error bars; the dashed line is the Pareto "
-                    f"front of the ok records: nothing is faster or better beyond the "
+                    f"time with its 95 % interval as horizontal error bars, the error with the "
+                    f"reference's own noise (its tie band: ref_noise_mse, or (1 - ref_noise_mssim) / 4) "
+                    f"as vertical ones; the dashed line is the Pareto "
+                    f"front of the ok records in time and this error: nothing is faster or better beyond the "
                     f"uncertainty (overlapping time intervals, errors within the reference "
-                    f"noise are ties, and tied records all stay on it); points are labelled "
+                    f"noise are ties, and tied records all stay on it); ringed: the configurations "
+                    f"the front table lists (its front is over time, memory and error at once, so it "
+                    f"holds every point of the dashed front and may hold more); points are labelled "
                     f"N, R_LDM, the parameters that vary in the panel"
                     f"{' and the run' if markers_of_run else ''}; {HOLLOW_NOTE}.", "Trade-offs")
 
@@ -605,6 +677,7 @@ def draw_subpass_bars(table, canvas, per_figure=60):
         canvas.note("sub-pass bars: skipped, no record has sub-pass times")
         return
     colours = dict(zip(subpasses, series_colours(len(subpasses))))
+    intervals = {s: table.time_interval(s) for s in subpasses}
     timed = table.num("frame_ms_median").notna()
     several_runs = table.text("run").nunique() > 1
     status = table.status()
@@ -625,6 +698,11 @@ def draw_subpass_bars(table, canvas, per_figure=60):
                     ax.barh(row, value, left=left, color=colours[s], alpha=1 if ok else 0.45,
                             hatch=None if ok else "//", edgecolor="white" if ok else "black",
                             linewidth=0.3)
+                    # the sub-pass's own 95 % interval, at the end of its segment
+                    below, above = intervals[s][0][i], intervals[s][1][i]
+                    if np.isfinite(below) and np.isfinite(above) and (below > 0 or above > 0):
+                        ax.errorbar([left + value], [row], xerr=[[max(value - below, 0)], [max(above - value, 0)]],
+                                    fmt="none", ecolor="black", elinewidth=0.6, capsize=1.2, alpha=0.8)
                     left += value
                 build = table.num("build_ms_median")[i]
                 if np.isfinite(build):  # where the structure's build ends and the pass begins
@@ -637,13 +715,16 @@ def draw_subpass_bars(table, canvas, per_figure=60):
             ax.invert_yaxis()
             ax.set_xlabel("median time per frame (ms), stacked by sub-pass")
             handles = [plt.Rectangle((0, 0), 1, 1, color=colours[s]) for s in subpasses]
-            fig.legend(handles, subpasses, loc="upper center", bbox_to_anchor=(0.5, 0.0),
-                       ncol=min(6, len(subpasses)), frameon=False)
+            handles += [Line2D([], [], color="black", marker="|", markersize=7, linestyle="none"),
+                        Line2D([], [], color="black", marker="|", markersize=3, linestyle="-", linewidth=0.6)]
+            fig.legend(handles, subpasses + ["build median", "95 % interval"], loc="upper center",
+                       bbox_to_anchor=(0.5, 0.0), ncol=min(6, len(subpasses) + 2), frameon=False)
             ax.set_title(style.panel_title(scene, quantity="sub-pass medians" + suffix.replace("-", ", part ")))
             ax.grid(alpha=0.3, axis="x")
             canvas.save(fig, f"subpasses-{safe_name(scene)}{suffix}",
                         f"Sub-pass times, {scene}{suffix.replace('-', ' part ')}",
-                        "Median of every timed sub-pass per configuration, the structure's "
+                        "Median of every timed sub-pass per configuration, each with its 95 % "
+                        "interval as a bar at the end of its segment, the structure's "
                         "build first (the black tick marks the build median), then the "
                         "pass's; the raster baselines are timed beside the frame and not "
                         "stacked; hatched: lossy / invalid / failed / degenerate.", "Sub-passes")

@@ -222,6 +222,22 @@ def held_description(table, held):
     return shown
 
 
+SUPTITLE_PT, COLUMN_TITLE_PT = 6.5, 5.5
+LINE_IN = 1.25 / 72  # inches per point of a line of text (its leading)
+TITLE_PAD_IN = 0.16  # above the title, between it and the column titles, below those
+
+
+def column_title(kind, m, g, cell):
+    """A column's title wrapped to its cell: the method, the reference, or its error map."""
+    title = m if kind == "image" else f"reference: {', '.join(g.passes)}" \
+        if kind == "reference" else f"|error|: {m}"
+    title = textwrap.fill(title.replace("/", "/ "), max(8, int(cell * 13)),
+                          break_long_words=False).replace("/ ", "/").replace("/\n", "/\n")
+    if kind != "error" and g.hdr:
+        title += f"\nexp. x{g.exposure:.3g}"
+    return title
+
+
 def render_grid(table, canvas, scene, row_axis, values, cells, held):
     methods = sorted({m for (_, m) in cells})
     groups = reference_groups(table, values, cells, methods)
@@ -234,8 +250,16 @@ def render_grid(table, canvas, scene, row_axis, values, cells, held):
         columns += [("error", m, g) for m in g.methods]
     # Square cells in a figure sized for them (no tight layout: it cannot know that the
     # images keep their aspect): margins for the row labels, titles and colour bars.
-    left, top, bottom = 0.3, 0.65, 0.45
+    left, bottom = 0.3, 0.45
     cell = min(1.3, (style.DOUBLE_COLUMN - left) / len(columns))
+    # The top margin holds the figure's title and the columns' titles, each as many lines
+    # as it wraps to: a fixed margin let a long title run into the "|error|:" headers.
+    titles = [column_title(kind, m, g, cell) for kind, m, g in columns]
+    suptitle = textwrap.fill(style.panel_title(scene, held_description(table, held),
+                                               quantity=f"rows: {axis_label(row_axis)}"),
+                             int(cell * len(columns) * 13))
+    top = TITLE_PAD_IN + LINE_IN * (SUPTITLE_PT * (suptitle.count("\n") + 1) +
+                                    COLUMN_TITLE_PT * max(t.count("\n") + 1 for t in titles))
     width, height = left + cell * len(columns) * 1.04, top + bottom + cell * len(values) * 1.04
     fig, axes = plt.subplots(len(values), len(columns), squeeze=False, figsize=(width, height))
     fig.subplots_adjust(left=left / width, right=0.995, bottom=bottom / height,
@@ -280,14 +304,8 @@ def render_grid(table, canvas, scene, row_axis, values, cells, held):
             if kind == "image" and status[i] != "ok":
                 flag(ax, status[i])
         axes[r][0].set_ylabel(f"{axis_label(row_axis)}={value}")
-    for c, (kind, m, g) in enumerate(columns):
-        title = m if kind == "image" else f"reference: {', '.join(g.passes)}" \
-            if kind == "reference" else f"|error|: {m}"
-        title = textwrap.fill(title.replace("/", "/ "), max(8, int(cell * 13)),
-                              break_long_words=False).replace("/ ", "/").replace("/\n", "/\n")
-        if kind != "error" and g.hdr:
-            title += f"\nexp. x{g.exposure:.3g}"
-        axes[0][c].set_title(title, fontsize=5.5)
+    for c, title in enumerate(titles):
+        axes[0][c].set_title(title, fontsize=COLUMN_TITLE_PT)
     for g in groups:  # one colour bar under each group's error columns, with its scale
         first = next(c for c, col in enumerate(columns) if col[0] == "error" and col[2] is g)
         count = len(g.methods)
@@ -298,10 +316,7 @@ def render_grid(table, canvas, scene, row_axis, values, cells, held):
         bar.ax.tick_params(labelsize=5, length=2)
         bar.set_label("|error| " + ("(linear radiance)" if g.hdr else "(AO, 0..1)"), fontsize=5.5,
                       labelpad=1)
-    fig.suptitle(textwrap.fill(style.panel_title(scene, held_description(table, held),
-                                                 quantity=f"rows: {axis_label(row_axis)}"),
-                               int(cell * len(columns) * 13)), fontsize=6.5, y=1 - 0.04 / height,
-                 va="top")
+    fig.suptitle(suptitle, fontsize=SUPTITLE_PT, y=1 - 0.04 / height, va="top")
     name = f"grid-{safe_name(scene)}-{safe_name(row_axis)}"
     exposures = "; ".join(f"{', '.join(g.passes)} tone-mapped: linear value x {g.exposure:.3g} "
                           f"(the exposure mapping the reference's 99th-percentile luminance to "

@@ -10,6 +10,7 @@ import os
 import numpy as np
 
 from . import style, ties
+from .table import shown_value as shown_axis_value
 
 
 MIB = float(1 << 20)
@@ -78,7 +79,7 @@ def ranking_groups(table):
         label = scene[in_group].iloc[0] + ": " + "/".join(sorted(set(passes[in_group])))
         d_max = table.text("d_max")[in_group].replace("nan", "")
         if d_max.nunique() == 1 and d_max.iloc[0] and passes[in_group].isin(["ao", "hbao", "rtao"]).all():
-            label += f" at d_max {d_max.iloc[0]}"
+            label += f" at d_max {shown_axis_value(d_max.iloc[0])}"
         if identity[in_group].iloc[0].startswith("pass "):
             label += " (no reference)"
         groups.append((label, in_group))
@@ -170,15 +171,15 @@ def choose_criteria(table):
     return out
 
 
-def choose_rows(table):
-    """The front table: per scene and reference (ranking_groups), the ok configurations no
-    other beats in time, memory and error at once beyond the tie bands (ties.py), fastest
-    first; each with the criteria it is best in, "(tied)" where another front member cannot
-    be told from it there. Returns (rows, notes about cut groups)."""
-    criteria = choose_criteria(table)
+def table_fronts(table, criteria=None):
+    """Per ranking group, the front the front table lists: [(group, index, points, front)],
+    index the group's ok timed rows (with an error where the table ranks one), points their
+    criteria's Measures, front the positions in index of the configurations no other
+    beats in every criterion at once (ties.pareto_front_all), fastest first."""
+    criteria = criteria or choose_criteria(table)
     higher = [h for _, h, _, _ in criteria]
     measured = table.measured() & table.num("frame_ms_median").notna()
-    rows, cut = [], []
+    out = []
     for group, in_group in ranking_groups(table):
         index = list(table.df.index[in_group & measured])
         if len(criteria) == 3:
@@ -187,7 +188,25 @@ def choose_rows(table):
         if not index:
             continue
         points = [[measure(i) for _, _, measure, _ in criteria] for i in index]
-        front = ties.pareto_front_all(points, higher)
+        out.append((group, index, points, ties.pareto_front_all(points, higher)))
+    return out
+
+
+def front_table_members(table):
+    """The rows (table index) on the front table's fronts, every one (the table shows the
+    CHOOSE_CAP fastest of a group): the trade-off figures ring each of them."""
+    return {index[f] for _, index, _, front in table_fronts(table) for f in front}
+
+
+def choose_rows(table):
+    """The front table: per scene and reference (ranking_groups), the ok configurations no
+    other beats in time, memory and error at once beyond the tie bands (ties.py), fastest
+    first; each with the criteria it is best in, "(tied)" where another front member cannot
+    be told from it there. Returns (rows, notes about cut groups)."""
+    criteria = choose_criteria(table)
+    higher = [h for _, h, _, _ in criteria]
+    rows, cut = [], []
+    for group, index, points, front in table_fronts(table, criteria):
         best = [set(front[k] for k in ties.best_and_tied([points[f][c] for f in front], higher[c]))
                 for c in range(len(criteria))]
         for f in front[:CHOOSE_CAP]:

@@ -4,6 +4,7 @@ methods, the axes a sweep varies, the metric columns and the sub-passes a run ti
 Everything is discovered from the columns, so that a new pass, its sub-passes
 (`<subpass>_ms_median`) and its prefixed metrics (`<prefix>_mse`, `<prefix>_mssim`) appear in
 the report without a change here."""
+import math
 import re
 
 import numpy as np
@@ -212,8 +213,34 @@ def sort_key(value):
         return (1, 0.0, str(value))
 
 
+SHOWN_DIGITS = 4  # significant digits of a derived value in titles and labels
+GUESS = re.compile(r"^guess: (\d+) fragment\(s\) per LDM pixel$")
+
+
+def shown_value(value):
+    """An axis value as titles and labels show it, to the digits it supports: a value the
+    harness derived in double (d_max from a scene's size: 4.393941402435303) to
+    SHOWN_DIGITS significant digits (4.394), a value given as typed (0.5, 1e-3, 128) as it
+    is; the previous-frame policy's "guess: 1 fragment(s) per LDM pixel" as "1 fragment/LDM
+    pixel" (its axis is already called the initial guess)."""
+    text = str(value)
+    guess = GUESS.match(text)
+    if guess:
+        n = guess.group(1)
+        return f"{n} fragment{'' if n == '1' else 's'}/LDM pixel"
+    try:
+        number = float(text)
+    except ValueError:
+        return text
+    if not math.isfinite(number) or "e" in text.lower():
+        return text
+    digits = len(text.lstrip("+-").replace(".", "").lstrip("0").rstrip("0") if "." in text
+                 else text.lstrip("+-").lstrip("0"))
+    return f"{number:.{SHOWN_DIGITS}g}" if "." in text and digits > SHOWN_DIGITS + 2 else text
+
+
 def describe(values):
     """k=v pairs of a dict of axis values, for legends and titles (a structure's parameters
-    as they are: "k=3")."""
-    return ", ".join(v if k == "structure_params" else f"{axis_label(k)}={v}"
+    as they are: "k=3"; each value by shown_value)."""
+    return ", ".join(v if k == "structure_params" else f"{axis_label(k)}={shown_value(v)}"
                      for k, v in values.items() if v != "")
