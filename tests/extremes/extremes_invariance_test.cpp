@@ -171,6 +171,7 @@ void expect_invariant(const std::vector<Placement>& placements, const std::strin
     // The rebasing is recorded: the world position of the frame the scene was computed in.
     EXPECT_FALSE(cell(r, "scene_origin_offset").empty()) << what;
     EXPECT_EQ(cell(r, "far_file_vertices"), "0") << what;
+    EXPECT_EQ(cell(r, "collapsed_triangles"), "0") << what;
     if (r.at("pass") == "indirect") {
       // The photon buffer holds the rebased frame's floats: the same photons wherever the
       // file places the scene, every footprint resolved.
@@ -235,6 +236,43 @@ TEST(ExtremesInvariance, DetailTheMeshFileItselfCannotHoldIsCountedAndFlagged) {
 
   std::ofstream(dir / "mesh.obj") << kMesh;  // the same mesh at its file's origin
   EXPECT_EQ(load_scene((dir / "geo.json").string()).far_file_vertices, 0u);
+}
+
+// Detail far from the rest of a large scene: a part placed 1e4 away from the floor is held,
+// once the scene is rebased to its centre, on a float grid 4.9e-4 apart. Its 1e-5 triangle
+// has an area where its mesh is placed and none in the scene's frame: counted
+// (collapsed_triangles), named in status_detail; its 0.1 triangle is held, and beside the
+// floor (floats 6e-8 apart) both are.
+TEST(ExtremesInvariance, DetailBelowTheFloatSpacingWhereItLiesIsCountedAndFlagged) {
+  const fs::path dir = test::make_temp_dir("ldm-invariance-collapse");
+  std::ofstream(dir / "mesh.obj") << kMesh;
+  std::ofstream(dir / "part.obj") << "v 0 0 0\nv 1e-5 0 0\nv 0 1e-5 0\nf 1 2 3\n"
+                                     "v 0 0 0.5\nv 0.1 0 0.5\nv 0 0.1 0.5\nf 4 5 6\n";
+  std::ofstream(dir / "apart.json")
+      << R"({"name": "apart", "meshes": [{"file": "mesh.obj"}, {"file": "part.obj", "translate": [10000, 0.5, 0]}], )"
+      << R"("camera": {"eye": [0.31, 0.93, 1.71], "target": [0.05, 0.21, -0.13]}, "ao": {"d_max": 0.7}})";
+  const Scene scene = load_scene((dir / "apart.json").string());
+  EXPECT_EQ(scene.collapsed_triangles, 1u);
+  EXPECT_EQ(scene.far_file_vertices, 0u);
+  ASSERT_EQ(scene.warnings.size(), 1u);
+  EXPECT_NE(scene.warnings[0].find("collapsed_triangles"), std::string::npos) << scene.warnings[0];
+  const fs::path out = dir / "out";
+  const test::Outcome o = test::ldmbench("run --scene " + (dir / "apart.json").string() +
+                                         " -N 4 -R 16 --width 16 --height 16 --frames 1 "
+                                         "--warmup 0 --no-reference --out " + out.string());
+  // Exit 3: at R_LDM 16 over an extent of 1e4 the floor covers no LDM pixel centre (invalid,
+  // saying so); the record is written all the same.
+  ASSERT_TRUE(o.status == 0 || o.status == 3) << o.output;
+  const Table rows = read_csv(out / "records.csv");
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(cell(rows[0], "collapsed_triangles"), "1");
+  EXPECT_NE(rows[0].at("status_detail").find("collapsed_triangles"), std::string::npos);
+  // The same part beside the floor: nothing collapses.
+  std::ofstream(dir / "apart.json")
+      << R"({"name": "apart", "meshes": [{"file": "mesh.obj"}, {"file": "part.obj", "translate": [0.5, 0.5, 0]}]})";
+  const Scene near = load_scene((dir / "apart.json").string());
+  EXPECT_EQ(near.collapsed_triangles, 0u);
+  EXPECT_TRUE(near.warnings.empty());
 }
 
 // Eight layers 1e-6 apart near the end of a depth range of ~20: floats there hold them
