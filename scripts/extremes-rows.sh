@@ -41,6 +41,7 @@ done
 # The Cornell box's LDM pixel at R_LDM 64 is 2 x 4.8037 / 64 = 0.15012 (scene_radius 4.8037);
 # the scene's size (its bounding sphere's diameter) 9.6074.
 run n1-n2-cornell --scene cornell -N 1,2 -R 64 --structure all
+run n1-n2-cornell-normalized --scene cornell -N 1,2 -R 64 --ao-estimator normalized
 run n1-n2-cornell-indirect --scene cornell -N 1,2 -R 64 --pass indirect
 run dmax-pixel-to-10x-cornell --scene cornell -N 16 -R 64 --d-max 0.15012,0.60047,2.4019,9.6074,96.074
 run image16-cornell --scene cornell -N 8 -R 64 --image-size 16x16 --pass ao,hbao,gtao,rtao,rtao_gpu,indirect
