@@ -4,7 +4,7 @@
 # degenerate and sliver triangles and coincident surfaces (scenes/extremes/); the hairball at
 # the largest R_LDM whose census fits the storage block at N = 32 (and the next size, refused
 # naming the limit); photons too fine for the float grid where they land (a laser-narrow spot).
-# 64x64 images, one frame, 256 reference samples a half; llvmpipe: about 15 minutes.
+# 64x64 images, one frame, 256 reference samples a half; llvmpipe: about 5 minutes.
 # Usage: scripts/extremes-rows.sh [OUT_DIR] (default results/extremes-rows); with
 # KEEP=docs/measured/extremes the records are copied there as <row>.csv.
 set -euo pipefail
