@@ -251,10 +251,11 @@ Measurement MeasurementSession::result() const {
     // their order is lost, which the record says rather than passing as exact (issue 35).
     if (const double quantum = s.structure->depth_quantum(s.setup->views.views.front());
         m.tied_depths > 0 && quantum > 0.0) {
-      char text[200];
+      char text[320];
       std::snprintf(text, sizeof text,
                     "%llu fragments stored at their predecessor's quantised depth (depth_quantum %.3g): "
-                    "distinct depths within one key step collide, their order lost (tied_depths)",
+                    "distinct depths within one key step collided, their order lost, or coincident "
+                    "surfaces; the keys cannot tell which (tied_depths)",
                     static_cast<unsigned long long>(m.tied_depths), quantum);
       m.status_detail += std::string(m.status_detail.empty() ? "" : "; ") + text;
     }

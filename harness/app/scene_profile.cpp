@@ -50,6 +50,7 @@ void add_scene_profile(Record& r, const Scene& scene, const Configuration& confi
                 scene.origin_offset.y, scene.origin_offset.z);
   r.set("scene_origin_offset", std::string(offset));
   r.set("far_file_vertices", scene.far_file_vertices);
+  r.set("collapsed_triangles", scene.collapsed_triangles);
   if (config.structure == kNoStructure) return;  // no census, no LDM pixels
 
   const DepthProfile& profile = m.census.profile;

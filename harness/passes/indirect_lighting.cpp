@@ -109,6 +109,8 @@ std::vector<ColumnSpec> IndirectLighting::columns() {
       {"pass", "photons_culled_footprint", "photons", "indirect: secondary photons culled by T_foot"},
       {"pass", "photons_degenerate", "photons", "indirect: secondary photons with a degenerate differential (grazing transfer, opposite rotation, zero area, non-finite), culled"},
       {"pass", "photons_stored", "photons", "indirect: photons in the photon buffer (splatted)"},
+      {"pass", "photons_unresolved", "photons", "indirect: stored photons whose splat footprint's half-width spans under 16 float steps at their position: floats cannot place or shape their kernels (the scene too large for the photons' detail), flagged in status_detail"},
+      {"pass", "photon_footprint_steps_min", "float steps", "indirect: the narrowest stored photon's footprint half-width, in steps of the float grid at its position (16 or more: resolved; empty when none was stored)"},
       {"pass", "photons_overflow", "photons", "indirect: photons that did not fit the photon buffer (counted; makes the record lossy)"},
       {"pass", "photon_rebuilds", "frames", "indirect, previous_frame: traces repeated after the photon buffer overflowed (warm-up included)"},
       {"pass", "photon_reallocations", "frames", "indirect, census: photon buffer reallocations"},
@@ -241,8 +243,13 @@ std::vector<std::pair<std::string, RecordValue>> IndirectLighting::results() con
   // secondaries' fates), then the stored photons' flux followed into the image by an untimed
   // audit splat.
   const PhotonFluxTally t = lighting_->flux_tally();
+  const std::vector<StoredPhoton> photons = lighting_->read_photons();
   double stored = 0;
-  for (const auto& p : lighting_->read_photons()) stored += (p.flux.x + p.flux.y + p.flux.z) / 3.0;
+  for (const auto& p : photons) stored += (p.flux.x + p.flux.y + p.flux.z) / 3.0;
+  // Whether floats resolve the stored photons' footprints where they lie (issue 35).
+  const PhotonResolution resolution = photon_resolution(photons, settings_.splat_scale);
+  out.emplace_back("photons_unresolved", int64_t(resolution.unresolved));
+  if (resolution.photons > 0) out.emplace_back("photon_footprint_steps_min", resolution.min_steps);
   out.emplace_back("flux_primary", t.primary);
   out.emplace_back("flux_reflected", t.reflected);
   out.emplace_back("flux_emitted", t.emitted);
@@ -267,6 +274,13 @@ std::vector<std::pair<std::string, RecordValue>> IndirectLighting::results() con
 std::vector<std::string> IndirectLighting::problems() const {
   const std::string cut = trace_step_problem(lighting_->trace_steps());
   return cut.empty() ? std::vector<std::string>{} : std::vector<std::string>{cut};
+}
+
+std::vector<std::string> IndirectLighting::warnings() const {
+  if (!lighting_) return {};  // not prepared: nothing stored
+  const std::string detail =
+      photon_resolution_detail(photon_resolution(lighting_->read_photons(), settings_.splat_scale));
+  return detail.empty() ? std::vector<std::string>{} : std::vector<std::string>{detail};
 }
 
 std::string IndirectLighting::loss() const {

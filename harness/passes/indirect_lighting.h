@@ -45,6 +45,8 @@ class IndirectLighting : public Pass {
   Image coverage() const override;
   std::string loss() const override;
   std::vector<std::string> problems() const override;
+  // Stored photons whose footprint floats cannot resolve where they lie (photon_resolution).
+  std::vector<std::string> warnings() const override;
   std::vector<BufferMemory> memory() const override;
   ReferenceResult reference(const Scene& scene, int width, int height,
                             const ReferenceSettings& settings) const override;

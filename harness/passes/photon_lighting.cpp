@@ -406,6 +406,41 @@ Image PhotonLighting::read_sum() const {
   return image_from_gl_rows(sum_.read_floats(3), width_, height_, 3);
 }
 
+double float_step_at(const glm::vec3& x) {
+  const float m = std::max({std::abs(x.x), std::abs(x.y), std::abs(x.z)});
+  return double(std::nextafter(m, INFINITY)) - double(m);
+}
+
+PhotonResolution photon_resolution(const std::vector<StoredPhoton>& photons, float splat_scale) {
+  PhotonResolution r;
+  r.photons = photons.size();
+  bool first = true;
+  for (const auto& p : photons) {
+    const glm::dvec3 du = glm::dvec3(p.du_x) * double(splat_scale);
+    const glm::dvec3 dv = glm::dvec3(p.dv_x) * double(splat_scale);
+    const double longest = std::max(glm::length(du), glm::length(dv));
+    const double half_width = longest > 0.0 ? 0.5 * glm::length(glm::cross(du, dv)) / longest : 0.0;
+    const double steps = half_width / float_step_at(p.position);
+    if (!(steps >= kPhotonMinFootprintSteps)) ++r.unresolved;  // NaN counts as unresolved
+    if (first || !(steps >= r.min_steps)) r.min_steps = steps;
+    first = false;
+  }
+  return r;
+}
+
+std::string photon_resolution_detail(const PhotonResolution& r) {
+  if (r.unresolved == 0) return {};
+  char text[400];
+  std::snprintf(text, sizeof text,
+                "%llu of %llu stored photons have a splat footprint narrower than %g float steps "
+                "at their position (the narrowest %.3g): floats cannot place or shape their "
+                "kernels, the scene is too large for the photons' detail (photons_unresolved; "
+                "a smaller R_light, a wider cone or a larger s widens them)",
+                static_cast<unsigned long long>(r.unresolved),
+                static_cast<unsigned long long>(r.photons), kPhotonMinFootprintSteps, r.min_steps);
+  return text;
+}
+
 std::vector<StoredPhoton> PhotonLighting::read_photons() const {
   std::vector<StoredPhoton> out(counts_.stored);
   if (!out.empty()) photons_.download(out.data(), out.size() * kPhotonBytes);

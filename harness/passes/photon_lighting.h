@@ -127,6 +127,27 @@ struct StoredPhoton {
 };
 static_assert(sizeof(StoredPhoton) == 80, "std430 Photon is five vec4");
 
+// Whether 32-bit floats hold the stored photons' splats where they lie (issue 35). The photon
+// buffer holds full floats in the scene's rebased frame (translation never reaches them); what
+// a float cannot hold is a footprint too small for its position: the splat's quad is
+// x_p +- s Du x / 2 +- s Dv x / 2 and its kernel's argument M (x - x_p), both rounded to the
+// float grid at x_p, so a footprint whose half-width spans few float steps there is placed
+// and shaped by rounding (under one step its quad collapses to a point). The half-width is
+// half the parallelogram's smaller altitude, |s Du x s Dv| / (2 max(|s Du|, |s Dv|)); the
+// float step at x is the spacing of floats at max_i |x_i|.
+struct PhotonResolution {
+  uint64_t photons = 0;     // photons looked at
+  uint64_t unresolved = 0;  // of them, footprint half-width under kPhotonMinFootprintSteps steps
+  double min_steps = 0;     // the narrowest half-width in float steps (0 when no photons)
+};
+// Under 16 steps the kernel's argument carries a rounding error above 1/16 of its radius at
+// every pixel: the splat's shape and weight are rounding, not the photon's differential.
+constexpr double kPhotonMinFootprintSteps = 16.0;
+double float_step_at(const glm::vec3& x);
+PhotonResolution photon_resolution(const std::vector<StoredPhoton>& photons, float splat_scale);
+// The status_detail sentence for unresolved photons; empty when every photon is resolved.
+std::string photon_resolution_detail(const PhotonResolution& r);
+
 // The light as a pinhole camera: fov 2 * outer angle, square R_light image; its inscribed
 // circle is the spot's cone.
 Camera light_camera(const SpotLight& light);

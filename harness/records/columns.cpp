@@ -15,6 +15,7 @@ std::vector<ColumnSpec> scene_profile_columns() {
       {"profile", "scene_radius", "scene units", "radius of the scene's bounding sphere (what derived settings scale with)"},
       {"profile", "scene_origin_offset", "", "world position (x y z in scene units, double) of the frame the scene is computed in: a scene file with meshes is rebased at load to its bounding-box centre"},
       {"profile", "far_file_vertices", "corners", "triangle corners the mesh file itself holds coarser than 2^-16 of the scene's extent (float coordinates far from the file's origin; named in status_detail)"},
+      {"profile", "collapsed_triangles", "triangles", "triangles with an area where their mesh is placed and none once rebased into the scene's frame: detail below the float spacing where it lies (a small part far from the rest of a large scene), neither drawn nor hit; named in status_detail"},
       {"profile", "camera_source", "", "where the camera came from: generator <name>, scene file, or derived (framing the bounding sphere)"},
       {"profile", "light_source", "", "where the spot light came from: generator <name>, scene file, or derived (above the bounding sphere, 1 W/m^2 at its centre)"},
       {"profile", "d_max_source", "", "where d_max came from: generator <name>, scene file, run (--d-max), or derived (0.2 x the radius)"},

@@ -132,6 +132,11 @@ struct Scene {
   // flat what the file may have meant smooth (issue 37). Zero for a built-in scene, whose
   // generators define face normals. A function of the source bytes: not in identity_hash.
   uint64_t derived_normal_triangles = 0;
+  // Triangles with an area where their mesh was placed (its frame anchored at its
+  // `translate`) and none once rebased into the scene's frame: detail smaller than the float
+  // spacing at its distance from the scene's centre (a small part far from the rest of a
+  // large scene), which no stage can draw or hit; counted and named in the scene's warnings.
+  uint64_t collapsed_triangles = 0;
   // What the scene was made from: a generator's name and parameters, or a scene file's JSON
   // (canonical: formatting and key order do not count) and the bytes of every mesh file it
   // names (and an OBJ's .mtl files), or a mesh file's bytes. Set by the loader

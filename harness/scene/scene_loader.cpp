@@ -226,8 +226,17 @@ void rebase_to_centre(Scene& scene, Placements& placements, const std::string& w
   }
   if (positions.empty()) return;
   const glm::dvec3 centre = 0.5 * (lo + hi);
+  auto has_area = [&](const glm::uvec3& t) {
+    return glm::length(glm::cross(positions[t.y] - positions[t.x], positions[t.z] - positions[t.x])) > 0.0f;
+  };
+  std::vector<bool> had_area(scene.mesh.triangles.size());
+  for (size_t t = 0; t < had_area.size(); ++t) had_area[t] = has_area(scene.mesh.triangles[t]);
   for (size_t i = 0; i < positions.size(); ++i)
     positions[i] = glm::vec3(glm::dvec3(positions[i]) + anchor[i] - centre);
+  uint64_t collapsed = 0;
+  for (size_t t = 0; t < had_area.size(); ++t)
+    if (had_area[t] && !has_area(scene.mesh.triangles[t])) ++collapsed;
+  scene.collapsed_triangles = collapsed;
   scene.camera.eye = glm::vec3(glm::dvec3(scene.camera.eye) - centre);
   scene.camera.target = glm::vec3(glm::dvec3(scene.camera.target) - centre);
   scene.light.position = glm::vec3(glm::dvec3(scene.light.position) - centre);
@@ -247,6 +256,18 @@ void rebase_to_centre(Scene& scene, Placements& placements, const std::string& w
                   "32-bit floats hold them only to %.3g, coarser than 2^-16 of the scene's extent "
                   "%.3g (far_file_vertices): detail lost in the file itself",
                   static_cast<unsigned long long>(far), double(coarsest), extent);
+    scene.warnings.push_back(where + ": " + text);
+  }
+  if (collapsed > 0) {
+    const float largest = std::max({std::abs(float(lo.x - centre.x)), std::abs(float(lo.y - centre.y)),
+                                    std::abs(float(lo.z - centre.z))});
+    char text[320];
+    std::snprintf(text, sizeof text,
+                  "%llu triangles have an area where their mesh is placed and none in the scene's "
+                  "frame (collapsed_triangles): smaller than the float spacing (%.3g at the scene's "
+                  "edge, extent %.3g) where they lie, they are neither drawn nor hit",
+                  static_cast<unsigned long long>(collapsed),
+                  double(std::nextafter(largest, INFINITY) - largest), extent);
     scene.warnings.push_back(where + ": " + text);
   }
 }
