@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <set>
 
+#include "harness/app/harness_axes.h"
 #include "harness/passes/pass.h"
 
 namespace ldm {
@@ -50,8 +51,18 @@ const std::vector<ColumnSpec>& record_columns() {
 
 const ColumnSpec* find_column(const std::string& column) { return find_column_in(record_columns(), column); }
 
+bool is_declared_column(const std::string& column) {
+  if (find_column(column)) return true;
+  const std::vector<std::string> axis_columns = axis_column_names();
+  return std::find(axis_columns.begin(), axis_columns.end(), column) != axis_columns.end();
+}
+
+Record measurement_record() { return Record(&is_declared_column); }
+
 std::string columns_markdown() { return columns_markdown(record_columns()); }
 
 std::string columns_text() { return columns_text(record_columns()); }
+
+std::string columns_json() { return columns_json(record_columns()); }
 
 }  // namespace ldm

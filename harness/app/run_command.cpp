@@ -1,7 +1,5 @@
 #include "harness/app/run_command.h"
 
-#include "harness/app/record_schema.h"
-
 #include <unistd.h>
 
 #include <algorithm>
@@ -20,6 +18,7 @@
 #include <sstream>
 
 #include "harness/app/measure_configuration.h"
+#include "harness/app/record_schema.h"
 #include "harness/app/repetitions.h"
 #include "harness/app/timing_columns.h"
 #include "harness/app/run_summary.h"
@@ -732,7 +731,7 @@ int run_configurations(const ConfigurationRun& job, const std::string& command_l
         // images of its first repetition neither, when a later one fails).
         remove_files(written);
         remove_configuration_images(paths.images_dir, id + "-" + config.pass);
-        record = Record();
+        record = measurement_record();
         describe_configuration(record, config, settings, device);
         record.set("status", "failed");
         std::ostringstream why;
