@@ -9,6 +9,7 @@
 
 #include "harness/passes/ao_parameters.h"
 #include "harness/passes/pass.h"
+#include "harness/records/harness_columns.h"
 #include "harness/scene/scene_loader.h"
 #include "harness/util/error.h"
 #include "ldm_impls/ldm_structure.h"
@@ -71,7 +72,7 @@ std::vector<HarnessAxis> declare() {
   scenes.label = "scene";
   scenes.flags = "--scene";
   scenes.default_value = "cornell";
-  scenes.column = "scene";
+  scenes.column = columns::kScene.name;
   scenes.description = "built-in scene (`ldmbench scenes`), scene file (scenes/README.md) or mesh file";
   add(scenes, 0, [](const RunSettings& s) { return s.scenes; },
       [](RunSettings& s, const Values& v) { s.scenes = v; },
@@ -84,7 +85,7 @@ std::vector<HarnessAxis> declare() {
   passes.kind = AxisKind::Choice;
   passes.dynamic_choices = pass_names;
   passes.default_value = "ao";
-  passes.column = "pass";
+  passes.column = columns::kPass.name;
   passes.description = "the pass measured on each structure (a peer that reads no LDM has structure none)";
   add(passes, 2, [](const RunSettings& s) { return s.passes; },
       [](RunSettings& s, const Values& v) { s.passes = v; },
@@ -97,7 +98,7 @@ std::vector<HarnessAxis> declare() {
   structures.kind = AxisKind::Choice;
   structures.dynamic_choices = structure_names;
   structures.default_value = "psppsll";
-  structures.column = "structure";
+  structures.column = columns::kStructure.name;
   structures.description = "LDM structure (\"all\": every one)";
   add(structures, 1, [](const RunSettings& s) { return s.structures; },
       [](RunSettings& s, const Values& v) { s.structures = v; },
@@ -117,7 +118,7 @@ std::vector<HarnessAxis> declare() {
   views.default_value = "32";
   views.ldm_only = true;
   views.unit = "views";
-  views.column = "n_views";
+  views.column = columns::kNViews.name;
   views.description = "number of LDM views N (regions of the hemisphere partition)";
   add(views, 3, [](const RunSettings& s) { return texts(s.views, [](uint32_t v) { return std::to_string(v); }); },
       [](RunSettings& s, const Values& v) { s.views = parsed<uint32_t>(v, to_u32); },
@@ -134,7 +135,7 @@ std::vector<HarnessAxis> declare() {
   r_ldm.default_value = "128";
   r_ldm.ldm_only = true;
   r_ldm.unit = "pixels";
-  r_ldm.column = "r_ldm";
+  r_ldm.column = columns::kRLdm.name;
   r_ldm.description = "LDM resolution R_LDM (R x R pixels per view)";
   add(r_ldm, 4, [](const RunSettings& s) { return texts(s.resolutions, [](uint32_t v) { return std::to_string(v); }); },
       [](RunSettings& s, const Values& v) { s.resolutions = parsed<uint32_t>(v, to_u32); },
@@ -193,7 +194,7 @@ std::vector<HarnessAxis> declare() {
   sizing.choices = sizing_policy_names();
   sizing.default_value = "previous_frame";
   sizing.ldm_only = true;
-  sizing.column = "sizing_policy";
+  sizing.column = columns::kSizingPolicy.name;
   sizing.description = "how structures learn their sizes: previous_frame (the last frame's counters, rebuild on overflow, timed), census (a timed counting pass every frame), oracle (the untimed census before the run), budget (a fixed memory budget, overflow counted)";
   add(sizing, 100,
       [](const RunSettings& s) { return texts(s.sizing, [](SizingPolicy p) { return std::string(sizing_policy_name(p)); }); },
@@ -258,7 +259,7 @@ std::vector<HarnessAxis> declare() {
   image.default_value = "256x256";
   image.list = false;
   image.unit = "pixels";
-  image.column = "width,height";
+  image.column = columns::kWidth.name + "," + columns::kHeight.name;
   image.description = "output image WIDTHxHEIGHT (also --width and --height)";
   add(image, 200,
       [](const RunSettings& s) { return Values{std::to_string(s.width) + "x" + std::to_string(s.height)}; },
@@ -279,7 +280,7 @@ std::vector<HarnessAxis> declare() {
   frames.default_value = "5";
   frames.list = false;
   frames.unit = "frames";
-  frames.column = "frames";
+  frames.column = columns::kFrames.name;
   frames.description = "measured frames per repetition, at least (more until --time-target is met)";
   add(frames, 201, [](const RunSettings& s) { return Values{std::to_string(s.frames)}; },
       [](RunSettings& s, const Values& v) { s.frames = v.empty() ? 5 : int(to_u32(v.front())); },
@@ -299,7 +300,7 @@ std::vector<HarnessAxis> declare() {
   warmup.default_value = "2";
   warmup.list = false;
   warmup.unit = "frames";
-  warmup.column = "warmup";
+  warmup.column = columns::kWarmup.name;
   warmup.description = "warm-up frames judged and discarded before measuring";
   add(warmup, 202, [](const RunSettings& s) { return Values{std::to_string(s.warmup)}; },
       [](RunSettings& s, const Values& v) { s.warmup = v.empty() ? 2 : int(to_u32(v.front())); }, none);

@@ -5,13 +5,16 @@
 
 #include "harness/app/harness_axes.h"
 #include "harness/passes/pass.h"
+#include "harness/records/harness_columns.h"
 
 namespace ldm {
 
 const std::vector<std::string>& always_written_columns() {
+  using namespace columns;
   static const std::vector<std::string> columns = {
-      "config_id", "status", "status_detail", "scene", "structure", "pass", "n_views", "r_ldm",
-      "width", "height", "ldmbench_version", "git_commit", "wall_seconds"};
+      kConfigId.name, kStatus.name, kStatusDetail.name, kScene.name, kStructure.name, kPass.name,
+      kNViews.name,   kRLdm.name,   kWidth.name,        kHeight.name, kLdmbenchVersion.name,
+      kGitCommit.name, kWallSeconds.name};
   return columns;
 }
 
