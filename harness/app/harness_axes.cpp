@@ -9,6 +9,7 @@
 
 #include "harness/passes/ao_parameters.h"
 #include "harness/passes/pass.h"
+#include "harness/records/harness_columns.h"
 #include "harness/scene/scene_loader.h"
 #include "harness/util/error.h"
 #include "ldm_impls/ldm_structure.h"
@@ -59,6 +60,8 @@ std::vector<HarnessAxis> declare() {
     a.get = get;
     a.set = set;
     a.id_fragment = id;
+    // A pass parameter's column is the pass's to write (its describe()).
+    a.writes_column = a.spec.pass_parameter.empty();
     axes.push_back(std::move(a));
   };
   using Values = std::vector<std::string>;
@@ -69,7 +72,7 @@ std::vector<HarnessAxis> declare() {
   scenes.label = "scene";
   scenes.flags = "--scene";
   scenes.default_value = "cornell";
-  scenes.column = "scene";
+  scenes.column = columns::kScene.name;
   scenes.description = "built-in scene (`ldmbench scenes`), scene file (scenes/README.md) or mesh file";
   add(scenes, 0, [](const RunSettings& s) { return s.scenes; },
       [](RunSettings& s, const Values& v) { s.scenes = v; },
@@ -82,7 +85,7 @@ std::vector<HarnessAxis> declare() {
   passes.kind = AxisKind::Choice;
   passes.dynamic_choices = pass_names;
   passes.default_value = "ao";
-  passes.column = "pass";
+  passes.column = columns::kPass.name;
   passes.description = "the pass measured on each structure (a peer that reads no LDM has structure none)";
   add(passes, 2, [](const RunSettings& s) { return s.passes; },
       [](RunSettings& s, const Values& v) { s.passes = v; },
@@ -95,7 +98,7 @@ std::vector<HarnessAxis> declare() {
   structures.kind = AxisKind::Choice;
   structures.dynamic_choices = structure_names;
   structures.default_value = "psppsll";
-  structures.column = "structure";
+  structures.column = columns::kStructure.name;
   structures.description = "LDM structure (\"all\": every one)";
   add(structures, 1, [](const RunSettings& s) { return s.structures; },
       [](RunSettings& s, const Values& v) { s.structures = v; },
@@ -103,6 +106,7 @@ std::vector<HarnessAxis> declare() {
         const std::string s = value_of(c, "structures");
         return "-" + (s.empty() ? std::string(kNoStructure) : s);
       });
+  axes.back().absent_value = kNoStructure;
 
   AxisSpec views;
   views.key = "views";
@@ -114,11 +118,12 @@ std::vector<HarnessAxis> declare() {
   views.default_value = "32";
   views.ldm_only = true;
   views.unit = "views";
-  views.column = "n_views";
+  views.column = columns::kNViews.name;
   views.description = "number of LDM views N (regions of the hemisphere partition)";
   add(views, 3, [](const RunSettings& s) { return texts(s.views, [](uint32_t v) { return std::to_string(v); }); },
       [](RunSettings& s, const Values& v) { s.views = parsed<uint32_t>(v, to_u32); },
       [](const AxisValues& c, bool) { return "-n" + value_of(c, "views"); });
+  axes.back().absent_value = "0";  // a peer's record has always said N = 0
 
   AxisSpec r_ldm;
   r_ldm.key = "r_ldm";
@@ -130,11 +135,12 @@ std::vector<HarnessAxis> declare() {
   r_ldm.default_value = "128";
   r_ldm.ldm_only = true;
   r_ldm.unit = "pixels";
-  r_ldm.column = "r_ldm";
+  r_ldm.column = columns::kRLdm.name;
   r_ldm.description = "LDM resolution R_LDM (R x R pixels per view)";
   add(r_ldm, 4, [](const RunSettings& s) { return texts(s.resolutions, [](uint32_t v) { return std::to_string(v); }); },
       [](RunSettings& s, const Values& v) { s.resolutions = parsed<uint32_t>(v, to_u32); },
       [](const AxisValues& c, bool) { return "-r" + value_of(c, "r_ldm"); });
+  axes.back().absent_value = "0";
 
   add(ao_axis(AoAxis::DMax), 5,
       [](const RunSettings& s) { return texts(s.d_max, [](float d) { return shortest_text(d, true); }); },
@@ -188,12 +194,13 @@ std::vector<HarnessAxis> declare() {
   sizing.choices = sizing_policy_names();
   sizing.default_value = "previous_frame";
   sizing.ldm_only = true;
-  sizing.column = "sizing_policy";
+  sizing.column = columns::kSizingPolicy.name;
   sizing.description = "how structures learn their sizes: previous_frame (the last frame's counters, rebuild on overflow, timed), census (a timed counting pass every frame), oracle (the untimed census before the run), budget (a fixed memory budget, overflow counted)";
   add(sizing, 100,
       [](const RunSettings& s) { return texts(s.sizing, [](SizingPolicy p) { return std::string(sizing_policy_name(p)); }); },
       [](RunSettings& s, const Values& v) { s.sizing = parsed<SizingPolicy>(v, parse_sizing_policy); },
       [](const AxisValues& c, bool) { return "-" + sizing_id_name(parse_sizing_policy(value_of(c, "sizing"))); });
+  axes.back().absent_value = kNoStructure;  // a pass that reads no LDM sizes no structure
 
   AxisSpec budget;
   budget.key = "sizing_budget_mib";
@@ -218,6 +225,7 @@ std::vector<HarnessAxis> declare() {
         std::snprintf(buffer, sizeof buffer, "%g", std::strtod(value_of(c, "sizing_budget_mib").c_str(), nullptr));
         return buffer;  // follows "-budget"
       });
+  axes.back().writes_column = false;  // the policy's sizing_budget_mib
 
   AxisSpec initial;
   initial.key = "sizing_initial_per_pixel";
@@ -239,6 +247,7 @@ std::vector<HarnessAxis> declare() {
         const std::string v = value_of(c, "sizing_initial_per_pixel");
         return value_of(c, "sizing") == "previous_frame" && !v.empty() && v != "1" ? "-guess" + v : "";
       });
+  axes.back().writes_column = false;  // the policy's sizing_initial
 
   AxisSpec image;
   image.key = "image_size";
@@ -250,7 +259,7 @@ std::vector<HarnessAxis> declare() {
   image.default_value = "256x256";
   image.list = false;
   image.unit = "pixels";
-  image.column = "width,height";
+  image.column = columns::kWidth.name + "," + columns::kHeight.name;
   image.description = "output image WIDTHxHEIGHT (also --width and --height)";
   add(image, 200,
       [](const RunSettings& s) { return Values{std::to_string(s.width) + "x" + std::to_string(s.height)}; },
@@ -260,6 +269,7 @@ std::vector<HarnessAxis> declare() {
         s.height = std::atoi(v.front().c_str() + v.front().find('x') + 1);
       },
       [](const AxisValues& c, bool varied) { return varied ? "-img" + value_of(c, "image_size") : std::string(); });
+  axes.back().column_rank = 85;  // width and height before the parameters, as records have had them
 
   AxisSpec frames;
   frames.key = "frames";
@@ -270,7 +280,7 @@ std::vector<HarnessAxis> declare() {
   frames.default_value = "5";
   frames.list = false;
   frames.unit = "frames";
-  frames.column = "frames";
+  frames.column = columns::kFrames.name;
   frames.description = "measured frames per repetition, at least (more until --time-target is met)";
   add(frames, 201, [](const RunSettings& s) { return Values{std::to_string(s.frames)}; },
       [](RunSettings& s, const Values& v) { s.frames = v.empty() ? 5 : int(to_u32(v.front())); },
@@ -290,7 +300,7 @@ std::vector<HarnessAxis> declare() {
   warmup.default_value = "2";
   warmup.list = false;
   warmup.unit = "frames";
-  warmup.column = "warmup";
+  warmup.column = columns::kWarmup.name;
   warmup.description = "warm-up frames judged and discarded before measuring";
   add(warmup, 202, [](const RunSettings& s) { return Values{std::to_string(s.warmup)}; },
       [](RunSettings& s, const Values& v) { s.warmup = v.empty() ? 2 : int(to_u32(v.front())); }, none);
@@ -378,6 +388,81 @@ Configuration configuration_of(const AxisValues& values) {
   return c;
 }
 
+namespace {
+
+constexpr int kParametersRank = 90;  // the structure's parameters, in the id and the columns
+
+int column_rank(const HarnessAxis& axis) { return axis.column_rank.value_or(axis.id_rank); }
+
+std::vector<std::string> split_columns(const std::string& columns) {
+  std::vector<std::string> out;
+  size_t start = 0;
+  while (start <= columns.size()) {
+    const size_t comma = std::min(columns.find(',', start), columns.size());
+    if (comma > start) out.push_back(columns.substr(start, comma - start));
+    start = comma + 1;
+  }
+  return out;
+}
+
+void put_axis_value(Record& r, const AxisSpec& spec, const std::string& text) {
+  const std::vector<std::string> columns = split_columns(spec.column);
+  if (spec.kind == AxisKind::ImageSize) {
+    if (columns.size() != 2)
+      throw std::logic_error("axis '" + spec.key + "': an image size needs two columns (width,height)");
+    const auto x = text.find('x');
+    r.set(columns[0], std::atoi(text.c_str()));
+    r.set(columns[1], x == std::string::npos ? 0 : std::atoi(text.c_str() + x + 1));
+    return;
+  }
+  if (columns.size() != 1)
+    throw std::logic_error("axis '" + spec.key + "' writes one column, not '" + spec.column + "'");
+  if (spec.kind == AxisKind::UInt)
+    r.set(columns[0], int64_t(std::strtoll(text.c_str(), nullptr, 10)));
+  else if (spec.kind == AxisKind::Real)
+    r.set(columns[0], std::strtod(text.c_str(), nullptr));
+  else
+    r.set(columns[0], text);
+}
+
+}  // namespace
+
+void write_axis_columns(Record& r, const Configuration& config, AxisColumns which) {
+  std::vector<const HarnessAxis*> axes;
+  for (const HarnessAxis& axis : harness_axes())
+    if (axis.writes_column && !axis.spec.column.empty() && (which == AxisColumns::All || axis.spec.list))
+      axes.push_back(&axis);
+  std::stable_sort(axes.begin(), axes.end(),
+                   [](const HarnessAxis* a, const HarnessAxis* b) { return column_rank(*a) < column_rank(*b); });
+  bool parameters_written = false;
+  const auto write_parameters = [&] {
+    std::string params;
+    for (const auto& [key, value] : config.params) params += (params.empty() ? "" : ";") + key + "=" + value;
+    r.set("structure_params", params);
+    parameters_written = true;
+  };
+  for (const HarnessAxis* axis : axes) {
+    if (!parameters_written && column_rank(*axis) >= kParametersRank) write_parameters();
+    const auto it = config.values.find(axis->spec.key);
+    if (it != config.values.end())
+      put_axis_value(r, axis->spec, it->second);
+    else if (!axis->absent_value.empty())
+      put_axis_value(r, axis->spec, axis->absent_value);
+    else
+      for (const auto& column : split_columns(axis->spec.column)) r.put(column, std::monostate{});
+  }
+  if (!parameters_written) write_parameters();
+}
+
+std::vector<std::string> axis_column_names() {
+  std::vector<std::string> names;
+  for (const HarnessAxis& axis : harness_axes())
+    if (axis.writes_column)
+      for (const auto& column : split_columns(axis.spec.column)) names.push_back(column);
+  names.push_back("structure_params");
+  return names;
+}
+
 std::string configuration_id(const AxisValues& values, const std::set<std::string>& varied) {
   // The parameters' fragments stand between the AO axes and the sizing policy.
   std::vector<std::pair<int, std::string>> parts;
@@ -396,7 +481,7 @@ std::string configuration_id(const AxisValues& values, const std::set<std::strin
     const auto colon = key.find(':');
     if (colon == std::string::npos) continue;
     const std::string owner = key.substr(0, colon);
-    const int rank = owner == structure ? 90 : owner == pass ? 95 : -1;
+    const int rank = owner == structure ? kParametersRank : owner == pass ? 95 : -1;
     if (rank >= 0) parts.emplace_back(rank, "-" + key.substr(colon + 1) + "=" + value);
   }
   std::stable_sort(parts.begin(), parts.end(), [](const auto& a, const auto& b) { return a.first < b.first; });

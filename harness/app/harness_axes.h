@@ -6,12 +6,14 @@
 // both together for everything that is derived from them.
 #include <functional>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
 
 #include "harness/app/run_settings.h"
 #include "harness/axes/axis.h"
+#include "harness/records/record.h"
 
 namespace ldm {
 
@@ -28,6 +30,16 @@ struct HarnessAxis {
   std::function<std::string(const AxisValues& values, bool varied)> id_fragment;
   // Where the fragment stands in the id (smaller first).
   int id_rank = 0;
+  // Whether the axis writes its record column (spec.column) itself, through
+  // write_axis_columns; false where the consumer writes it (the AO settings: the pass's
+  // describe(); the sizing budget and first guess: the sizing policy's sizing_ columns).
+  bool writes_column = true;
+  // The column's value in a configuration the axis does not apply to (a peer has no N: 0, no
+  // structure: none); empty: the column is left blank there.
+  std::string absent_value;
+  // Where its column stands among the identity columns (smaller first); unset: id_rank. The
+  // structure's and pass's parameters (structure_params) stand at 90, as in the id.
+  std::optional<int> column_rank;
 };
 
 // Every harness axis, in canonical order (sweep files list them so; the product runs the
@@ -46,6 +58,21 @@ void set_axis_list(RunSettings& settings, const HarnessAxis& axis, const std::ve
 
 // The typed configuration of one combination of values, its id not yet assigned.
 Configuration configuration_of(const AxisValues& values);
+
+// Which axes' columns write_axis_columns writes: every one, or only those a sweep lists values
+// of (spec.list; the memory plan's, which leaves out the run-wide image size and frames).
+enum class AxisColumns { All, Listed };
+
+// The configuration's identity columns, written by looping over the harness axes: each axis
+// that writes its column (writes_column) puts its value under spec.column, typed by its kind
+// (UInt: an integer, Real: a number, ImageSize: width and height, else text), in column_rank
+// order, with the parameters' column structure_params (key=value;...) at rank 90. What a
+// measured record and the memory plan identify a configuration by; an axis declared in one
+// place reaches the record here.
+void write_axis_columns(Record& record, const Configuration& config, AxisColumns which = AxisColumns::All);
+// The record columns of the harness axes that write their own (for the schema: an axis
+// declared outside the harness's own columns, a test's, still names a declared column).
+std::vector<std::string> axis_column_names();
 
 // The configuration id from its values: every harness axis's fragment in id_rank order, then
 // the parameters (structure's, then pass's) as -KEY=VALUE, then the characters a file name

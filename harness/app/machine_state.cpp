@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "harness/records/harness_columns.h"
 #include "harness/util/process.h"
 
 namespace ldm {
@@ -102,7 +103,7 @@ void set_machine_state_columns(Record& r, const MachineState& start, const Machi
     r.set("load_average_start", *start.load_average);
     r.set("load_average_end", *end.load_average);
   }
-  if (!start.cpu_governor.empty()) r.set("cpu_governor", start.cpu_governor);
+  if (!start.cpu_governor.empty()) r.set(columns::kCpuGovernor, start.cpu_governor);
   if (start.cpu_mhz && end.cpu_mhz) {
     r.set("cpu_mhz_start", *start.cpu_mhz);
     r.set("cpu_mhz_end", *end.cpu_mhz);

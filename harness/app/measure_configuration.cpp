@@ -3,11 +3,14 @@
 #include <filesystem>
 
 #include "harness/app/accuracy.h"
+#include "harness/app/harness_axes.h"
 #include "harness/app/machine_state.h"
 #include "harness/app/measured_where.h"
+#include "harness/app/record_schema.h"
 #include "harness/app/scene_profile.h"
 #include "harness/app/timing_columns.h"
 #include "harness/passes/raster_baseline.h"
+#include "harness/records/harness_columns.h"
 #include "harness/records/output_folder.h"
 #include "harness/util/error.h"
 #include "harness/util/hash.h"
@@ -15,6 +18,8 @@
 
 namespace ldm {
 namespace {
+
+using namespace columns;
 
 TimerSource timer_source(const std::string& option, const DeviceInfo& device) {
   if (option == "gl_timestamp") return TimerSource::GpuTimestamps;
@@ -24,37 +29,24 @@ TimerSource timer_source(const std::string& option, const DeviceInfo& device) {
 
 }  // namespace
 
-void describe_configuration(Record& r, const Configuration& config, const RunSettings& settings,
+void describe_configuration(Record& r, const Configuration& config, const RunSettings& /*settings*/,
                             const DeviceInfo& device) {
-  r.set("config_id", config.id());
-  r.set("status", "pending");
-  r.set("status_detail", "");
-  r.set("scene", config.scene);
-  r.set("structure", config.structure);
-  r.set("pass", config.pass);
-  r.set("n_views", config.views);
-  r.set("r_ldm", config.resolution);
-  r.set("width", settings.width);
-  r.set("height", settings.height);
-  std::string params;
-  for (const auto& [key, value] : config.params) params += (params.empty() ? "" : ";") + key + "=" + value;
-  r.set("structure_params", params);
-  // A pass that reads no LDM sizes no structure.
-  r.set("sizing_policy", config.structure == kNoStructure ? std::string(kNoStructure)
-                                                          : sizing_policy_name(config.sizing.policy));
-  r.set("frames", settings.frames);
-  r.set("warmup", settings.warmup);
-  r.set("device", device.gl_renderer);
-  r.set("device_id", device.device_id);
-  r.set("gl_driver", device.gl_driver);
-  r.set("gl_vendor", device.gl_vendor);
-  r.set("gl_version", device.gl_version);
-  r.set("egl_platform", device.egl_platform);
-  r.set("int64_atomics", device.has_int64_atomics);
-  r.set("driver_defects", device.driver_defects);
+  r.set(kConfigId, config.id());
+  r.set(kStatus, "pending");
+  r.set(kStatusDetail, "");
+  // The identity columns, one per axis (harness/app/harness_axes.h), and the parameters.
+  write_axis_columns(r, config);
+  r.set(kDevice, device.gl_renderer);
+  r.set(kDeviceId, device.device_id);
+  r.set(kGlDriver, device.gl_driver);
+  r.set(kGlVendor, device.gl_vendor);
+  r.set(kGlVersion, device.gl_version);
+  r.set(kEglPlatform, device.egl_platform);
+  r.set(kInt64Atomics, device.has_int64_atomics);
+  r.set(kDriverDefects, device.driver_defects);
   describe_host(r);
-  r.set("ldmbench_version", ldmbench_version());
-  r.set("git_commit", git_commit());
+  r.set(kLdmbenchVersion, ldmbench_version());
+  r.set(kGitCommit, git_commit());
 }
 
 MeasurementRequest measurement_request(const Configuration& config, const RunSettings& settings,
@@ -78,61 +70,61 @@ MeasurementRequest measurement_request(const Configuration& config, const RunSet
 }
 
 void add_measurement(Record& r, const Measurement& m, const TimePrecision& precision) {
-  r.set("scene_name", m.scene_name);
-  r.set("scene_hash", m.scene_hash);
-  r.set("triangles", m.triangles);
+  r.set(kSceneName, m.scene_name);
+  r.set(kSceneHash, m.scene_hash);
+  r.set(kTriangles, m.triangles);
   for (const auto& [key, value] : m.pass_settings) r.put(key, value);
   for (const auto& [key, value] : m.pass_results) r.put(key, value);
-  r.set("scene_attributes", m.scene_attributes);
-  r.set("scene_gpu_bytes", m.scene_gpu_bytes);
-  r.set("payload", m.payload);
-  r.set("fragments", m.census.fragments);
-  r.set("max_depth_complexity", m.census.max_depth_complexity);
-  r.set("mean_depth_complexity", m.census.mean_depth_complexity);
-  r.set("nonempty_pixel_fraction", m.census.nonempty_pixel_fraction);
-  r.set("timer", timer_source_name(m.timer));
-  if (!m.device.empty()) r.set("device", m.device);  // a CPU pass: the CPU, not GL_RENDERER
+  r.set(kSceneAttributes, m.scene_attributes);
+  r.set(kSceneGpuBytes, m.scene_gpu_bytes);
+  r.set(kPayload, m.payload);
+  r.set(kFragments, m.census.fragments);
+  r.set(kMaxDepthComplexity, m.census.max_depth_complexity);
+  r.set(kMeanDepthComplexity, m.census.mean_depth_complexity);
+  r.set(kNonemptyPixelFraction, m.census.nonempty_pixel_fraction);
+  r.set(kTimer, timer_source_name(m.timer));
+  if (!m.device.empty()) r.set(kDevice, m.device);  // a CPU pass: the CPU, not GL_RENDERER
 
-  r.set("status", build_status_name(m.status));
-  r.set("status_detail", m.status_detail);
-  r.set("fragments_stored", m.last_build.fragments_stored);
-  r.set("fragments_lost", m.last_build.fragments_lost);
-  r.set("overflow", m.overflow);
-  r.set("checksum_changes", m.checksum_changes);
-  r.set("tied_depths", m.tied_depths);
-  r.set("lists_checksum", hex64(m.lists_checksum));
+  r.set(kStatus, build_status_name(m.status));
+  r.set(kStatusDetail, m.status_detail);
+  r.set(kFragmentsStored, m.last_build.fragments_stored);
+  r.set(kFragmentsLost, m.last_build.fragments_lost);
+  r.set(kOverflow, m.overflow);
+  r.set(kChecksumChanges, m.checksum_changes);
+  r.set(kTiedDepths, m.tied_depths);
+  r.set(kListsChecksum, hex64(m.lists_checksum));
   if (!m.verify_mode.empty()) {  // a structure's builds were checked
-    r.set("verify_mode", m.verify_mode);
-    r.set("verify_stride", m.verify_stride);
-    r.set("verify_full_checks", m.verify_counts.full);
-    r.set("verify_sampled_checks", m.verify_counts.sampled);
-    r.set("verify_sampled_pixels", m.verify_counts.sampled_pixels);
-    r.set("verify_ms", m.verify_measured_ms);
-    r.set("verify_warmup_ms", m.verify_warmup_ms);
+    r.set(kVerifyMode, m.verify_mode);
+    r.set(kVerifyStride, m.verify_stride);
+    r.set(kVerifyFullChecks, m.verify_counts.full);
+    r.set(kVerifySampledChecks, m.verify_counts.sampled);
+    r.set(kVerifySampledPixels, m.verify_counts.sampled_pixels);
+    r.set(kVerifyMs, m.verify_measured_ms);
+    r.set(kVerifyWarmupMs, m.verify_warmup_ms);
   }
   for (const auto& [name, value] : m.last_build.counters) r.set("counter_" + name, value);
   for (const auto& [key, value] : m.sizing) r.set("sizing_" + key, value);
-  r.set("sizing_rebuilds", m.sizing_rebuilds);
-  r.set("sizing_rebuilds_measured", m.sizing_rebuilds_measured);
-  r.set("sizing_reallocations", m.sizing_reallocations);
+  r.set(kSizingRebuilds, m.sizing_rebuilds);
+  r.set(kSizingRebuildsMeasured, m.sizing_rebuilds_measured);
+  r.set(kSizingReallocations, m.sizing_reallocations);
 
-  r.set("raster_touch_fragments", m.raster_touch_fragments);
+  r.set(kRasterTouchFragments, m.raster_touch_fragments);
   const TimingSeries series = m.series();
   if (const std::vector<double>* baseline = series.find(kRasterBaselineSubpass))
-    r.set("baseline_frames", baseline->size());
+    r.set(kBaselineFrames, baseline->size());
   TimingOutcome timing;
   timing.summaries = m.summaries();
   timing.frames_per_repetition = {m.frames.size()};
   timing.target_met = m.time_target_met;
   timing.precision = precision;
   add_timing_columns(r, timing);
-  r.set("frames_timed_ms", m.frames_timed_ms());
+  r.set(kFramesTimedMs, m.frames_timed_ms());
   set_verify_share(r);
   const std::string warning = time_target_warning(timing);
   if (!warning.empty()) {
-    const RecordValue* detail = r.get("status_detail");
+    const RecordValue* detail = r.get(kStatusDetail);
     const std::string* text = detail ? std::get_if<std::string>(detail) : nullptr;
-    r.set("status_detail", (text && !text->empty() ? *text + "; " : std::string()) + warning);
+    r.set(kStatusDetail, (text && !text->empty() ? *text + "; " : std::string()) + warning);
   }
 
   for (const auto& b : m.memory) {
@@ -143,14 +135,14 @@ void add_measurement(Record& r, const Measurement& m, const TimePrecision& preci
     r.set("mem_" + b.name + "_allocated", b.allocated);
     r.set("mem_" + b.name + "_used", b.used);
   }
-  r.set("bytes_allocated", m.bytes_allocated());
-  r.set("bytes_used", m.bytes_used());
+  r.set(kBytesAllocated, m.bytes_allocated());
+  r.set(kBytesUsed, m.bytes_used());
 }
 
 Record measure_configuration(const Scene& scene, const Configuration& config,
                              const RunSettings& settings, const DeviceInfo& device,
                              const MeasurementPaths& paths, Repetition repetition) {
-  Record r;
+  Record r = measurement_record();
   describe_configuration(r, config, settings, device);
   const GpuStateQuery gpu{device.gl_vendor.find("NVIDIA") != std::string::npos, 0};
   const MachineState before = sample_machine_state(gpu);
@@ -160,7 +152,7 @@ Record measure_configuration(const Scene& scene, const Configuration& config,
   set_machine_state_columns(r, before, after);
   append_status_detail(r, clock_change_warning(before, after));
   add_scene_profile(r, scene, config, m);
-  if (repetition.count > 1) r.set("repetition", repetition.index);
+  if (repetition.count > 1) r.set(kRepetition, repetition.index);
   // Images and accuracy once, from the first repetition: the image of an identical build
   // is identical (later repetitions' lists are checked against the first's).
   const bool whole = repetition.index == 0;
@@ -169,8 +161,8 @@ Record measure_configuration(const Scene& scene, const Configuration& config,
   const std::string stem = config.id() + "-" + m.images.front().name;
   const Image& image = m.images.front().image;
   if (whole && settings.write_images) {
-    r.set("image_exr", folder.write_exr(stem + ".exr", image));
-    r.set("image_png", folder.write_png(stem + ".png", image));
+    r.set(kImageExr, folder.write_exr(stem + ".exr", image));
+    r.set(kImagePng, folder.write_png(stem + ".png", image));
     // The pass's further images (e.g. the indirect pass's direct light and sum), unscored.
     for (size_t i = 1; i < m.images.size(); ++i) {
       const std::string other = config.id() + "-" + m.images[i].name;
@@ -190,7 +182,7 @@ Record measure_configuration(const Scene& scene, const Configuration& config,
   // samples behind, as it leaves no record.
   const OutputFolder samples(paths.out_dir,
                              (std::filesystem::path(paths.out_dir) / "samples").string(), paths.written);
-  r.set("frame_samples_csv",
+  r.set(kFrameSamplesCsv,
         samples.write_text(samples_file_name(config.id(), repetition), frame_samples_csv(m, repetition.index)));
   return r;
 }

@@ -1,4 +1,5 @@
 #include "harness/app/measured_where.h"
+#include "harness/records/harness_columns.h"
 
 #include <unistd.h>
 
@@ -22,7 +23,7 @@ std::vector<std::pair<std::string, std::string>> slurm_job_columns() {
 
 void describe_host(Record& record) {
   char name[256] = {};
-  record.set("host", ::gethostname(name, sizeof name - 1) == 0 ? std::string(name) : std::string());
+  record.set(columns::kHost, ::gethostname(name, sizeof name - 1) == 0 ? std::string(name) : std::string());
   for (const auto& [column, value] : slurm_job_columns()) record.set(column, value);
 }
 

@@ -1,7 +1,9 @@
 #include "harness/app/memory_plan.h"
 
+#include "harness/app/harness_axes.h"
 #include "harness/app/ldm_setup.h"
 #include "harness/passes/pass.h"
+#include "harness/records/harness_columns.h"
 #include "harness/scene/gpu_scene.h"
 #include "harness/util/error.h"
 #include "ldm_impls/common/sizing_driver.h"
@@ -24,12 +26,6 @@ std::string buffers_text(const std::vector<BufferMemory>& buffers) {
   std::string text;
   for (const auto& b : buffers)
     text += (text.empty() ? "" : ";") + b.name + "=" + std::to_string(b.allocated);
-  return text;
-}
-
-std::string params_text(const std::map<std::string, std::string>& params) {
-  std::string text;
-  for (const auto& [key, value] : params) text += (text.empty() ? "" : ";") + key + "=" + value;
   return text;
 }
 
@@ -68,22 +64,18 @@ MemoryPlanRow refused(MemoryPlanRow row, const std::string& why) {
 
 
 Record MemoryPlanRow::to_record() const {
+  using namespace columns;
   Record r;
-  r.set("config_id", config_id);
-  r.set("scene", scene);
-  r.set("structure", structure);
-  r.set("pass", pass);
-  r.set("n_views", views);
-  r.set("r_ldm", r_ldm);
-  r.set("structure_params", structure_params);
-  r.set("sizing_policy", sizing_policy);
-  r.set("fragments", fragments);
-  r.set("max_depth_complexity", max_depth_complexity);
+  r.set(kConfigId, config.id());
+  // The swept axes' columns: the run-wide image size and frames are not the plan's.
+  write_axis_columns(r, config, AxisColumns::Listed);
+  r.set(kFragments, fragments);
+  r.set(kMaxDepthComplexity, max_depth_complexity);
   // A refused configuration allocates nothing, which a budget filter must not read as 0 bytes.
   if (status == "refused")
-    r.put("bytes_allocated", std::monostate{});
+    r.put(kBytesAllocated.name, std::monostate{});
   else
-    r.set("bytes_allocated", bytes_allocated);
+    r.set(kBytesAllocated, bytes_allocated);
   r.set("buffers", buffers_text(buffers));
   // Blank where it does not apply (not a fixed array), so that no one reads "false" as a verdict.
   if (k) {
@@ -93,8 +85,8 @@ Record MemoryPlanRow::to_record() const {
     r.put("k", std::monostate{});
     r.put("lossy", std::monostate{});
   }
-  r.set("status", status);
-  r.set("status_detail", status_detail);
+  r.set(kStatus, status);
+  r.set(kStatusDetail, status_detail);
   return r;
 }
 
@@ -113,16 +105,7 @@ MemoryPlanner::~MemoryPlanner() = default;
 MemoryPlanRow MemoryPlanner::plan(const PlannedConfiguration& planned) {
   const Configuration& config = planned.config;
   MemoryPlanRow row;
-  row.config_id = config.id();
-  row.scene = config.scene;
-  row.structure = config.structure;
-  row.pass = config.pass;
-  row.structure_params = params_text(config.params);
-  row.views = config.views;
-  row.r_ldm = config.resolution;
-  // As the record's column: a pass that reads no LDM sizes no structure.
-  row.sizing_policy = config.structure == kNoStructure ? std::string(kNoStructure)
-                                                       : sizing_policy_name(config.sizing.policy);
+  row.config = config;
   try {
     if (config.structure == kNoStructure) return plan_peer(config, planned.settings, row);
     return plan_structure(config, planned.settings, row);

@@ -30,8 +30,9 @@ struct LdmSetup;
 
 // One configuration's planned memory, as the row of memory-plan.csv.
 struct MemoryPlanRow {
-  std::string config_id, scene, structure, pass, structure_params, sizing_policy;
-  uint32_t views = 0, r_ldm = 0;
+  // What is planned: its identity columns are its axes' (write_axis_columns), as a measured
+  // record's.
+  Configuration config;
   uint64_t fragments = 0;
   uint32_t max_depth_complexity = 0;
   uint64_t bytes_allocated = 0;  // what the record column bytes_allocated sums

@@ -3,14 +3,18 @@
 #include <algorithm>
 #include <set>
 
+#include "harness/app/harness_axes.h"
 #include "harness/passes/pass.h"
+#include "harness/records/harness_columns.h"
 
 namespace ldm {
 
 const std::vector<std::string>& always_written_columns() {
+  using namespace columns;
   static const std::vector<std::string> columns = {
-      "config_id", "status", "status_detail", "scene", "structure", "pass", "n_views", "r_ldm",
-      "width", "height", "ldmbench_version", "git_commit", "wall_seconds"};
+      kConfigId.name, kStatus.name, kStatusDetail.name, kScene.name, kStructure.name, kPass.name,
+      kNViews.name,   kRLdm.name,   kWidth.name,        kHeight.name, kLdmbenchVersion.name,
+      kGitCommit.name, kWallSeconds.name};
   return columns;
 }
 
@@ -50,8 +54,18 @@ const std::vector<ColumnSpec>& record_columns() {
 
 const ColumnSpec* find_column(const std::string& column) { return find_column_in(record_columns(), column); }
 
+bool is_declared_column(const std::string& column) {
+  if (find_column(column)) return true;
+  const std::vector<std::string> axis_columns = axis_column_names();
+  return std::find(axis_columns.begin(), axis_columns.end(), column) != axis_columns.end();
+}
+
+Record measurement_record() { return Record(&is_declared_column); }
+
 std::string columns_markdown() { return columns_markdown(record_columns()); }
 
 std::string columns_text() { return columns_text(record_columns()); }
+
+std::string columns_json() { return columns_json(record_columns()); }
 
 }  // namespace ldm

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "harness/records/columns.h"
+#include "harness/records/record.h"
 
 namespace ldm {
 
@@ -15,6 +16,13 @@ namespace ldm {
 const std::vector<ColumnSpec>& record_columns();
 // The spec describing `column` (exact names first, then patterns), or null.
 const ColumnSpec* find_column(const std::string& column);
+// Whether `column` is declared: described by the schema (a pattern's included) or the record
+// column of a harness axis (harness/app/harness_axes.h; a test's or an extension's axis too).
+bool is_declared_column(const std::string& column);
+// An empty record of a measured configuration: it refuses an undeclared column (Record::set
+// throws std::logic_error naming it).
+Record measurement_record();
+
 // The columns every record carries, a failed one's included (describe_configuration, then
 // wall_seconds): a journal record without one of them is not a record of its build.
 const std::vector<std::string>& always_written_columns();
@@ -25,5 +33,6 @@ std::string declared_columns_text();
 std::string always_written_columns_text();
 std::string columns_markdown();
 std::string columns_text();
+std::string columns_json();
 
 }  // namespace ldm

@@ -7,6 +7,7 @@
 #include "harness/app/measurement.h"
 #include "harness/app/timing_columns.h"
 #include "harness/compare/samples.h"
+#include "harness/records/harness_columns.h"
 #include "harness/util/error.h"
 
 namespace ldm {
@@ -103,9 +104,9 @@ Record combine_repetitions(const std::vector<Record>& repetitions, const std::st
   add_timing_columns(r, timing);
   std::string detail;
   for (const auto& note : notes) detail += (detail.empty() ? "" : "; ") + note;
-  r.set("status", status);
-  r.set("status_detail", detail);
-  r.set("wall_seconds", wall);
+  r.set(columns::kStatus, status);
+  r.set(columns::kStatusDetail, detail);
+  r.set(columns::kWallSeconds, wall);
   for (const char* key : kSummed) {
     if (!r.get(key)) continue;
     const std::string name = key;

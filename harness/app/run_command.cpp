@@ -1,7 +1,5 @@
 #include "harness/app/run_command.h"
 
-#include "harness/app/record_schema.h"
-
 #include <unistd.h>
 
 #include <algorithm>
@@ -20,11 +18,13 @@
 #include <sstream>
 
 #include "harness/app/measure_configuration.h"
+#include "harness/app/record_schema.h"
 #include "harness/app/repetitions.h"
 #include "harness/app/timing_columns.h"
 #include "harness/app/run_summary.h"
 #include "harness/app/sweep_progress.h"
 #include "harness/passes/pass.h"
+#include "harness/records/harness_columns.h"
 #include "harness/records/journal.h"
 #include "harness/records/output_folder.h"
 #include "harness/records/record.h"
@@ -647,7 +647,7 @@ int run_configurations(const ConfigurationRun& job, const std::string& command_l
       widen_time_intervals(combined, spread, calibration.source);
       const OutputFolder samples(out_dir, (std::filesystem::path(out_dir) / "samples").string(),
                                  &combined_written);
-      combined.set("frame_samples_csv", samples.write_text(samples_file_name(id, {}),
+      combined.set(columns::kFrameSamplesCsv, samples.write_text(samples_file_name(id, {}),
                                                            combined_samples_csv(reps, out_dir)));
       log << "    " << id << ": " << reps.size() << " repetitions, " << status_of(combined)
           << timed_sums(combined) << "\n";
@@ -732,18 +732,18 @@ int run_configurations(const ConfigurationRun& job, const std::string& command_l
         // images of its first repetition neither, when a later one fails).
         remove_files(written);
         remove_configuration_images(paths.images_dir, id + "-" + config.pass);
-        record = Record();
+        record = measurement_record();
         describe_configuration(record, config, settings, device);
-        record.set("status", "failed");
+        record.set(columns::kStatus, "failed");
         std::ostringstream why;
         if (repetitions > 1) why << "repetition " << repetition.index + 1 << ": ";
         why << e.what();
-        record.set("status_detail", why.str());
+        record.set(columns::kStatusDetail, why.str());
         failed = true;
       }
       const double seconds =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-      record.set("wall_seconds", seconds);
+      record.set(columns::kWallSeconds, seconds);
       cost.add(record);
       const std::string status = status_of(record);
       begin_line();

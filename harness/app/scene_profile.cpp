@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "harness/app/accuracy.h"
+#include "harness/records/harness_columns.h"
 #include "harness/views/view_set.h"
 
 namespace ldm {
@@ -41,30 +42,30 @@ std::optional<uint32_t> fixed_array_k(const Measurement& m) {
 void add_scene_profile(Record& r, const Scene& scene, const Configuration& config,
                        const Measurement& m) {
   const BoundingSphere sphere = scene.bounding_sphere();
-  r.set("scene_radius", double(sphere.radius));
-  r.set("camera_source", scene.sources.camera);
-  r.set("light_source", scene.sources.light);
-  r.set("d_max_source", config.d_max ? std::string("run (--d-max)") : scene.sources.d_max);
+  r.set(columns::kSceneRadius, double(sphere.radius));
+  r.set(columns::kCameraSource, scene.sources.camera);
+  r.set(columns::kLightSource, scene.sources.light);
+  r.set(columns::kDMaxSource, config.d_max ? std::string("run (--d-max)") : scene.sources.d_max);
   char offset[96];
   std::snprintf(offset, sizeof offset, "%.17g %.17g %.17g", scene.origin_offset.x,
                 scene.origin_offset.y, scene.origin_offset.z);
-  r.set("scene_origin_offset", std::string(offset));
-  r.set("far_file_vertices", scene.far_file_vertices);
-  r.set("collapsed_triangles", scene.collapsed_triangles);
+  r.set(columns::kSceneOriginOffset, std::string(offset));
+  r.set(columns::kFarFileVertices, scene.far_file_vertices);
+  r.set(columns::kCollapsedTriangles, scene.collapsed_triangles);
   if (config.structure == kNoStructure) return;  // no census, no LDM pixels
 
   const DepthProfile& profile = m.census.profile;
-  r.set("depth_p50", profile.p50);
-  r.set("depth_p90", profile.p90);
-  r.set("depth_p99", profile.p99);
-  r.set("depth_histogram", profile.histogram_text());
-  if (const auto k = fixed_array_k(m)) r.set("depth_share_above_k", profile.share_above(*k));
+  r.set(columns::kDepthP50, profile.p50);
+  r.set(columns::kDepthP90, profile.p90);
+  r.set(columns::kDepthP99, profile.p99);
+  r.set(columns::kDepthHistogram, profile.histogram_text());
+  if (const auto k = fixed_array_k(m)) r.set(columns::kDepthShareAboveK, profile.share_above(*k));
 
   // The AO range in LDM pixels (the views' pixel, fitted to the bounding sphere).
   if (text(r, "visibility") == "attenuated")
     if (const auto d_max = number(r, "d_max")) {
       const double pixel = make_view_set(sphere, 1, config.resolution).views.front().pixel_size();
-      r.set("d_max_ldm_pixels", *d_max / pixel);
+      r.set(columns::kDMaxLdmPixels, *d_max / pixel);
     }
 }
 
@@ -92,7 +93,7 @@ void flag_degenerate_measurement(Record& r) {
     joined += (joined.empty() ? "" : "; ") + reason;
     append_status_detail(r, "degenerate: " + reason);
   }
-  r.set("degenerate", joined);
+  r.set(columns::kDegenerate, joined);
 }
 
 }  // namespace ldm

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "harness/passes/raster_baseline.h"
+#include "harness/records/harness_columns.h"
 
 namespace ldm {
 namespace {
@@ -32,13 +33,13 @@ void add_timing_columns(Record& r, const TimingOutcome& t) {
   size_t total = 0;
   for (size_t f : t.frames_per_repetition) total += f;
   const size_t repetitions = t.frames_per_repetition.size();
-  r.set("repetitions", repetitions);
-  r.set("frames_measured", total);
-  r.set("frames_per_repetition", joined_counts(t.frames_per_repetition));
-  r.set("time_target", t.precision.target);
-  r.set("time_cap_s", t.precision.cap_seconds);
-  r.set("time_target_met", t.target_met);
-  r.set("time_interval", repetitions > 1 ? kRepetitionInterval : kFrameInterval);
+  r.set(columns::kRepetitions, repetitions);
+  r.set(columns::kFramesMeasured, total);
+  r.set(columns::kFramesPerRepetition, joined_counts(t.frames_per_repetition));
+  r.set(columns::kTimeTarget, t.precision.target);
+  r.set(columns::kTimeCapS, t.precision.cap_seconds);
+  r.set(columns::kTimeTargetMet, t.target_met);
+  r.set(columns::kTimeInterval, repetitions > 1 ? kRepetitionInterval : kFrameInterval);
   for (const auto& s : t.summaries) {
     r.set(s.subpass + "_ms_median", s.median);
     r.set(s.subpass + "_ms_min", s.min);
@@ -49,22 +50,22 @@ void add_timing_columns(Record& r, const TimingOutcome& t) {
     if (repetitions > 1) r.set(s.subpass + "_ms_rep_spread", s.repetition_spread);
   }
   if (const TimingSummary* frame = find_summary(t.summaries, "frame")) {
-    r.set("time_interval_coverage", frame->interval.coverage);
-    r.set("time_half_width", relative_half_width(frame->interval, frame->median));
+    r.set(columns::kTimeIntervalCoverage, frame->interval.coverage);
+    r.set(columns::kTimeHalfWidth, relative_half_width(frame->interval, frame->median));
   }
   const TimingSummary* build = find_summary(t.summaries, "build");
   const TimingSummary* raster = find_summary(t.summaries, kRasterBaselineSubpass);
-  if (build && raster && raster->median > 0) r.set("build_vs_raster", build->median / raster->median);
+  if (build && raster && raster->median > 0) r.set(columns::kBuildVsRaster, build->median / raster->median);
   const TimingSummary* touch = find_summary(t.summaries, kRasterTouchSubpass);
-  if (build && touch && touch->median > 0) r.set("build_vs_raster_touch", build->median / touch->median);
+  if (build && touch && touch->median > 0) r.set(columns::kBuildVsRasterTouch, build->median / touch->median);
   const double fragments = number_of(r, "fragments");
   if (build && build->median > 0 && fragments >= 0)
-    r.set("fragments_per_second", fragments / (build->median * 1e-3));
+    r.set(columns::kFragmentsPerSecond, fragments / (build->median * 1e-3));
 }
 
 void widen_time_intervals(Record& r, const RunToRunSpread* spread, const std::string& source) {
   if (!r.get("frame_ms_median")) return;  // nothing timed (a failed record)
-  r.set("time_calibration", source);
+  r.set(columns::kTimeCalibration, source);
   if (!spread || !std::isfinite(spread->spread)) return;
   const RecordValue* interval_kind = r.get("time_interval");
   const std::string* kind = interval_kind ? std::get_if<std::string>(interval_kind) : nullptr;
@@ -89,9 +90,9 @@ void widen_time_intervals(Record& r, const RunToRunSpread* spread, const std::st
   if (const RecordValue* half = r.get("time_half_width")) r.put("time_half_width_within_run", *half);
   const double median = number_of(r, "frame_ms_median");
   const double low = number_of(r, "frame_ms_ci_low"), high = number_of(r, "frame_ms_ci_high");
-  if (median > 0) r.set("time_half_width", relative_half_width(Interval{low, high, kTimeConfidence}, median));
-  r.set("time_interval", (kind ? *kind : std::string()) + kRunToRunSuffix);
-  r.set("time_run_to_run_spread", spread->spread);
+  if (median > 0) r.set(columns::kTimeHalfWidth, relative_half_width(Interval{low, high, kTimeConfidence}, median));
+  r.set(columns::kTimeInterval, (kind ? *kind : std::string()) + kRunToRunSuffix);
+  r.set(columns::kTimeRunToRunSpread, spread->spread);
 }
 
 void set_verify_share(Record& r) {
@@ -99,7 +100,7 @@ void set_verify_share(Record& r) {
   const RecordValue* timed = r.get("frames_timed_ms");
   const double* verify_ms = verify ? std::get_if<double>(verify) : nullptr;
   const double* timed_ms = timed ? std::get_if<double>(timed) : nullptr;
-  if (verify_ms && timed_ms && *timed_ms > 0) r.set("verify_share", *verify_ms / *timed_ms);
+  if (verify_ms && timed_ms && *timed_ms > 0) r.set(columns::kVerifyShare, *verify_ms / *timed_ms);
 }
 
 std::string time_target_warning(const TimingOutcome& t) {

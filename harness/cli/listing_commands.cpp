@@ -25,6 +25,10 @@ Runner add_listing_commands(CLI::App& app) {
   columns->add_flag("--labels", *labels,
                     "The headline columns' short labels and which way is better, as JSON "
                     "(scripts/report/ldmreport/labels.json)");
+  auto json = std::make_shared<bool>(false);
+  columns->add_flag("--json", *json,
+                    "Every column with its unit, description, kind, whether it varies between runs, "
+                    "whether it is deterministic and which way is better, as JSON");
   auto* info = app.add_subcommand(
       "info", "List every EGL device (index, kind: CUDA ordinal, DRM node or software; renderer "
               "where a context can be made) and print the OpenGL device ldmbench runs on");
@@ -34,7 +38,7 @@ Runner add_listing_commands(CLI::App& app) {
   auto axes_format = std::make_shared<std::string>("text");
   axes->add_flag("--json{json}", *axes_format, "As JSON (what the report reads)");
   axes->add_flag("--markdown{markdown}", *axes_format, "As the Markdown table of docs/reference/axes.md");
-  return [scenes, structures, passes, columns, markdown, labels, info, info_gpu, axes, axes_format]() {
+  return [scenes, structures, passes, columns, markdown, labels, json, info, info_gpu, axes, axes_format]() {
     if (axes->parsed()) {
       if (*axes_format == "json") std::cout << axes_json().dump(2) << "\n";
       else if (*axes_format == "markdown") std::cout << axes_markdown();
@@ -52,7 +56,10 @@ Runner add_listing_commands(CLI::App& app) {
           std::cout << "  " << s.name << "\t" << s.description << "\n";
       }
     } else if (columns->parsed()) {
-      std::cout << (*labels ? column_labels_json() : *markdown ? columns_markdown() : columns_text());
+      std::cout << (*labels     ? column_labels_json()
+                    : *json     ? columns_json()
+                    : *markdown ? columns_markdown()
+                                : columns_text());
     } else if (info->parsed()) {
       ContextOptions options = default_context_options();
       options.gpu = gpu_request_from_environment(info_gpu->text());

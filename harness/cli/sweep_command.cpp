@@ -64,7 +64,7 @@ int write_memory_plan(const SweepPlan& plan, const Shard& shard, const SweepOpti
   bool any_refused = false;
   for (size_t i = 0; i < members.size(); ++i) {
     const MemoryPlanRow row = planner.plan(plan.configurations[members[i]]);
-    std::cerr << "[" << i + 1 << "/" << members.size() << "] " << row.config_id << ": "
+    std::cerr << "[" << i + 1 << "/" << members.size() << "] " << row.config.id() << ": "
               << row.status;
     if (row.status == "planned") std::cerr << ", " << row.bytes_allocated << " bytes";
     else std::cerr << " (" << row.status_detail << ")";

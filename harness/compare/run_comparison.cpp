@@ -18,6 +18,7 @@
 #include "harness/compare/samples.h"
 #include "harness/gl/device_selection.h"
 #include "harness/app/record_schema.h"
+#include "harness/records/harness_columns.h"
 #include "harness/records/record_validation.h"
 #include "harness/stats/intervals.h"
 #include "harness/stats/time_tests.h"
@@ -51,8 +52,8 @@ double boost_quantile_normal(double p) { return boost::math::quantile(boost::mat
 std::string axis_fragment(const json& record, const std::string& axis) {
   const auto it = record.find(axis);
   if (it == record.end() || !it->is_number_integer()) return "";
-  if (axis == "n_views") return "-n" + std::to_string(it->get<int64_t>());
-  if (axis == "r_ldm") return "-r" + std::to_string(it->get<int64_t>());
+  if (axis == columns::kNViews.name) return "-n" + std::to_string(it->get<int64_t>());
+  if (axis == columns::kRLdm.name) return "-r" + std::to_string(it->get<int64_t>());
   return "";
 }
 
@@ -61,7 +62,7 @@ std::string axis_fragment(const json& record, const std::string& axis) {
 std::string identity_of(const json& record, const std::set<std::string>& ignored) {
   std::string id = text(record, "config_id");
   std::vector<std::string> parts;
-  for (const char* axis : {"n_views", "r_ldm"})
+  for (const std::string& axis : {columns::kNViews.name, columns::kRLdm.name})
     if (ignored.count(axis)) parts.push_back(axis_fragment(record, axis));
   std::stringstream params(text(record, "structure_params"));
   for (std::string item; std::getline(params, item, ';');) {
@@ -103,7 +104,7 @@ std::set<std::string> parameter_keys(const json& record) {
 std::vector<PairingHint> pairing_hints(const std::vector<const json*>& missing,
                                        const std::vector<const json*>& added,
                                        const std::set<std::string>& ignored) {
-  std::set<std::string> candidates = {"n_views", "r_ldm"};
+  std::set<std::string> candidates = {columns::kNViews.name, columns::kRLdm.name};
   for (const auto* side : {&missing, &added})
     for (const json* r : *side)
       for (const std::string& key : parameter_keys(*r)) candidates.insert(key);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <stdexcept>
 
 #include <nlohmann/json.hpp>
 
@@ -12,6 +13,10 @@
 namespace ldm {
 
 void Record::put(const std::string& key, RecordValue value) {
+  if (declared_ && !declared_(key))
+    throw std::logic_error("record column '" + key +
+                           "' is not declared: declare it with its unit and description "
+                           "(harness/records/harness_columns.h, or the pass's columns())");
   for (auto& [k, v] : fields_) {
     if (k == key) {
       v = std::move(value);

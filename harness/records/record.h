@@ -9,12 +9,23 @@
 #include <variant>
 #include <vector>
 
+#include "harness/records/columns.h"
+
 namespace ldm {
 
 using RecordValue = std::variant<std::monostate, bool, int64_t, double, std::string>;
 
+// The columns a record of measurement may hold: a record made with a check refuses any other
+// (Record::set and put throw std::logic_error naming the column, at its first use). The
+// schema (harness/app/record_schema.h) gives the check; records read back, merged or of run
+// metadata are made without one.
+using ColumnCheck = bool (*)(const std::string& column);
+
 class Record {
  public:
+  Record() = default;
+  explicit Record(ColumnCheck declared) : declared_(declared) {}
+
   void put(const std::string& key, RecordValue value);  // replaces an existing key in place
   void set(const std::string& key, bool v) { put(key, v); }
   void set(const std::string& key, int v) { put(key, int64_t(v)); }
@@ -27,12 +38,21 @@ class Record {
   void set(const std::string& key, double v) { put(key, v); }
   void set(const std::string& key, const std::string& v) { put(key, v); }
   void set(const std::string& key, const char* v) { put(key, std::string(v)); }
+  // A declared column (harness/records/harness_columns.h, a pass's columns()): the typed way.
+  template <typename T>
+  void set(const Column& column, T&& v) {
+    set(column.name, std::forward<T>(v));
+  }
   const RecordValue* get(const std::string& key) const;
+  const RecordValue* get(const Column& column) const { return get(column.name); }
   void erase(const std::string& key);  // no-op when absent
   const std::vector<std::pair<std::string, RecordValue>>& fields() const { return fields_; }
+  // Whether the record checks its columns against a schema (made with a ColumnCheck).
+  bool checked() const { return declared_ != nullptr; }
 
  private:
   std::vector<std::pair<std::string, RecordValue>> fields_;
+  ColumnCheck declared_ = nullptr;
 };
 
 // Formatting shared by the writers: doubles round-trip (%.17g trimmed), NaN and infinities as

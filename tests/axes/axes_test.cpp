@@ -14,6 +14,9 @@
 #include "harness/app/axis_options.h"
 #include "harness/app/axis_registry.h"
 #include "harness/app/harness_axes.h"
+#include "harness/app/measure_configuration.h"
+#include "harness/app/memory_plan.h"
+#include "harness/app/record_schema.h"
 #include "harness/app/run_command_line.h"
 #include "harness/app/sweep_plan.h"
 #include "harness/app/sweep_spec.h"
@@ -37,6 +40,7 @@ void declare_test_gain_axis() {
   axis.spec.min = 0.5;
   axis.spec.max = 4;
   axis.spec.unit = "x";
+  axis.spec.column = "test_gain";  // its record column: written by the axis loop, nowhere else
   axis.spec.description = "a test's axis";
   axis.id_rank = 150;
   axis.id_fragment = [](const AxisValues& values, bool) {
@@ -131,6 +135,49 @@ TEST_F(Axes, AnAxisDeclaredInATestIsAnOptionAnAxisOfTheProductAndPartOfTheId) {
   EXPECT_THROW(expand_configurations(parsed({"--pass", "test_ao", "--param", "test_ao:boost=0"})), UserError);
   // Duplicates are one configuration measured twice: refused.
   EXPECT_THROW(parsed({"--test-gain", "1,1.0"}), UserError);
+}
+
+// The carrier from axis to record: the test's axis reaches a measured record's column (and the
+// memory plan's) through its declaration alone, typed by its kind, beside the built-in axes'
+// identity columns; a record of measurement refuses a column no one declared.
+TEST_F(Axes, AnAxisDeclaredInATestReachesTheRecordColumnItNames) {
+  const auto configs = expand_configurations(parsed({"--test-gain", "2.5", "-N", "4", "-R", "16"}));
+  ASSERT_EQ(configs.size(), 1u);
+  Record record = measurement_record();
+  describe_configuration(record, configs.front(), RunSettings(), DeviceInfo());
+  const RecordValue* gain = record.get("test_gain");
+  ASSERT_NE(gain, nullptr) << "the axis's column is not in the record";
+  ASSERT_TRUE(std::holds_alternative<double>(*gain));
+  EXPECT_EQ(std::get<double>(*gain), 2.5);
+  EXPECT_EQ(std::get<int64_t>(*record.get("n_views")), 4);
+  EXPECT_EQ(std::get<int64_t>(*record.get("r_ldm")), 16);
+  EXPECT_EQ(std::get<std::string>(*record.get("structure")), "psppsll");
+  EXPECT_EQ(std::get<int64_t>(*record.get("width")), 256);
+  EXPECT_EQ(std::get<int64_t>(*record.get("frames")), 5);
+  // The identity columns in the order records have always had.
+  std::vector<std::string> keys;
+  for (const auto& [key, value] : record.fields()) keys.push_back(key);
+  const std::vector<std::string> identity = {"config_id", "status", "status_detail", "scene", "structure",
+                                             "pass", "n_views", "r_ldm", "width", "height",
+                                             "structure_params", "sizing_policy"};
+  ASSERT_GE(keys.size(), identity.size());
+  EXPECT_EQ(std::vector<std::string>(keys.begin(), keys.begin() + identity.size()), identity);
+
+  // The memory plan writes the same loop's columns.
+  MemoryPlanRow row;
+  row.config = configs.front();
+  const Record planned = row.to_record();
+  ASSERT_NE(planned.get("test_gain"), nullptr);
+  EXPECT_EQ(std::get<double>(*planned.get("test_gain")), 2.5);
+  EXPECT_EQ(std::get<int64_t>(*planned.get("n_views")), 4);
+
+  // Undeclared: refused at its first use, named.
+  try {
+    record.set("test_undeclared_column", 1);
+    FAIL() << "an undeclared column was accepted";
+  } catch (const std::logic_error& e) {
+    EXPECT_NE(std::string(e.what()).find("test_undeclared_column"), std::string::npos) << e.what();
+  }
 }
 
 TEST_F(Axes, AnAxisDeclaredInATestIsASweepFileKeyAndIsWrittenBack) {

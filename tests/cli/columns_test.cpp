@@ -5,7 +5,10 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
+
+#include <nlohmann/json.hpp>
 
 #include "harness/app/record_schema.h"
 #include "support/test_support.h"
@@ -44,6 +47,30 @@ TEST(Columns, ReportLabelsAreTheSchemas) {
   EXPECT_EQ(column_heading("mse"), "MSE ↓");
   EXPECT_EQ(column_heading("mssim_covered"), "MSSIM covered ↑");
   EXPECT_EQ(column_heading("config_id"), "configuration");
+}
+
+// `ldmbench columns --json`: every column once, with its declaration's kind and flags (what
+// compare and the Python readers take the run-varying columns from).
+TEST(Columns, JsonCarriesEveryColumnWithItsKindAndFlags) {
+  const nlohmann::json columns = nlohmann::json::parse(columns_json())["columns"];
+  ASSERT_EQ(columns.size(), record_columns().size());
+  std::map<std::string, nlohmann::json> by_name;
+  for (const auto& c : columns) {
+    for (const char* key : {"group", "name", "unit", "description", "kind", "varies_between_runs",
+                            "deterministic", "better"})
+      ASSERT_TRUE(c.contains(key)) << c.dump() << " lacks " << key;
+    EXPECT_NE(c["varies_between_runs"].get<bool>(), c["deterministic"].get<bool>()) << c["name"];
+    by_name[c["name"].get<std::string>()] = c;
+  }
+  EXPECT_EQ(by_name.at("n_views")["kind"], "number");
+  EXPECT_EQ(by_name.at("config_id")["kind"], "text");
+  EXPECT_EQ(by_name.at("int64_atomics")["kind"], "flag");
+  EXPECT_EQ(by_name.at("mse")["better"], "lower");
+  EXPECT_EQ(by_name.at("mssim")["better"], "higher");
+  for (const char* varies : {"wall_seconds", "<subpass>_ms_median", "host", "ref_from_cache", "rtao_bvh_ms"})
+    EXPECT_TRUE(by_name.at(varies)["varies_between_runs"].get<bool>()) << varies;
+  for (const char* stays : {"n_views", "mse", "lists_checksum", "fragments", "bytes_allocated"})
+    EXPECT_FALSE(by_name.at(stays)["varies_between_runs"].get<bool>()) << stays;
 }
 
 TEST(Columns, PatternsMatchOnlyTheirOwnColumns) {
