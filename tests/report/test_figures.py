@@ -20,6 +20,7 @@ declare_axes({"axes": [
     {"key": "structures", "label": "structure", "owner_kind": "harness", "column": "structure"},
     {"key": "views", "label": "N", "owner_kind": "harness", "column": "n_views", "ldm_only": True},
     {"key": "r_ldm", "label": "R_LDM", "owner_kind": "harness", "column": "r_ldm", "ldm_only": True},
+    {"key": "image_size", "label": "image size", "owner_kind": "harness", "column": "width,height"},
     {"key": "d_max", "label": "d_max", "owner_kind": "harness", "column": "d_max"}]})
 style.apply()
 
@@ -259,6 +260,9 @@ class Issue37(unittest.TestCase):
         for typed in ("0.5", "1e-3", "128", "1.25", "plane"):
             self.assertEqual(shown_value(typed), typed)
         self.assertEqual(describe({"d_max": "4.393941402435303"}), "d_max=4.394")
+        # one axis written as two columns (image size: width, height) reads once
+        self.assertEqual(describe({"scene": "cornell", "width": "64", "height": "48", "d_max": "1.5"}),
+                         "scene=cornell, image size=64x48, d_max=1.5")
         self.assertEqual(shown_value("guess: 1 fragment(s) per LDM pixel"), "1 fragment/LDM pixel")
         self.assertEqual(shown_value("guess: 4 fragment(s) per LDM pixel"), "4 fragments/LDM pixel")
         rows = [record(d_max=4.393941402435303, config_id="a"), record(d_max=4.393941402435303, n_views=16, config_id="b")]

@@ -149,6 +149,16 @@ LEGEND_CHARS_PER_INCH = 22  # characters of a 6 pt legend entry per inch, about 
 LEGEND_DROP_PT = 30  # a legend below the axes starts this far below them
 
 
+def set_panel_title(ax, title):
+    """The panel's title wrapped to the panel's width: a long one (scene, settings, passes)
+    would otherwise run into the title of the panel beside it."""
+    width_in = ax.get_position().width * ax.figure.get_size_inches()[0]
+    size_pt = matplotlib.font_manager.FontProperties(size=matplotlib.rcParams["axes.titlesize"]).get_size_in_points()
+    # 0.6 em a character on average, and 10 % spare: the layout may narrow the axes later
+    chars = max(16, int(0.9 * width_in * 72 / (0.6 * size_pt)))
+    ax.set_title(textwrap.fill(title, chars, break_long_words=False))
+
+
 def place_legend(ax, inside=4, columns=1):
     """A legend inside the axes when short, below them when long (never beside: the figure
     keeps its paper width), so that it never hides the data."""
@@ -360,7 +370,7 @@ def draw_tradeoffs(table, canvas):
             plain_log_ticks(ax)
             ax.set_xlabel("frame time, median (ms)")
             ax.set_ylabel(column + (" (higher is better)" if higher else " (lower is better)"))
-            ax.set_title(title)
+            set_panel_title(ax, title)
             ax.grid(alpha=0.3)
         entries = [(method, styles[method][0], styles[method][1] if not markers_of_run else "s",
                     None, True) for method in drawn_methods]
@@ -489,7 +499,7 @@ def draw_memory(table, canvas):
             plain_log_ticks(ax, table.num(x_column)[in_scene].to_numpy())
             ax.set_xlabel(axis_label(x_column))
             ax.set_ylabel("MiB (solid allocated, dashed used)")
-            ax.set_title(style.panel_title(scene))
+            set_panel_title(ax, style.panel_title(scene))
             ax.grid(alpha=0.3)
             place_legend(ax)
         canvas.save(fig, f"memory-vs-{x_column}", f"Memory vs {axis_label(x_column)}",
@@ -542,7 +552,7 @@ def draw_depth_histograms(table, canvas):
         ax.set_ylabel("share of occupied LDM pixels")
         n, r = common.split("/")
         title = style.panel_title(scene, {"n_views": n, "r_ldm": r})
-        ax.set_title(title)
+        set_panel_title(ax, title)
         panels.append(title)
         quantiles = ", ".join(f"{q} {table.text(c)[i]}" for q, c in
                               (("p50", "depth_p50"), ("p90", "depth_p90"), ("p99", "depth_p99"),
@@ -656,7 +666,7 @@ def draw_scaling(table, canvas):
             ax.set_xlabel(axis_label(x_column))
             ax.set_ylabel(ylabel)
             scenes = list(dict.fromkeys(table.text("scene")[in_plot]))
-            ax.set_title(style.panel_title(scenes[0] if len(scenes) == 1 else None,
+            set_panel_title(ax, style.panel_title(scenes[0] if len(scenes) == 1 else None,
                                            quantity=cost_name))
             ax.grid(alpha=0.3, which="both")
             place_legend(ax, inside=0, columns=2 if many else 1)
@@ -719,7 +729,7 @@ def draw_subpass_bars(table, canvas, per_figure=60):
                         Line2D([], [], color="black", marker="|", markersize=3, linestyle="-", linewidth=0.6)]
             fig.legend(handles, subpasses + ["build median", "95 % interval"], loc="upper center",
                        bbox_to_anchor=(0.5, 0.0), ncol=min(6, len(subpasses) + 2), frameon=False)
-            ax.set_title(style.panel_title(scene, quantity="sub-pass medians" + suffix.replace("-", ", part ")))
+            set_panel_title(ax, style.panel_title(scene, quantity="sub-pass medians" + suffix.replace("-", ", part ")))
             ax.grid(alpha=0.3, axis="x")
             canvas.save(fig, f"subpasses-{safe_name(scene)}{suffix}",
                         f"Sub-pass times, {scene}{suffix.replace('-', ' part ')}",

@@ -242,5 +242,15 @@ def shown_value(value):
 def describe(values):
     """k=v pairs of a dict of axis values, for legends and titles (a structure's parameters
     as they are: "k=3"; each value by shown_value)."""
-    return ", ".join(v if k == "structure_params" else f"{axis_label(k)}={shown_value(v)}"
-                     for k, v in values.items() if v != "")
+    parts = []
+    for k, v in values.items():
+        if v == "":
+            continue
+        part = v if k == "structure_params" else f"{axis_label(k)}={shown_value(v)}"
+        # One axis written as several columns (image size: width and height) reads once,
+        # "image size=64x48", not "image size=64, image size=48".
+        if parts and k != "structure_params" and parts[-1][0] == axis_label(k):
+            parts[-1] = (axis_label(k), parts[-1][1] + "x" + shown_value(v))
+        else:
+            parts.append((axis_label(k) if k != "structure_params" else None, part))
+    return ", ".join(p for _, p in parts)
