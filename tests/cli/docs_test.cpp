@@ -194,6 +194,24 @@ TEST(Docs, LinkCheckerFindsBrokenLinks) {
   EXPECT_NE(o.output.find("6 relative links checked, 3 broken"), std::string::npos) << o.output;
 }
 
+// The README's main table is what scripts/readme_table.py prints from the committed records
+// (docs/measured/readme-main/): every line of it stands in the README as printed, so the
+// table cannot drift from its records.
+TEST(Docs, ReadmeMainTableIsItsRecords) {
+  const std::string readme = test::read_text((kRoot / "README.md").string());
+  const auto o = test::run_shell(std::string(LDM_PYTHON) + " " + (kRoot / "scripts" / "readme_table.py").string() + " " +
+                                 (kRoot / "docs" / "measured" / "readme-main" / "records.csv").string());
+  ASSERT_EQ(o.status, 0) << o.output;
+  std::istringstream lines(o.output);
+  int rows = 0;
+  for (std::string line; std::getline(lines, line);) {
+    if (line.empty()) continue;
+    EXPECT_NE(readme.find(line + "\n"), std::string::npos) << "not in README.md: " << line;
+    rows += line.rfind("| ", 0) == 0;
+  }
+  EXPECT_GE(rows, 10) << o.output;
+}
+
 TEST(Docs, ReadmeIsShort) {
   const std::string readme = test::read_text((kRoot / "README.md").string());
   ASSERT_FALSE(readme.empty());
