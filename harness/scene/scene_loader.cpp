@@ -61,14 +61,9 @@ class Fields {
     if (!v.is_string()) fail(key, "must be a string");
     return v.get<std::string>();
   }
+  // dvec3's value rounded to float (the same checks: each number within a float's range).
   glm::vec3 vec3(const std::string& key, glm::vec3 fallback) const {
-    if (!has(key)) return fallback;
-    const json& v = object_.at(key);
-    if (v.is_number()) return glm::vec3(to_float(v, key));
-    if (!v.is_array() || v.size() != 3 || !v[0].is_number() || !v[1].is_number() ||
-        !v[2].is_number())
-      fail(key, "must be an array of 3 numbers");
-    return {to_float(v[0], key + "/0"), to_float(v[1], key + "/1"), to_float(v[2], key + "/2")};
+    return glm::vec3(dvec3(key, glm::dvec3(fallback)));
   }
   // Three numbers (or one for all three) in double precision, as the file gives them: a
   // placement far from the origin keeps the digits a float would round away.
