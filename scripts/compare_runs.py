@@ -19,12 +19,14 @@ import subprocess
 import sys
 import ldmrecords
 
-# Columns that differ between two runs of the same build, or between two builds by design.
-VOLATILE = re.compile(
-    r"^(.*_ms_(median|min|max|stddev)|wall_seconds|build_vs_raster\w*|fragments_per_second|"
-    r"ref_render_seconds|ref_from_cache|git_commit|ldmbench_version|"
-    r".*_ms_(ci_low|ci_high|rep_spread)|time_half_width\w*|time_run_to_run_spread|time_calibration|"
-    r"load_average_.+|cpu_mhz_.+|cpu_governor|gpu_(sm_clock_mhz|power_w|throttle_reasons)_.+)$")
+# Columns that differ between two builds by design: which build measured.
+BUILD_IDENTITY = {"git_commit", "ldmbench_version"}
+
+
+def volatile(column, ldmbench):
+    """Differs between two runs of one configuration (the schema's varies_between_runs) or
+    between two builds by design."""
+    return column in BUILD_IDENTITY or bool(ldmrecords.varies_between_runs(ldmbench).match(column))
 
 
 def read_records(folder):
@@ -46,8 +48,8 @@ def main(before, after, ldmbench):
     problems = []
     columns_a, records_a = read_records(before)
     columns_b, records_b = read_records(after)
-    stable_a = [c for c in columns_a if not VOLATILE.match(c)]
-    stable_b = [c for c in columns_b if not VOLATILE.match(c)]
+    stable_a = [c for c in columns_a if not volatile(c, ldmbench)]
+    stable_b = [c for c in columns_b if not volatile(c, ldmbench)]
     if stable_a != stable_b:
         problems.append("columns differ:\n  only before: %s\n  only after: %s\n  order same: %s" % (
             sorted(set(stable_a) - set(stable_b)), sorted(set(stable_b) - set(stable_a)),

@@ -9,10 +9,13 @@ Records are matched by config_id (a merge orders them by shard, a single run by 
 the order is not compared). Exit 0 when equal; 1 listing each difference (a configuration
 missing or extra, a column missing, a value differing); 2 when a folder cannot be read.
 
-Columns left out, and why (everything else, present in either record, must be equal):
+Columns left out: those the column schema declares as varying between runs
+(`ldmbench columns --json`, flag varies_between_runs; the binary is $LDMBENCH, else
+build/ldmbench). Today, and why (everything else, present in either record, must be equal):
 - measured time (`ldmbench columns`, group time): the <subpass>_ms_* statistics,
   build_vs_raster*, fragments_per_second, time_half_width, time_target_met, wall_seconds,
-  ref_render_seconds, rtao_bvh_ms, and the harness's own costs frames_timed_ms, verify_ms,
+  ref_render_seconds, rtao_bvh_ms, rtao_gpu_bvh_ms, rtao_gpu_bvh_upload_ms, the run-to-run
+  spread and machine state (load, clocks), and the harness's own costs frames_timed_ms, verify_ms,
   verify_warmup_ms, verify_share. Two runs never time alike. frames_measured and the
   interval's coverage stay compared: with settings.timing.target 0 (the CI sweep) they are
   the fixed frame count, not a measurement.
@@ -30,20 +33,12 @@ import sys
 from pathlib import Path
 import ldmrecords
 
-TIME_COLUMNS = re.compile(
-    r"^(.+_ms_(median|ci_low|ci_high|rep_spread|min|max|stddev)"
-    r"|build_vs_raster|build_vs_raster_touch|fragments_per_second|time_half_width"
-    r"|time_target_met|wall_seconds|ref_render_seconds|rtao_bvh_ms"
-    r"|frames_timed_ms|verify_ms|verify_warmup_ms|verify_share"
-    r"|time_half_width_within_run|time_run_to_run_spread|time_calibration"
-    r"|load_average_.+|cpu_mhz_.+|cpu_governor|gpu_(sm_clock_mhz|power_w|throttle_reasons)_.+)$")
-HOST_COLUMNS = re.compile(r"^(host|slurm_.+)$")
-HISTORY_COLUMNS = {"ref_from_cache"}
 FILE_COLUMNS = re.compile(r"^(.+_(exr|png)|frame_samples_csv)$")
 
 
 def excluded(column):
-    return bool(TIME_COLUMNS.match(column) or HOST_COLUMNS.match(column)) or column in HISTORY_COLUMNS
+    """Varies between two runs of one configuration, by the schema (ldmbench columns --json)."""
+    return bool(ldmrecords.varies_between_runs().match(column))
 
 
 class Unreadable(Exception):

@@ -68,3 +68,28 @@ def dataframe(path):
     so that scripts without it can use the rest of the module)."""
     import pandas as pd
     return pd.read_csv(records_path(path))
+
+
+def default_ldmbench():
+    """$LDMBENCH, else the build in this checkout (build/ldmbench beside scripts/)."""
+    return os.environ.get("LDMBENCH") or os.path.join(
+        os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), "build", "ldmbench")
+
+
+_varying = {}
+
+
+def varies_between_runs(ldmbench=None):
+    """A compiled pattern of the columns the schema declares as varying between two runs of one
+    configuration (measured time, machine state, host and job, whether the reference came from
+    the cache: `ldmbench columns --json`, flag varies_between_runs); a templated name such as
+    <subpass>_ms_median matches any text in place of <subpass>. Read once per binary."""
+    import re
+    import subprocess
+    ldmbench = ldmbench or default_ldmbench()
+    if ldmbench not in _varying:
+        out = subprocess.run([ldmbench, "columns", "--json"], check=True, capture_output=True, text=True).stdout
+        names = [c["name"] for c in json.loads(out)["columns"] if c.get("varies_between_runs")]
+        parts = [".+".join(re.escape(p) for p in re.split(r"<[^>]+>", n)) for n in names]
+        _varying[ldmbench] = re.compile("^(" + "|".join(parts) + ")$")
+    return _varying[ldmbench]

@@ -60,6 +60,20 @@ NOT_RECORDS = {
 }
 
 
+@unittest.skipUnless(os.environ.get("LDMBENCH"), "needs $LDMBENCH (the ctest passes it)")
+class VariesBetweenRuns(unittest.TestCase):
+    """The columns two runs of one configuration may differ in come from the schema's flag, for
+    same_records.py and compare_runs.py alike (they kept two regexes that had drifted apart)."""
+
+    def test_time_machine_state_and_job_vary_results_do_not(self):
+        varying = ldmrecords.varies_between_runs()
+        for column in ("frame_ms_median", "build_ms_ci_low", "rtao_gpu_bvh_ms", "load_average_start",
+                       "time_calibration", "host", "slurm_node", "ref_from_cache"):
+            self.assertTrue(varying.match(column), column)
+        for column in ("mse", "n_views", "fragments_stored", "frames_measured", "ref_noise_mse", "status"):
+            self.assertFalse(varying.match(column), column)
+
+
 class EveryScriptReadsThroughIt(unittest.TestCase):
     """No script in scripts/ opens records.csv or records.json its own way: a script that
     mentions a records file and parses CSV or JSON by itself must import ldmrecords."""
