@@ -22,6 +22,7 @@
 #include "harness/axes/axis.h"
 #include "harness/gl/shader_program.h"
 #include "harness/measure/gpu_timer.h"
+#include "harness/measure/work_counters.h"
 #include "harness/scene/gpu_scene.h"
 #include "harness/util/error.h"
 #include "harness/views/view_set.h"
@@ -166,6 +167,15 @@ std::vector<std::string> structure_names();
 // The parameters a structure declares (its --param STRUCTURE:KEY=VALUE), owner set; throws
 // UserError for an unknown name.
 std::vector<AxisSpec> structure_parameters(const std::string& name);
+// The work a structure's build counts in the counting replay (harness/measure/
+// work_counters.h), declared by the structure beside the shaders that count it.
+std::vector<WorkCounter> structure_work_counters(const std::string& name);
+// The work its query code (query_sources()) counts inside a pass's sub-pass `subpass` (the
+// pass declares which of its sub-passes read the structure: pass_query_subpasses()).
+std::vector<WorkCounter> structure_query_work_counters(const std::string& name, const std::string& subpass);
+// What every geometry sub-pass counts without the structure's help: vertex shader
+// invocations (ldm_raster.vert) and fragments shaded (LDM_SKIP_HELPER_INVOCATIONS).
+std::vector<WorkCounter> geometry_work_counters(const std::string& subpass);
 // Throws UserError for an unknown name (listing the known ones) or bad parameters.
 std::unique_ptr<LdmStructure> make_structure(const std::string& name, StructureParams params);
 

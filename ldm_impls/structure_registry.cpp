@@ -17,16 +17,18 @@ struct Entry {
   const char* name;
   std::function<std::vector<AxisSpec>()> parameters;
   std::function<std::unique_ptr<LdmStructure>(StructureParams&)> make;
+  std::function<std::vector<WorkCounter>()> work;
+  std::function<std::vector<WorkCounter>()> query_work;
 };
 
 const std::vector<Entry>& registry() {
   static const std::vector<Entry> entries = {
-      {"psppsll", Psppsll::parameters, [](StructureParams& p) { return std::make_unique<Psppsll>(p); }},
-      {"ppsll", Ppsll::parameters, [](StructureParams& p) { return std::make_unique<Ppsll>(p); }},
-      {"dfbuffer", DfBuffer::parameters, [](StructureParams& p) { return std::make_unique<DfBuffer>(p); }},
-      {"habuffer", HaBuffer::parameters, [](StructureParams& p) { return std::make_unique<HaBuffer>(p); }},
-      {"ppfla", Ppfla::parameters, [](StructureParams& p) { return std::make_unique<Ppfla>(p); }},
-      {"psppfla", Psppfla::parameters, [](StructureParams& p) { return std::make_unique<Psppfla>(p); }},
+      {"psppsll", Psppsll::parameters, [](StructureParams& p) { return std::make_unique<Psppsll>(p); }, Psppsll::work_counters, Psppsll::query_work_counters},
+      {"ppsll", Ppsll::parameters, [](StructureParams& p) { return std::make_unique<Ppsll>(p); }, Ppsll::work_counters, Ppsll::query_work_counters},
+      {"dfbuffer", DfBuffer::parameters, [](StructureParams& p) { return std::make_unique<DfBuffer>(p); }, DfBuffer::work_counters, DfBuffer::query_work_counters},
+      {"habuffer", HaBuffer::parameters, [](StructureParams& p) { return std::make_unique<HaBuffer>(p); }, HaBuffer::work_counters, HaBuffer::query_work_counters},
+      {"ppfla", Ppfla::parameters, [](StructureParams& p) { return std::make_unique<Ppfla>(p); }, Ppfla::work_counters, Ppfla::query_work_counters},
+      {"psppfla", Psppfla::parameters, [](StructureParams& p) { return std::make_unique<Psppfla>(p); }, Psppfla::work_counters, Psppfla::query_work_counters},
   };
   return entries;
 }
@@ -51,6 +53,14 @@ std::vector<AxisSpec> structure_parameters(const std::string& name) {
   std::vector<AxisSpec> specs = entry(name).parameters();
   for (AxisSpec& s : specs) s.owner = name;
   return specs;
+}
+
+std::vector<WorkCounter> structure_work_counters(const std::string& name) { return entry(name).work(); }
+
+std::vector<WorkCounter> structure_query_work_counters(const std::string& name, const std::string& subpass) {
+  std::vector<WorkCounter> counters = entry(name).query_work();
+  for (WorkCounter& c : counters) c.subpass = subpass;
+  return counters;
 }
 
 std::unique_ptr<LdmStructure> make_structure(const std::string& name, StructureParams params) {

@@ -135,6 +135,10 @@ void add_measurement(Record& r, const Measurement& m, const TimePrecision& preci
     r.set("mem_" + b.name + "_allocated", b.allocated);
     r.set("mem_" + b.name + "_used", b.used);
   }
+  if (m.work_counted) {
+    r.set(kWorkReplayMs, m.work_replay_ms);
+    for (const auto& [column, value] : m.work) r.put(column, value);
+  }
   r.set(kBytesAllocated, m.bytes_allocated());
   r.set(kBytesUsed, m.bytes_used());
 }

@@ -111,6 +111,7 @@ Measurement measure(const Scene& scene, const MeasurementRequest& request) {
     measured.add_frame(times);
     if (request.on_frame) request.on_frame(times);
   }
+  if (request.count_work) session.count_work();
   Measurement m = session.result();
   if (!request.keep_running) {
     m.time_target_met = stop_rule.target_met(measured);

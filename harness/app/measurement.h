@@ -50,6 +50,9 @@ struct MeasurementRequest {
   std::function<bool()> keep_running;
   // Called with every measured frame's times (sub-passes plus "build" and "frame").
   std::function<void(const FrameTimes&)> on_frame;
+  // After the measured frames, the untimed counting replay (MeasurementSession::
+  // count_work): the record's work_* columns. Off only where nothing reads them.
+  bool count_work = true;
 };
 
 // The fragment census in the few numbers a record keeps.
@@ -104,6 +107,12 @@ struct Measurement {
   // census total when the touch baseline really touched every fragment.
   uint64_t raster_touch_fragments = 0;
   std::vector<std::string> pass_subpasses;  // the pass's own, as declared
+
+  // The counting replay's work_* fields (empty: not counted), its wall time, and whether
+  // it ran; its disagreements with the measured frames make the record invalid.
+  std::vector<std::pair<std::string, RecordValue>> work;
+  bool work_counted = false;
+  double work_replay_ms = 0;
 
   std::vector<PassImage> images;
   std::vector<std::pair<std::string, RecordValue>> pass_results;  // Pass::results()

@@ -1,6 +1,7 @@
 #include "harness/app/measurement_session.h"
 
 #include <cstdio>
+#include <cstring>
 
 #include <algorithm>
 #include <chrono>
@@ -8,6 +9,8 @@
 #include <stdexcept>
 
 #include "harness/app/ldm_setup.h"
+#include "harness/app/record_schema.h"
+#include "harness/measure/work_counters.h"
 #include "harness/metrics/image_checks.h"
 #include "harness/passes/raster_baseline.h"
 #include "harness/util/error.h"
@@ -74,6 +77,8 @@ struct MeasurementSession::State {
   std::unique_ptr<BuildVerifier> verifier;
   uint64_t rebuilds_in_warmup = 0;
   uint64_t sizing_changes_seen = 0;  // rebuilds + reallocations at the last verification
+  // Where the counting replay disagreed with the measured frames (count_work()).
+  std::vector<std::string> work_problems;
 
   // Peer passes: the scene as given (no LDM views, so no centred frame is imposed).
   std::unique_ptr<Scene> peer_scene;
@@ -210,6 +215,77 @@ FrameTimes MeasurementSession::run_frame() {
   return times;
 }
 
+namespace {
+
+// How many values of two images' pixels differ, bit for bit (a shape mismatch: all).
+size_t differing_values(const Image& a, const Image& b) {
+  if (!a.same_shape(b)) return std::max(a.pixels.size(), b.pixels.size());
+  size_t differing = 0;
+  for (size_t i = 0; i < a.pixels.size(); ++i)
+    if (std::memcmp(&a.pixels[i], &b.pixels[i], sizeof(float)) != 0) ++differing;
+  return differing;
+}
+
+}  // namespace
+
+void MeasurementSession::count_work() {
+  State& s = *state_;
+  if (s.pass->requirements().runs_on_cpu) return;  // no shader to count (the CPU ray tracer)
+  const auto start = std::chrono::steady_clock::now();
+  WorkCounterBuffer counts(configuration_work_counters(s.m.structure, s.request.pass));
+  GpuTimer timer(TimerSource::CpuWallClock);  // only to tell the counters the sub-passes
+  timer.set_observer(&counts);
+  std::unique_ptr<LdmStructure> structure;
+  std::unique_ptr<SizingDriver> sizer;
+  std::unique_ptr<Pass> pass = make_request_pass(s.request);
+  {
+    WorkCountingScope counting(counts.defines());
+    if (s.setup) {
+      structure = s.setup->prepare(s.request.structure, s.request.structure_params);
+      sizer = std::make_unique<SizingDriver>(*structure, *s.setup->inputs);
+      pass->prepare({s.setup->scene, *s.setup->gpu_scene, s.setup->inputs.get(), structure.get(),
+                     s.request.width, s.request.height});
+    } else {
+      pass->prepare({*s.peer_scene, *s.peer_gpu_scene, nullptr, nullptr, s.request.width,
+                     s.request.height});
+    }
+    auto frame = [&] {
+      timer.begin_frame();
+      if (sizer) sizer->build(&timer);
+      pass->render(&timer);
+      timer.end_frame();
+    };
+    // A frame to settle what the measured frames' warm-up settled (a sizing policy's first
+    // guess, previous_frame's growth), uncounted; then the counted one.
+    if (sizer) frame();
+    counts.clear();
+    frame();
+  }
+  s.m.work = counts.read(&s.work_problems);
+  s.m.work_counted = true;
+
+  // Counting must change nothing the measured frames computed: the same sorted lists (the
+  // raw buffers may differ where fragments race) and bit for bit the same images.
+  if (structure) {
+    const LdmInspector inspector(*structure, *s.setup->inputs,
+                                 std::max(1u, s.setup->census.max_depth_complexity));
+    const LdmIntegrity replayed = inspector.check();
+    if (replayed.checksum != s.health->first_checksum())
+      s.work_problems.push_back("the counting replay's sorted lists differ from the measured builds' "
+                                "(checksum " + hex64(replayed.checksum) + " against " +
+                                hex64(s.health->first_checksum()) + ")");
+  }
+  const std::vector<PassImage> measured = s.pass->images(), replayed = pass->images();
+  for (size_t i = 0; i < measured.size() && i < replayed.size(); ++i)
+    if (const size_t differing = differing_values(measured[i].image, replayed[i].image))
+      s.work_problems.push_back("the counting replay's " + measured[i].name + " image differs from the "
+                                "measured frames' in " + std::to_string(differing) + " values");
+  if (measured.size() != replayed.size())
+    s.work_problems.push_back("the counting replay drew another number of images");
+  s.m.work_replay_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
 int MeasurementSession::frames_run() const { return state_->frames_run; }
 bool MeasurementSession::in_warmup() const { return state_->frames_run < state_->request.warmup; }
 
@@ -226,6 +302,7 @@ Measurement MeasurementSession::result() const {
     // may have cut short) make a peer's record invalid, as they do an LDM pass's.
     std::vector<std::string> all_problems = problems;
     for (const auto& problem : s.pass->problems()) all_problems.push_back(problem);
+    for (const auto& problem : s.work_problems) all_problems.push_back(problem);
     m.status = all_problems.empty() ? BuildStatus::Ok : BuildStatus::Invalid;
     m.memory = s.pass->memory();
     for (const auto& problem : all_problems)
@@ -242,6 +319,7 @@ Measurement MeasurementSession::result() const {
                             std::to_string(s.setup->census.total_fragments));
     for (const auto& problem : problems) health.report_problem(problem);
     for (const auto& problem : s.pass->problems()) health.report_problem(problem);
+    for (const auto& problem : s.work_problems) health.report_problem(problem);
     m.status = health.status();
     m.status_detail = health.detail();
     m.overflow = health.overflow();

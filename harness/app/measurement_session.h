@@ -33,6 +33,14 @@ class MeasurementSession {
   int frames_run() const;
   bool in_warmup() const;
 
+  // The untimed counting replay, after the measured frames: the structure and the pass
+  // prepared again inside a WorkCountingScope (their counting variants,
+  // harness/measure/work_counters.h), one frame to settle the sizing, then one counted frame.
+  // Its sorted lists (the inspector's checksum) and its images must equal the measured
+  // frames': counting provably changed nothing, else result() is invalid. Its wall time is
+  // the harness's own (work_replay_ms), never a measured frame's.
+  void count_work();
+
   // What measure() returns for the frames run so far (the last frame's images read back).
   Measurement result() const;
 

@@ -6,6 +6,7 @@
 #include "harness/app/harness_axes.h"
 #include "harness/passes/pass.h"
 #include "harness/records/harness_columns.h"
+#include "ldm_impls/ldm_structure.h"
 
 namespace ldm {
 
@@ -34,6 +35,37 @@ std::string declared_columns_text() {
 
 std::string always_written_columns_text() { return joined(always_written_columns()); }
 
+std::vector<WorkCounter> configuration_work_counters(const std::string& structure, const std::string& pass) {
+  std::vector<WorkCounter> counters;
+  if (structure != "none" && !structure.empty()) {
+    counters = structure_work_counters(structure);
+    // The census sizing policy's count pass runs the same geometry pass in every frame.
+    for (WorkCounter c : geometry_work_counters("census")) counters.push_back(std::move(c));
+  }
+  for (WorkCounter c : pass_work_counters(pass)) counters.push_back(std::move(c));
+  if (structure != "none" && !structure.empty())
+    for (const auto& subpass : pass_query_subpasses(pass))
+      for (WorkCounter c : structure_query_work_counters(structure, subpass)) counters.push_back(std::move(c));
+  return counters;
+}
+
+namespace {
+// Every counter any configuration can record: the columns of group "work".
+std::vector<ColumnSpec> all_work_columns() {
+  std::vector<WorkCounter> counters;
+  for (const auto& structure : structure_names())
+    for (WorkCounter c : structure_work_counters(structure)) counters.push_back(std::move(c));
+  for (WorkCounter c : geometry_work_counters("census")) counters.push_back(std::move(c));
+  for (const auto& pass : pass_names()) {
+    for (WorkCounter c : pass_work_counters(pass)) counters.push_back(std::move(c));
+    for (const auto& subpass : pass_query_subpasses(pass))
+      for (const auto& structure : structure_names())
+        for (WorkCounter c : structure_query_work_counters(structure, subpass)) counters.push_back(std::move(c));
+  }
+  return work_columns(counters);
+}
+}  // namespace
+
 const std::vector<ColumnSpec>& record_columns() {
   static const std::vector<ColumnSpec> columns = [] {
     std::vector<ColumnSpec> passes;
@@ -47,6 +79,10 @@ const std::vector<ColumnSpec>& record_columns() {
     std::vector<ColumnSpec> all = harness_record_columns();
     const auto census = std::find_if(all.begin(), all.end(), [](const ColumnSpec& c) { return c.group == "census"; });
     all.insert(census, passes.begin(), passes.end());
+    // A pass's own declaration of a work column (the GPU ray tracer's) stands.
+    for (ColumnSpec& c : all_work_columns())
+      if (std::none_of(all.begin(), all.end(), [&](const ColumnSpec& d) { return d.name == c.name; }))
+        all.push_back(std::move(c));
     return all;
   }();
   return columns;

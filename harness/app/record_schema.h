@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "harness/measure/work_counters.h"
 #include "harness/records/columns.h"
 #include "harness/records/record.h"
 
@@ -14,6 +15,10 @@ namespace ldm {
 // The harness's columns with each pass's inserted where the pass group stands (before the
 // census); a column several passes write (d_max) once.
 const std::vector<ColumnSpec>& record_columns();
+// The work counters a configuration's counting replay records (its work_* columns, which
+// record_columns() holds for every structure and pass): the structure's and the census
+// sizing policy's (none for a peer pass, `structure` "none"), then the pass's.
+std::vector<WorkCounter> configuration_work_counters(const std::string& structure, const std::string& pass);
 // The spec describing `column` (exact names first, then patterns), or null.
 const ColumnSpec* find_column(const std::string& column);
 // Whether `column` is declared: described by the schema (a pattern's included) or the record

@@ -243,6 +243,7 @@ void run_measurement(benchmark::State& state, const Scene* scene, Configuration 
     request.precision.target = 0;
     request.timer = default_timer_source(g_context->device().gl_renderer);
     request.keep_running = [&state] { return state.KeepRunning(); };
+    request.count_work = false;  // Google Benchmark reports times only
     request.on_frame = [&state](const FrameTimes& times) {
       for (const auto& [name, ms] : times)
         if (name == "frame") state.SetIterationTime(ms * 1e-3);

@@ -24,6 +24,9 @@ constexpr uint32_t kSyntheticRetryBinding = kPassBinding0 + 1;
 // The inspector's per-block hashes (ldm_impls/common/ldm_inspector.h), beside the buffers a
 // pass may still have bound (the trace-steps counters use kPassBinding0 + 6).
 constexpr uint32_t kInspectBlocksBinding = kPassBinding0 + 7;
+// The counting replay's work counters (harness/measure/work_counters.h): bound only there,
+// beside everything a structure or pass binds.
+constexpr uint32_t kWorkCountersBinding = kPassBinding0 + 8;
 
 ShaderDefines binding_defines();
 

@@ -72,7 +72,14 @@ std::string annotate_log(const std::string& log, const std::vector<std::string>&
   return out;
 }
 
+const ShaderDefines*& program_wide_defines() {
+  static const ShaderDefines* defines = nullptr;
+  return defines;
+}
+
 }  // namespace
+
+void set_program_wide_defines(const ShaderDefines* defines) { program_wide_defines() = defines; }
 
 std::string ShaderDefines::text() const {
   std::string out;
@@ -88,6 +95,7 @@ std::string preprocess_shader(const std::string& file, const ShaderDefines& defi
   std::ostringstream out;
   out << "#version 450 core\n";
   out << defines.text();
+  if (const ShaderDefines* wide = program_wide_defines()) out << wide->text();
   for (const auto& prelude : prelude_files) expand(prelude, table, included, out);
   expand(file, table, included, out);
   if (file_table) *file_table = table;

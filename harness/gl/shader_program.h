@@ -42,4 +42,8 @@ std::string preprocess_shader(const std::string& file, const ShaderDefines& defi
 
 GlProgram build_program(const std::vector<ShaderStage>& stages, const ShaderDefines& defines);
 
+// Defines added after `defines` to every shader preprocessed while set (null: none): the
+// counting variants of harness/measure/work_counters.h's WorkCountingScope. Not owned.
+void set_program_wide_defines(const ShaderDefines* defines);
+
 }  // namespace ldm

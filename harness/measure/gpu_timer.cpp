@@ -48,10 +48,12 @@ void GpuTimer::begin(const std::string& subpass) {
     wall_start_ = std::chrono::steady_clock::now();
   }
   open_ = true;
+  if (observer_) observer_->subpass_begun(subpass);
 }
 
 void GpuTimer::end() {
   if (!open_) throw GpuError("GpuTimer: end() without begin()");
+  if (observer_) observer_->subpass_ended(names_.back());
   if (source_ == TimerSource::GpuTimestamps) {
     glQueryCounter(query(used_++), GL_TIMESTAMP);
   } else {

@@ -22,6 +22,15 @@ using FrameTimes = std::vector<std::pair<std::string, double>>;  // sub-pass -> 
 
 enum class TimerSource { GpuTimestamps, FencedWallClock, CpuWallClock };
 
+// Told where each sub-pass of a GpuTimer begins and ends (the counting replay's work
+// counters attribute what the shaders count to the sub-pass running: work_counters.h).
+class SubpassObserver {
+ public:
+  virtual ~SubpassObserver() = default;
+  virtual void subpass_begun(const std::string& subpass) = 0;
+  virtual void subpass_ended(const std::string& subpass) = 0;
+};
+
 // Software renderers (llvmpipe, softpipe, swrast) get the fenced wall clock, GPUs timestamps.
 TimerSource default_timer_source(const std::string& gl_renderer);
 const char* timer_source_name(TimerSource source);
@@ -38,6 +47,8 @@ class GpuTimer {
   void end();
   // Waits for this frame's queries. A name timed twice in a frame is summed.
   FrameTimes end_frame();
+  // Told of every begin() and end() from now on (null: none); not owned.
+  void set_observer(SubpassObserver* observer) { observer_ = observer; }
 
  private:
   GLuint query(size_t index);
@@ -48,6 +59,7 @@ class GpuTimer {
   std::vector<std::string> names_;  // one per begin/end pair
   size_t used_ = 0;
   bool open_ = false;
+  SubpassObserver* observer_ = nullptr;
 };
 
 // RAII helper: times the enclosing scope as one sub-pass.

@@ -27,6 +27,16 @@ std::vector<AxisSpec> AmbientOcclusion::parameters() {
           ao_pass_parameter(AoAxis::Estimator)};
 }
 
+std::vector<WorkCounter> AmbientOcclusion::work_counters() {
+  return {
+      {"ao", "covered_pixels", WorkShape::Total, "pixels", "ao: image pixels that see a surface and trace every view"},
+      {"ao", "entries_read", WorkShape::Distribution, "fragments",
+       "ao: fragments the LDM trace read per view traced (one per covered pixel and view; 0 outside the view)"},
+      {"ao", "trace_steps", WorkShape::Distribution, "iterations",
+       "ao: loop iterations per view traced: the walk's and the structure's own query loops' (trace_steps_max's count)"},
+  };
+}
+
 std::vector<ColumnSpec> AmbientOcclusion::columns() {
   std::vector<ColumnSpec> columns = ao_setting_columns(true);
   for (auto& c : ao_range_columns()) columns.push_back(c);

@@ -88,6 +88,8 @@ std::vector<AxisSpec> IndirectLighting::parameters() {
           ao_pass_parameter(AoAxis::Visibility)};
 }
 
+std::vector<WorkCounter> IndirectLighting::work_counters() { return {}; }
+
 std::vector<ColumnSpec> IndirectLighting::columns() {
   std::vector<ColumnSpec> columns = {
       {"pass", "normal_offset_pixels", "LDM pixels", "normal offset of thesis §4.4.2 (after --normal-offset)"},

@@ -21,6 +21,7 @@
 
 #include "harness/image/image.h"
 #include "harness/measure/gpu_timer.h"
+#include "harness/measure/work_counters.h"
 #include "harness/records/columns.h"
 #include "harness/records/record.h"
 #include "harness/reference/reference_image.h"
@@ -135,6 +136,12 @@ struct PassRegistration {
   std::function<std::vector<AxisSpec>()> parameters;
   std::function<std::vector<ColumnSpec>()> columns;
   std::function<std::unique_ptr<Pass>(StructureParams&)> make;
+  // The work its shaders count in the counting replay (harness/measure/work_counters.h);
+  // none when empty.
+  std::function<std::vector<WorkCounter>()> work = {};
+  // The sub-passes in which it reads the structure through the query API: the structure's
+  // query counters are recorded under each (structure_query_work_counters()).
+  std::vector<std::string> query_subpasses = {};
 };
 // Adds a pass beyond the built-in ones (a test's, or a plugin's) before anything reads the
 // registry's derived lists (the axis registry, the record schema).
@@ -146,6 +153,10 @@ std::vector<std::string> pass_names();
 std::vector<AxisSpec> pass_parameters(const std::string& name);
 // The record columns a pass declares (harness/records/columns.h).
 std::vector<ColumnSpec> pass_columns(const std::string& name);
+// The work counters a pass declares (none for a pass that counts nothing).
+std::vector<WorkCounter> pass_work_counters(const std::string& name);
+// The sub-passes in which a pass reads the structure (PassRegistration::query_subpasses).
+std::vector<std::string> pass_query_subpasses(const std::string& name);
 // Throws UserError for an unknown name (listing the known ones) or bad parameters; `params`
 // should carry a context such as "--pass ao" for its messages.
 std::unique_ptr<Pass> make_pass(const std::string& name, StructureParams params);

@@ -19,12 +19,12 @@ using Entry = PassRegistration;
 
 std::vector<Entry>& registry() {
   static std::vector<Entry> entries = {
-      {"ao", AmbientOcclusion::parameters, AmbientOcclusion::columns, [](StructureParams& p) { return std::make_unique<AmbientOcclusion>(p); }},
+      {"ao", AmbientOcclusion::parameters, AmbientOcclusion::columns, [](StructureParams& p) { return std::make_unique<AmbientOcclusion>(p); }, AmbientOcclusion::work_counters, {"ao"}},
       {"hbao", Hbao::parameters, Hbao::columns, [](StructureParams& p) { return std::make_unique<Hbao>(p); }},
       {"gtao", Gtao::parameters, Gtao::columns, [](StructureParams& p) { return std::make_unique<Gtao>(p); }},
       {"rtao", Rtao::parameters, Rtao::columns, [](StructureParams& p) { return std::make_unique<Rtao>(p); }},
       {"rtao_gpu", RtaoGpu::parameters, RtaoGpu::columns, [](StructureParams& p) { return std::make_unique<RtaoGpu>(p); }},
-      {"indirect", IndirectLighting::parameters, IndirectLighting::columns, [](StructureParams& p) { return std::make_unique<IndirectLighting>(p); }},
+      {"indirect", IndirectLighting::parameters, IndirectLighting::columns, [](StructureParams& p) { return std::make_unique<IndirectLighting>(p); }, IndirectLighting::work_counters, {"photon_tracing"}},
   };
   return entries;
 }
@@ -52,6 +52,13 @@ std::vector<AxisSpec> pass_parameters(const std::string& name) {
 }
 
 std::vector<ColumnSpec> pass_columns(const std::string& name) { return entry(name).columns(); }
+
+std::vector<std::string> pass_query_subpasses(const std::string& name) { return entry(name).query_subpasses; }
+
+std::vector<WorkCounter> pass_work_counters(const std::string& name) {
+  const Entry& e = entry(name);
+  return e.work ? e.work() : std::vector<WorkCounter>();
+}
 
 void register_pass(PassRegistration registration) {
   for (const auto& e : registry())

@@ -148,6 +148,7 @@ std::vector<ColumnSpec> main_columns() {
       kFramesTimedMs,
       kVerifyMs,
       kVerifyWarmupMs,
+      kWorkReplayMs,
       kVerifyShare,
       kWallSeconds,
       kMemBufferAllocatedPattern,

@@ -339,6 +339,9 @@ inline const Column kVerifyMs{"time", "verify_ms", "ms",
 inline const Column kVerifyWarmupMs{"time", "verify_warmup_ms", "ms",
     "wall time of the warm-up frames' build checks",
     ColumnKind::Number, VariesBetweenRuns::Yes, Better::Neither};
+inline const Column kWorkReplayMs{"time", "work_replay_ms", "ms",
+    "wall time of the untimed counting replay that gives the work_* columns and of its checks against the measured frames (the harness's own cost)",
+    ColumnKind::Number, VariesBetweenRuns::Yes, Better::Neither};
 inline const Column kVerifyShare{"time", "verify_share", "",
     "verify_ms over frames_timed_ms",
     ColumnKind::Number, VariesBetweenRuns::Yes, Better::Neither};

@@ -21,6 +21,15 @@ constexpr uint64_t kUnfilledWord = 3;
 
 DfBuffer::DfBuffer(StructureParams& params) { requested_local_ = read_sort_local_param(params); }
 
+std::vector<WorkCounter> DfBuffer::work_counters() {
+  std::vector<WorkCounter> counters;
+  for (WorkCounter c : geometry_work_counters("count")) counters.push_back(std::move(c));
+  for (WorkCounter c : geometry_work_counters("construct")) counters.push_back(std::move(c));
+  return counters;
+}
+
+std::vector<WorkCounter> DfBuffer::query_work_counters() { return {}; }
+
 std::vector<AxisSpec> DfBuffer::parameters() { return {sort_local_parameter()}; }
 
 void DfBuffer::prepare(const BuildInputs& in) {

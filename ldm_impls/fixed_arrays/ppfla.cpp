@@ -9,6 +9,14 @@ namespace ldm {
 
 Ppfla::Ppfla(StructureParams& params) : requested_k_(read_fixed_array_k(params)) {}
 
+std::vector<WorkCounter> Ppfla::work_counters() {
+  std::vector<WorkCounter> counters;
+  for (WorkCounter c : geometry_work_counters("construct")) counters.push_back(std::move(c));
+  return counters;
+}
+
+std::vector<WorkCounter> Ppfla::query_work_counters() { return {}; }
+
 std::vector<AxisSpec> Ppfla::parameters() { return {fixed_array_k_parameter()}; }
 
 void Ppfla::prepare(const BuildInputs& in) {

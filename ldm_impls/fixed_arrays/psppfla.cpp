@@ -13,6 +13,14 @@ constexpr uint32_t kEmptyEntry = 0xFFFFFFFFu;
 
 Psppfla::Psppfla(StructureParams& params) : requested_k_(read_fixed_array_k(params)) {}
 
+std::vector<WorkCounter> Psppfla::work_counters() {
+  std::vector<WorkCounter> counters;
+  for (WorkCounter c : geometry_work_counters("construct")) counters.push_back(std::move(c));
+  return counters;
+}
+
+std::vector<WorkCounter> Psppfla::query_work_counters() { return {}; }
+
 std::vector<AxisSpec> Psppfla::parameters() { return {fixed_array_k_parameter()}; }
 
 void Psppfla::prepare(const BuildInputs& in) {

@@ -88,6 +88,14 @@ HaBuffer::HaBuffer(StructureParams& params) {
   key_bits_request_ = params.get_choice("key_bits");
 }
 
+std::vector<WorkCounter> HaBuffer::work_counters() {
+  std::vector<WorkCounter> counters;
+  for (WorkCounter c : geometry_work_counters("construct")) counters.push_back(std::move(c));
+  return counters;
+}
+
+std::vector<WorkCounter> HaBuffer::query_work_counters() { return {}; }
+
 std::vector<AxisSpec> HaBuffer::parameters() {
   AxisSpec load_factor;
   load_factor.key = "load_factor";

@@ -54,6 +54,10 @@ class HaBuffer final : public LdmStructure {
   explicit HaBuffer(StructureParams& params);
   // The parameters --param habuffer:KEY=VALUE sets, declared (harness/axes/axis.h).
   static std::vector<AxisSpec> parameters();
+  // What its build counts in the counting replay (harness/measure/work_counters.h).
+  static std::vector<WorkCounter> work_counters();
+  // What its query code counts in a pass's sub-pass (filled in by the caller).
+  static std::vector<WorkCounter> query_work_counters();
 
   std::string name() const override { return "habuffer"; }
   void prepare(const BuildInputs& in) override;

@@ -14,6 +14,14 @@ Ppsll::Ppsll(StructureParams& params) : pool_("ppsll", params) {
   requested_local_ = read_sort_local_param(params);
 }
 
+std::vector<WorkCounter> Ppsll::work_counters() {
+  std::vector<WorkCounter> counters;
+  for (WorkCounter c : geometry_work_counters("construct")) counters.push_back(std::move(c));
+  return counters;
+}
+
+std::vector<WorkCounter> Ppsll::query_work_counters() { return {}; }
+
 std::vector<AxisSpec> Ppsll::parameters() { return {ListNodePool::capacity_parameter(), sort_local_parameter()}; }
 
 void Ppsll::prepare(const BuildInputs& in) {

@@ -8,6 +8,14 @@ Psppsll::Psppsll(StructureParams& params) : pool_("psppsll", params) {
   atomic_reads_ = params.get_bool("atomic_reads");
 }
 
+std::vector<WorkCounter> Psppsll::work_counters() {
+  std::vector<WorkCounter> counters;
+  for (WorkCounter c : geometry_work_counters("construct")) counters.push_back(std::move(c));
+  return counters;
+}
+
+std::vector<WorkCounter> Psppsll::query_work_counters() { return {}; }
+
 std::vector<AxisSpec> Psppsll::parameters() {
   AxisSpec atomic_reads;
   atomic_reads.key = "atomic_reads";

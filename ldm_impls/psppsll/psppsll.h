@@ -27,6 +27,10 @@ class Psppsll final : public LdmStructure {
   explicit Psppsll(StructureParams& params);
   // The parameters --param psppsll:KEY=VALUE sets, declared (harness/axes/axis.h).
   static std::vector<AxisSpec> parameters();
+  // What its build counts in the counting replay (harness/measure/work_counters.h).
+  static std::vector<WorkCounter> work_counters();
+  // What its query code counts in a pass's sub-pass (filled in by the caller).
+  static std::vector<WorkCounter> query_work_counters();
 
   std::string name() const override { return "psppsll"; }
   void prepare(const BuildInputs& in) override;

@@ -6,6 +6,7 @@
 // a rasteriser shading one tile in order never produces: there the pixel, depth and view
 // come from globals that the compute wrapper (ldm/synthetic_fragments.comp) sets.
 #include "common/ldm_views.glsl"
+#include "common/work_counters.glsl"
 
 #if LDM_SYNTHETIC_FRAGMENTS
 uint ldm_synthetic_pixel;  // the fragment's pixel over all views (ldm_pixel_index)
@@ -14,8 +15,8 @@ uint v_view_index;
 
 uint ldm_fragment_pixel() { return ldm_synthetic_pixel; }
 
-// A compute invocation is never a helper invocation.
-#define LDM_SKIP_HELPER_INVOCATIONS
+// A compute invocation is never a helper invocation. (Every fragment is counted here.)
+#define LDM_SKIP_HELPER_INVOCATIONS work_add(fragments, 1)
 
 // Counts a retry of a lock-free insertion (a failed compare-and-swap) so that the contention
 // tests can show the retry path ran. Compiles to nothing in the geometry pass.
@@ -37,8 +38,10 @@ uint ldm_fragment_pixel() {
 // not take part: their stores and atomics have no effect and return undefined values, so an
 // insertion loop in one would only spin to its step bound. Every LDM fragment shader that
 // writes storage starts its main() with this.
+// (It is also where the counting replay counts the fragments shaded.)
 #define LDM_SKIP_HELPER_INVOCATIONS \
-  if (gl_HelperInvocation) return
+  if (gl_HelperInvocation) return;         \
+  work_add(fragments, 1)
 
 #define LDM_COUNT_RETRY()
 #endif

@@ -6,6 +6,7 @@
 // construction must rasterise exactly the same fragments, although they are different
 // programs; without it a compiler may evaluate the projection differently per program.
 #include "common/ldm_views.glsl"
+#include "common/work_counters.glsl"
 
 layout(location = 0) in vec3 in_position;
 invariant gl_Position;
@@ -18,4 +19,5 @@ void main() {
   gl_Position = view.view_projection * vec4(in_position, 1.0);
   v_depth = dot(in_position - view.eye.xyz, view.forward.xyz);
   v_view_index = view_index;
+  work_add(vertices, 1);
 }

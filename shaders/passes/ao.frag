@@ -8,6 +8,7 @@
 // The trace variant (LDM_TRACE) is chosen in passes/ldm_trace.glsl.
 #include "passes/ldm_trace.glsl"
 #include "passes/trace_steps.glsl"
+#include "common/work_counters.glsl"
 
 layout(binding = 0) uniform sampler2D gbuffer_position;
 layout(binding = 1) uniform sampler2D gbuffer_normal;
@@ -44,11 +45,15 @@ void main() {
     return;
   }
   const vec3 n = texelFetch(gbuffer_normal, pixel, 0).xyz;
+  work_add(covered_pixels, 1);
   vec2 sum = vec2(0.0);
   for (uint v = 0u; v < LDM_VIEW_COUNT; ++v) {
     const uint before = trace_steps_so_far();
+    const uint entries_before = ldm_walk_steps;
     sum += ao_contribution(v, position.xyz, n);
     trace_steps_max(v, trace_steps_so_far() - before);
+    work_sample(entries_read, ldm_walk_steps - entries_before);
+    work_sample(trace_steps, trace_steps_so_far() - before);
   }
   trace_steps_max(LDM_VIEW_COUNT, trace_steps_so_far() + LDM_VIEW_COUNT);
 #if AO_NORMALIZED
