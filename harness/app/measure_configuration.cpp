@@ -1,5 +1,6 @@
 #include "harness/app/measure_configuration.h"
 
+#include <cstdlib>
 #include <filesystem>
 
 #include "harness/app/accuracy.h"
@@ -47,6 +48,7 @@ void describe_configuration(Record& r, const Configuration& config, const RunSet
   describe_host(r);
   r.set(kLdmbenchVersion, ldmbench_version());
   r.set(kGitCommit, git_commit());
+  if (const char* shaders = std::getenv("LDM_SHADER_DIR"); shaders && *shaders) r.set(kShaderDir, shaders);
 }
 
 MeasurementRequest measurement_request(const Configuration& config, const RunSettings& settings,

@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <optional>
 #include <stdexcept>
@@ -217,12 +218,17 @@ FrameTimes MeasurementSession::run_frame() {
 
 namespace {
 
-// How many values of two images' pixels differ, bit for bit (a shape mismatch: all).
-size_t differing_values(const Image& a, const Image& b) {
+// How many values of two images differ by more than `tolerance` relative to the larger of
+// the two (0: bit for bit; a shape mismatch: all of them).
+size_t differing_values(const Image& a, const Image& b, double tolerance) {
   if (!a.same_shape(b)) return std::max(a.pixels.size(), b.pixels.size());
   size_t differing = 0;
-  for (size_t i = 0; i < a.pixels.size(); ++i)
-    if (std::memcmp(&a.pixels[i], &b.pixels[i], sizeof(float)) != 0) ++differing;
+  for (size_t i = 0; i < a.pixels.size(); ++i) {
+    if (std::memcmp(&a.pixels[i], &b.pixels[i], sizeof(float)) == 0) continue;
+    const double x = a.pixels[i], y = b.pixels[i];
+    if (tolerance > 0 && std::abs(x - y) <= tolerance * std::max(std::abs(x), std::abs(y))) continue;
+    ++differing;
+  }
   return differing;
 }
 
@@ -277,9 +283,11 @@ void MeasurementSession::count_work() {
   }
   const std::vector<PassImage> measured = s.pass->images(), replayed = pass->images();
   for (size_t i = 0; i < measured.size() && i < replayed.size(); ++i)
-    if (const size_t differing = differing_values(measured[i].image, replayed[i].image))
+    if (const size_t differing = differing_values(measured[i].image, replayed[i].image,
+                                                  s.pass->image_order_tolerance()))
       s.work_problems.push_back("the counting replay's " + measured[i].name + " image differs from the "
-                                "measured frames' in " + std::to_string(differing) + " values");
+                                "measured frames' in " + std::to_string(differing) + " values" +
+                                (s.pass->image_order_tolerance() > 0 ? " beyond the pass's order tolerance" : ""));
   if (measured.size() != replayed.size())
     s.work_problems.push_back("the counting replay drew another number of images");
   s.m.work_replay_ms =

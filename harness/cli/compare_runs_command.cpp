@@ -52,7 +52,7 @@ Runner add_compare_runs_command(CLI::App& app) {
   cmd->add_option("new", o->next, "The run to judge: a run folder or its records.json")->required();
   cmd->add_option("--fail-on", o->fail_on,
                   "Exit 1 when a configuration regresses in one of these kinds: a comma list "
-                  "of time, memory, accuracy, status (or none)")
+                  "of time, memory, accuracy, status, work (or none)")
       ->capture_default_str();
   cmd->add_option("--time-subpasses", o->thresholds.time_subpasses,
                   "Sub-passes whose per-frame times are compared (from the frame_samples_csv files)")
@@ -81,6 +81,11 @@ Runner add_compare_runs_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--memory-tolerance", o->thresholds.memory_tolerance,
                   "Relative growth of bytes_allocated/bytes_used allowed (0: exact)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--work-tolerance", o->thresholds.work_tolerance,
+                  "Relative growth allowed of a work counter that depends on arrival order "
+                  "(insertion walks, retries); deterministic counters are compared exactly")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   cmd->add_option("--noise-factor", o->thresholds.noise_factor,

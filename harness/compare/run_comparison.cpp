@@ -265,6 +265,42 @@ double calibrated_spread(const json& a, const json& b) {
   return out;
 }
 
+// Whether `column` is declared deterministic (an undeclared counter, from another build's
+// schema, is given the tolerance).
+bool deterministic_work(const std::string& column) {
+  const ColumnSpec* spec = find_column(column);
+  return spec && spec->deterministic;
+}
+
+void compare_work(ConfigChange& c, const json& a, const json& b, const CompareThresholds& t) {
+  auto counters = [](const json& record) {
+    std::map<std::string, double> out;
+    for (const auto& [key, value] : record.items())
+      if (key.rfind("work_", 0) == 0 && key != "work_replay_ms" && value.is_number()) out[key] = value.get<double>();
+    return out;
+  };
+  const std::map<std::string, double> in_a = counters(a), in_b = counters(b);
+  bool more = false, less = false;
+  for (const auto& [column, base] : in_a) {
+    const auto found = in_b.find(column);
+    if (found == in_b.end()) {
+      c.work_only_in_base.push_back(column);
+      continue;
+    }
+    WorkChange w{column, base, found->second, deterministic_work(column), ""};
+    const double allowed = w.deterministic ? 0.0 : t.work_tolerance * std::fabs(base);
+    if (w.next > base + allowed) w.verdict = "MORE";
+    else if (w.next < base - allowed) w.verdict = "LESS";
+    else w.verdict = "SAME";
+    more = more || w.verdict == "MORE";
+    less = less || w.verdict == "LESS";
+    c.work.push_back(std::move(w));
+  }
+  for (const auto& [column, value] : in_b)
+    if (!in_a.count(column)) c.work_only_in_new.push_back(column);
+  if (!c.work.empty()) c.work_verdict = more ? "MORE" : less ? "LESS" : "SAME";
+}
+
 void compare_pair(ConfigChange& c, const RunRecords& base, const json& a, const RunRecords& next,
                   const json& b, bool same_device, bool paired, const CompareThresholds& t) {
   c.new_status = text(b, "status");
@@ -301,6 +337,8 @@ void compare_pair(ConfigChange& c, const RunRecords& base, const json& a, const 
     else if (c.new_allocated < c.base_allocated || c.new_used < c.base_used) c.memory_verdict = "LESS";
     else c.memory_verdict = "SAME";
   }
+
+  compare_work(c, a, b, t);
 
   c.base_mse = number(a, "mse");
   c.new_mse = number(b, "mse");
@@ -498,7 +536,7 @@ RunComparison compare_runs(const RunRecords& base, const RunRecords& next, const
 }
 
 const std::vector<std::string>& regression_kinds() {
-  static const std::vector<std::string> kinds = {"time", "memory", "accuracy", "status"};
+  static const std::vector<std::string> kinds = {"time", "memory", "accuracy", "status", "work"};
   return kinds;
 }
 
@@ -508,6 +546,7 @@ size_t count_regressions(const RunComparison& comparison, const std::string& kin
     if (kind == "memory") return c.memory_regression();
     if (kind == "accuracy") return c.accuracy_regression();
     if (kind == "status") return c.status_regression();
+    if (kind == "work") return c.work_regression();
     throw std::invalid_argument("unknown regression kind " + kind);
   });
 }
@@ -522,6 +561,23 @@ std::string describe_time_change(const TimeChange& t) {
   return out + fixed(t.p_adjusted, " (p=%.2g Holm)");
 }
 
+std::string describe_work_change(const ConfigChange& c) {
+  if (c.work_verdict.empty()) return "-";
+  std::string changed;
+  size_t shown = 0, more = 0;
+  for (const WorkChange& w : c.work) {
+    if (w.verdict != (c.work_verdict == "LESS" ? "LESS" : "MORE")) continue;
+    ++more;
+    if (shown++ >= 3) continue;  // the first three; the JSON has every one
+    changed += (changed.empty() ? " " : ", ") + w.column + " " +
+               (std::isfinite(w.relative_change()) ? fixed(100 * w.relative_change(), "%+.3g%%") : "from 0") +
+               " (" + fixed(w.base, "%.6g") + " -> " + fixed(w.next, "%.6g") + ")";
+  }
+  if (more > 3) changed += ", and " + std::to_string(more - 3) + " more";
+  if (c.work_verdict == "SAME") return "SAME (" + std::to_string(c.work.size()) + " counters)";
+  return c.work_verdict + changed;
+}
+
 std::string percent_text(double relative) {
   if (!std::isfinite(relative)) return "any change";
   if (relative >= 10) return fixed(1 + relative, "x%.2g");  // beyond 1000%: as a ratio
@@ -534,7 +590,7 @@ std::string repetitions_advice(const RunComparison& comparison, double median_de
 
 std::string comparison_table(const RunComparison& comparison) {
   std::vector<std::vector<std::string>> rows = {
-      {"configuration", "status", "time", "memory MiB", "mse / noise", "mssim"}};
+      {"configuration", "status", "time", "memory MiB", "mse / noise", "mssim", "work"}};
   for (const ConfigChange& c : comparison.matched) {
     std::string status = c.base_status == c.new_status ? c.new_status : c.base_status + " -> " + c.new_status;
     if (c.status_worse) status += " WORSE";
@@ -552,7 +608,8 @@ std::string comparison_table(const RunComparison& comparison) {
                  fixed(c.new_mse / c.noise_mse, "%.3g") + " " + c.accuracy_verdict;
     if (c.base_mssim >= 0 && c.new_mssim >= 0)
       mssim = fixed(c.base_mssim, "%.4f") + " -> " + fixed(c.new_mssim, "%.4f");
-    rows.push_back({c.identity, status, time.empty() ? "-" : time, memory, accuracy, mssim});
+    rows.push_back({c.identity, status, time.empty() ? "-" : time, memory, accuracy, mssim,
+                    describe_work_change(c)});
   }
   std::vector<size_t> width(rows.front().size(), 0);
   for (const auto& row : rows)
@@ -632,6 +689,19 @@ std::string repetitions_advice(const RunComparison& comparison, double median_de
 
 }  // namespace
 
+namespace {
+nlohmann::ordered_json work_json(const ConfigChange& c) {
+  using oj = nlohmann::ordered_json;
+  oj changes = oj::array();
+  for (const WorkChange& w : c.work)
+    if (w.verdict != "SAME")
+      changes.push_back({{"column", w.column}, {"base", w.base}, {"new", w.next},
+                         {"deterministic", w.deterministic}, {"verdict", w.verdict}});
+  return {{"verdict", c.work_verdict}, {"counters", c.work.size()}, {"changes", changes},
+          {"only_in_base", c.work_only_in_base}, {"only_in_new", c.work_only_in_new}};
+}
+}  // namespace
+
 nlohmann::ordered_json comparison_json(const RunComparison& comparison, const CompareThresholds& t) {
   using oj = nlohmann::ordered_json;
   const auto num = [](double v) { return v < 0 ? oj(nullptr) : oj(v); };
@@ -679,7 +749,8 @@ nlohmann::ordered_json comparison_json(const RunComparison& comparison, const Co
                      {"verdict", c.memory_verdict}}},
          {"accuracy", {{"base_mse", num(c.base_mse)}, {"new_mse", num(c.new_mse)},
                        {"ref_noise_mse", num(c.noise_mse)}, {"base_mssim", num(c.base_mssim)},
-                       {"new_mssim", num(c.new_mssim)}, {"verdict", c.accuracy_verdict}}}});
+                       {"new_mssim", num(c.new_mssim)}, {"verdict", c.accuracy_verdict}}},
+         {"work", work_json(c)}});
   }
   root["time_tests"] = comparison.time_tests;
   root["paired"] = comparison.paired;

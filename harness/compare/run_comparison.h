@@ -22,6 +22,11 @@
 //             smaller than the noise the reference itself carries is no change.
 //   status    ok -> lossy -> invalid -> failed is a worsening; a configuration of BASE that
 //             NEW lacks is one too.
+//   work      every work_* counter both records carry (harness/measure/work_counters.h):
+//             one the schema declares deterministic exactly (any increase is MORE), an
+//             arrival-dependent one within --work-tolerance. Device-independent, so it is
+//             what a CI machine without a GPU can guard performance by.
+#include <cmath>
 #include <set>
 #include <string>
 #include <vector>
@@ -57,6 +62,9 @@ struct CompareThresholds {
   bool process_spread_given = false;
   double memory_tolerance = 0;    // relative growth of bytes allowed before MORE
   double noise_factor = 1;        // MSE change allowed, in multiples of ref_noise_mse
+  // Relative growth allowed of a work counter that depends on arrival order (deterministic
+  // ones: none). 5 %: above the spread of PSPPSLL's insertion walks between runs on zink.
+  double work_tolerance = 0.05;
   std::set<std::string> ignored_params;  // structure parameters left out of the identity
   static constexpr double kDefaultProcessSpread = 0.10;
 };
@@ -86,6 +94,15 @@ struct TimeChange {
 // two-sided level alpha with `power`, when one run's log median varies by `spread`:
 // 2 ((z_{1-alpha/2} + z_power) spread / log(1 + target))^2, rounded up, at least 2.
 size_t repetitions_for_detectable_change(double spread, double target, double alpha, double power);
+// One work counter of a configuration in both runs.
+struct WorkChange {
+  std::string column;
+  double base = 0, next = 0;
+  bool deterministic = true;  // the schema's flag: compared exactly
+  std::string verdict;        // MORE, LESS, SAME
+  double relative_change() const { return base != 0 ? next / base - 1 : (next != 0 ? INFINITY : 0); }
+};
+
 struct ConfigChange {
   std::string identity, config_id, device;
   std::string base_driver, new_driver;  // gl_driver of each side ("" when not in NEW)
@@ -102,11 +119,17 @@ struct ConfigChange {
   double base_mse = -1, new_mse = -1, noise_mse = -1, base_mssim = -1, new_mssim = -1;
   std::string accuracy_verdict;  // WORSE, BETTER, SAME, or ""
   bool status_worse = false;
+  // work: the counters both records carry, and those only one does (renamed or new ones:
+  // reported, not judged)
+  std::vector<WorkChange> work;
+  std::vector<std::string> work_only_in_base, work_only_in_new;
+  std::string work_verdict;  // MORE (any counter), LESS (none more, some less), SAME, or ""
 
   bool time_regression() const;
   bool memory_regression() const { return cross.empty() && memory_verdict == "MORE"; }
   bool accuracy_regression() const { return cross.empty() && accuracy_verdict == "WORSE"; }
   bool status_regression() const { return cross.empty() && status_worse; }
+  bool work_regression() const { return cross.empty() && work_verdict == "MORE"; }
 };
 
 // A parameter whose --ignore-param would pair configurations of BASE missing from NEW with
@@ -142,6 +165,9 @@ size_t count_regressions(const RunComparison& comparison, const std::string& kin
 std::string comparison_table(const RunComparison& comparison);
 // One time change as the table shows it: "frame +3.1% SAME (could not detect < 12%)".
 std::string describe_time_change(const TimeChange& change);
+// A configuration's work verdict as the table shows it: "SAME (41 counters)", or the
+// counters that grew: "MORE work_ao_entries_read_total +12% (247446 -> 277135), ...".
+std::string describe_work_change(const ConfigChange& change);
 // A relative change as a percentage ("12%", "3.1%"; inf: "any change").
 std::string percent_text(double relative);
 nlohmann::ordered_json comparison_json(const RunComparison& comparison,

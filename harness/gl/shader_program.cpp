@@ -1,5 +1,8 @@
 #include "harness/gl/shader_program.h"
 
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -11,10 +14,27 @@
 namespace ldm {
 namespace {
 
+// LDM_SHADER_DIR: a folder laid out as shaders/ whose files replace the compiled-in ones
+// (files it lacks stay compiled-in): to try a shader change without rebuilding, and for the
+// tests that change a shader on purpose (a deliberate slowdown the work guard must catch).
+std::string shader_override(const std::string& file) {
+  const char* folder = std::getenv("LDM_SHADER_DIR");
+  if (!folder || !*folder) return {};
+  const std::filesystem::path path = std::filesystem::path(folder) / file;
+  if (!std::filesystem::is_regular_file(path)) return {};
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (!in && !in.eof()) throw UserError("LDM_SHADER_DIR: cannot read " + path.string());
+  return text.str();
+}
+
 const std::string& shader_text(const std::string& file) {
   static std::map<std::string, std::string> cache;
   auto cached = cache.find(file);
   if (cached != cache.end()) return cached->second;
+  if (std::string replaced = shader_override(file); !replaced.empty())
+    return cache.emplace(file, std::move(replaced)).first->second;
   const auto& table = embedded_shader_sources();
   auto found = table.find(file);
   if (found == table.end()) throw GpuError("shader file not found in shaders/: " + file);

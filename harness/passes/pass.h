@@ -106,6 +106,11 @@ class Pass {
   // device may have cut short: harness/passes/trace_steps.h), one sentence each. A
   // non-empty answer makes the record invalid; none by default.
   virtual std::vector<std::string> problems() const { return {}; }
+  // How far two renders of the same inputs may differ per image value, relative to the
+  // larger of the two (0: bit for bit, the default): what the counting replay's images are
+  // checked against the measured frames' with. Not 0 only where the image sums in an order
+  // the device chooses (additive blending of primitives appended by atomics).
+  virtual double image_order_tolerance() const { return 0.0; }
   // Work the pass's own configured capacity dropped in the last render(), counted (e.g. the
   // indirect pass's photon-buffer overflow), one sentence; empty when nothing was dropped. A
   // non-empty answer makes the record lossy, as a structure's counted loss does.

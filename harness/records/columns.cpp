@@ -72,6 +72,7 @@ std::vector<ColumnSpec> main_columns() {
       kWarmup,
       kLdmbenchVersion,
       kGitCommit,
+      kShaderDir,
       kDevice,
       kDeviceId,
       kGlDriver,

@@ -111,6 +111,9 @@ inline const Column kLdmbenchVersion{"identity", "ldmbench_version", "",
 inline const Column kGitCommit{"identity", "git_commit", "",
     "commit of the build that measured",
     ColumnKind::Text, VariesBetweenRuns::No, Better::Neither};
+inline const Column kShaderDir{"identity", "shader_dir", "",
+    "LDM_SHADER_DIR when it was set: the folder whose shader files replaced the build's (absent: the build's own shaders)",
+    ColumnKind::Text, VariesBetweenRuns::No, Better::Neither};
 inline const Column kDevice{"device", "device", "",
     "GL_RENDERER; for a pass that runs on the CPU (rtao) the CPU model, CPU: <model name>",
     ColumnKind::Text, VariesBetweenRuns::No, Better::Neither};

@@ -162,7 +162,7 @@ int64_t result(const Measurement& m, const std::string& key) {
 TEST(IndirectPass, PhotonOverflowIsCountedAndLossy) {
   const Scene scene = load_scene("cornell");
   const Measurement fixed = measure(scene, small_request({{"photon_capacity", "50"}}, SizingPolicy::PreviousFrame));
-  EXPECT_EQ(fixed.status, BuildStatus::Lossy);
+  EXPECT_EQ(fixed.status, BuildStatus::Lossy) << fixed.status_detail;
   EXPECT_NE(fixed.status_detail.find("photon buffer overflow"), std::string::npos) << fixed.status_detail;
   EXPECT_EQ(result(fixed, "photons_stored"), 50);
   EXPECT_GT(result(fixed, "photons_overflow"), 0);
