@@ -22,7 +22,7 @@ case "$renderer" in
 esac
 "$build/ldmbench" info | grep '^self-test' || true
 # The suites whose tests build structures or run passes in the test process itself.
-suites='ao|context|extremes|indirect|measure|passes|peers|psppsll|sizing|structures'
+suites='ao|context|extremes|indirect|measure|passes|peers|psppsll|sizing|structures|work'
 ctest --test-dir "$build" --output-on-failure -j "$(nproc)" --timeout 900 \
   -R "^($suites)\\." -E 'DriverDefects\.'
 echo "zink-tests: the reproducer of the known driver defect (reported, not judged):"

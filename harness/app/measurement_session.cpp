@@ -222,6 +222,7 @@ namespace {
 // the two (0: bit for bit; a shape mismatch: all of them).
 size_t differing_values(const Image& a, const Image& b, double tolerance) {
   if (!a.same_shape(b)) return std::max(a.pixels.size(), b.pixels.size());
+  if (std::isinf(tolerance)) return 0;  // the pass says its images depend on arrival order
   size_t differing = 0;
   for (size_t i = 0; i < a.pixels.size(); ++i) {
     if (std::memcmp(&a.pixels[i], &b.pixels[i], sizeof(float)) == 0) continue;

@@ -62,7 +62,18 @@ std::vector<ColumnSpec> all_work_columns() {
       for (const auto& structure : structure_names())
         for (WorkCounter c : structure_query_work_counters(structure, subpass)) counters.push_back(std::move(c));
   }
-  return work_columns(counters);
+  std::vector<ColumnSpec> columns = work_columns(counters);
+  // The driver's pipeline statistics of every sub-pass that declares counters: the driver's
+  // count, which another driver may count differently (not deterministic across drivers).
+  for (const PipelineStatistic& statistic : pipeline_statistics()) {
+    ColumnSpec c("work", std::string("work_<subpass>_gl_") + statistic.name, statistic.unit,
+                 std::string("<subpass>: ") + statistic.description +
+                     ", from GL_ARB_pipeline_statistics_query in the counting replay, where the driver has it",
+                 ColumnKind::Number, VariesBetweenRuns::No, Better::Lower);
+    c.deterministic = false;
+    columns.push_back(std::move(c));
+  }
+  return columns;
 }
 }  // namespace
 

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "harness/gl/bindings.h"
+#include "harness/gl/egl_context.h"
 
 namespace ldm {
 namespace {
@@ -34,6 +35,17 @@ std::string distribution_description(const WorkCounter& c, const std::string& su
 }
 
 }  // namespace
+
+const std::vector<PipelineStatistic>& pipeline_statistics() {
+  static const std::vector<PipelineStatistic> statistics = {
+      {GL_VERTICES_SUBMITTED, "vertices_submitted", "vertices", "vertices the draws submitted (the driver's count)"},
+      {GL_VERTEX_SHADER_INVOCATIONS, "vertex_invocations", "invocations", "vertex shader invocations (the driver's count)"},
+      {GL_FRAGMENT_SHADER_INVOCATIONS, "fragment_invocations", "invocations",
+       "fragment shader invocations (the driver's count: llvmpipe's includes helper and masked-off lanes of its raster blocks)"},
+      {GL_COMPUTE_SHADER_INVOCATIONS, "compute_invocations", "invocations", "compute shader invocations (the driver's count)"},
+  };
+  return statistics;
+}
 
 const std::vector<std::string>& work_distribution_suffixes() {
   static const std::vector<std::string> suffixes = {"_mean", "_p50", "_p99", "_max", "_total"};
@@ -112,11 +124,17 @@ WorkCounterBuffer::WorkCounterBuffer(std::vector<WorkCounter> counters) : counte
   block_words_ = std::max<uint32_t>(1, (words + align_words - 1) / align_words * align_words);
   scratch_ = block_of_.size();
   ran_.assign(scratch_ + 1, false);
+  if (has_gl_extension("GL_ARB_pipeline_statistics_query")) {
+    statistic_queries_.resize(pipeline_statistics().size());
+    glGenQueries(GLsizei(statistic_queries_.size()), statistic_queries_.data());
+  }
   buffer_ = GlBuffer("work counters", uint64_t(block_words_) * 4 * (scratch_ + 1));
   clear();
 }
 
-WorkCounterBuffer::~WorkCounterBuffer() = default;
+WorkCounterBuffer::~WorkCounterBuffer() {
+  if (!statistic_queries_.empty()) glDeleteQueries(GLsizei(statistic_queries_.size()), statistic_queries_.data());
+}
 
 ShaderDefines WorkCounterBuffer::defines() const {
   ShaderDefines d;
@@ -136,6 +154,7 @@ void WorkCounterBuffer::clear() {
   glFinish();
   buffer_.clear_to_zero();
   std::fill(ran_.begin(), ran_.end(), false);
+  statistic_sums_.assign(scratch_ + 1, std::vector<uint64_t>(statistic_queries_.size(), 0));
   undeclared_seen_.clear();
   bind_block(scratch_);
 }
@@ -151,9 +170,21 @@ void WorkCounterBuffer::subpass_begun(const std::string& subpass) {
   if (found == block_of_.end()) undeclared_seen_.push_back(subpass);
   ran_[block] = true;
   bind_block(block);
+  for (size_t i = 0; i < statistic_queries_.size(); ++i)
+    glBeginQuery(pipeline_statistics()[i].target, statistic_queries_[i]);
 }
 
-void WorkCounterBuffer::subpass_ended(const std::string& /*subpass*/) { bind_block(scratch_); }
+void WorkCounterBuffer::subpass_ended(const std::string& subpass) {
+  const auto found = block_of_.find(subpass);
+  const size_t block = found == block_of_.end() ? scratch_ : found->second;
+  for (size_t i = 0; i < statistic_queries_.size(); ++i) glEndQuery(pipeline_statistics()[i].target);
+  for (size_t i = 0; i < statistic_queries_.size(); ++i) {  // the replay may wait: it is untimed
+    GLuint64 value = 0;
+    glGetQueryObjectui64v(statistic_queries_[i], GL_QUERY_RESULT, &value);
+    if (block < statistic_sums_.size()) statistic_sums_[block][i] += value;
+  }
+  bind_block(scratch_);
+}
 
 std::vector<std::pair<std::string, RecordValue>> WorkCounterBuffer::read(
     std::vector<std::string>* problems) const {
@@ -175,6 +206,12 @@ std::vector<std::pair<std::string, RecordValue>> WorkCounterBuffer::read(
     fields.emplace_back(c.column() + "_p99", int64_t(s.p99));
     fields.emplace_back(c.column() + "_max", int64_t(s.max));
     fields.emplace_back(c.column() + "_total", int64_t(s.sum));
+  }
+  for (const auto& [subpass, block] : block_of_) {
+    if (!ran_[block] || statistic_queries_.empty()) continue;
+    for (size_t i = 0; i < statistic_queries_.size(); ++i)
+      fields.emplace_back("work_" + subpass + "_gl_" + pipeline_statistics()[i].name,
+                          int64_t(statistic_sums_[block][i]));
   }
   if (problems) {
     // Work counted where no declaration names it would be missing from the record: a

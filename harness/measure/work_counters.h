@@ -76,6 +76,19 @@ WorkDistributionStats work_distribution_stats(const uint32_t* words);
 // The value at quantile q (0..1) of a histogram of kWorkBins bins holding `count` values.
 uint32_t work_histogram_quantile(const uint32_t* bins, uint64_t count, double q);
 
+// The driver's own counts per sub-pass (GL_ARB_pipeline_statistics_query, core in GL 4.6),
+// recorded beside the shaders' own as work_<subpass>_gl_<statistic> where the driver has
+// it. They are the driver's view, not the shaders': llvmpipe counts fragment shader
+// invocations per rasterised block, helpers and discarded ones included, so they differ
+// from the shaders' own `fragments` (docs/reference/work-counters.md).
+struct PipelineStatistic {
+  GLenum target;
+  const char* name;  // the column's suffix after gl_
+  const char* unit;
+  const char* description;
+};
+const std::vector<PipelineStatistic>& pipeline_statistics();
+
 // The counters of one frame on the GPU: a block per declared sub-pass (and one scratch block
 // for work outside them), each with a slot per counter name.
 class WorkCounterBuffer : public SubpassObserver {
@@ -101,6 +114,10 @@ class WorkCounterBuffer : public SubpassObserver {
  private:
   void bind_block(size_t block) const;
   std::vector<WorkCounter> counters_;
+  // Pipeline statistics: one query per statistic, begun and ended with each declared
+  // sub-pass, its result added to the sub-pass's sums (empty: the driver has none).
+  std::vector<GLuint> statistic_queries_;
+  std::vector<std::vector<uint64_t>> statistic_sums_;  // [block][statistic]
   std::map<std::string, uint32_t> slot_;        // counter name -> word offset in a block
   std::map<std::string, size_t> block_of_;      // sub-pass -> block index
   std::vector<std::string> undeclared_seen_;    // sub-passes begun that declare no counters

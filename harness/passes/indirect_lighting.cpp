@@ -1,6 +1,7 @@
 #include "harness/passes/indirect_lighting.h"
 
 #include <cmath>
+#include <limits>
 
 #include "harness/metrics/ao_range.h"
 #include "harness/passes/ao_parameters.h"
@@ -283,6 +284,10 @@ std::vector<std::string> IndirectLighting::warnings() const {
   const std::string detail =
       photon_resolution_detail(photon_resolution(lighting_->read_photons(), settings_.splat_scale));
   return detail.empty() ? std::vector<std::string>{} : std::vector<std::string>{detail};
+}
+
+double IndirectLighting::image_order_tolerance() const {
+  return loss().empty() ? 1e-4 : std::numeric_limits<double>::infinity();
 }
 
 std::string IndirectLighting::loss() const {
