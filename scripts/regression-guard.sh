@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
 # CI's regression guard: runs the sweep of a committed baseline (BASELINE/sweep.args) and
 # compares it with BASELINE/records.json by `ldmbench compare`, failing (exit 1) on accuracy,
-# memory or status regressions. Time is not guarded: CI has no GPU and its timings are noise.
+# memory, status or work regressions. Time is not guarded: CI has no GPU and its timings are
+# noise; performance is guarded by work instead (docs/reference/work-counters.md): a
+# deterministic work counter that grows at all, or an arrival-dependent one beyond
+# --work-tolerance, fails the guard.
 #
 #   scripts/regression-guard.sh [BASELINE]            check (default results/baselines/ci-small)
 #   scripts/regression-guard.sh --update [BASELINE]   re-measure and replace the baseline
@@ -46,4 +49,4 @@ if [ "$update" -eq 1 ]; then
   exit 0
 fi
 # --no-time: nothing time-based, not even a printed verdict (CI's times are noise).
-"$ldmbench" compare "$baseline" "$work/run" --no-time --fail-on accuracy,memory,status "${extra_compare[@]}"
+"$ldmbench" compare "$baseline" "$work/run" --no-time --fail-on accuracy,memory,status,work "${extra_compare[@]}"

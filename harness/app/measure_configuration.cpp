@@ -65,6 +65,7 @@ MeasurementRequest measurement_request(const Configuration& config, const RunSet
   request.height = settings.height;
   request.warmup = settings.warmup;
   request.frames = settings.frames;
+  request.count_work = settings.count_work;
   request.precision = settings.precision;
   request.timer = timer_source(settings.timer, device);
   request.verify = parse_verify_mode(settings.verify);

@@ -104,6 +104,7 @@ std::string run_command_line(const RunSettings& s, const std::string& program,
     if (!s.reference.cache_dir.empty()) add("--cache-dir", s.reference.cache_dir);
   }
   if (!s.write_images) line += " --no-images";
+  if (!s.count_work) line += " --no-work";
   if (!out_dir.empty()) add("--out", out_dir);
   return line;
 }

@@ -53,6 +53,9 @@ struct RunSettings {
   int repetitions = 1;
   RepetitionIsolation isolation = RepetitionIsolation::Context;
   bool write_images = true;
+  // The untimed counting replay after each configuration's measured frames (the work_*
+  // columns, harness/measure/work_counters.h); off only to measure what it costs.
+  bool count_work = true;
   std::string out_dir;  // empty: results/runs/<timestamp>
   bool overwrite = false;  // replace another sweep's results in out_dir (else refuse)
   bool redo_failed = false;  // resuming: measure again what out_dir holds as failed

@@ -166,6 +166,8 @@ void add_run_options(CLI::App* run, RunOptions* o) {
   run->add_flag("--redo-failed", s.redo_failed,
                 "Resuming: measure again the configurations --out holds as failed (else kept)");
   run->add_flag("!--no-images", s.write_images, "Do not write images");
+  run->add_flag("!--no-work", s.count_work,
+                "Skip the untimed counting replay: no work_* columns (only to measure what counting costs)");
   run->add_flag("!--no-reference", s.reference.enabled,
                 "Skip the path-traced reference and the image metrics");
   run->add_option("--reference-spp", s.reference.spp.spp_per_half,
