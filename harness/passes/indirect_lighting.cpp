@@ -286,6 +286,11 @@ std::vector<std::string> IndirectLighting::warnings() const {
   return detail.empty() ? std::vector<std::string>{} : std::vector<std::string>{detail};
 }
 
+void IndirectLighting::continue_sizing_from(const Pass& measured) {
+  const auto* other = dynamic_cast<const IndirectLighting*>(&measured);
+  if (other && other->lighting_ && lighting_) lighting_->continue_sizing_from(*other->lighting_);
+}
+
 double IndirectLighting::image_order_tolerance() const {
   return loss().empty() ? 1e-4 : std::numeric_limits<double>::infinity();
 }
