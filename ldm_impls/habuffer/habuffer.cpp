@@ -138,8 +138,9 @@ std::vector<WorkCounter> HaBuffer::work_counters() {
 // Hood by age is history independent: at a slot the older entry wins, and two entries of one
 // age at one slot belong to one pixel, so which slots each pixel's entries end in depends only
 // on how many fragments each pixel has (the order of one pixel's own entries is by depth),
-// never on the order they arrived. The probes are therefore deterministic (only a lossy table,
-// which drops entries at max_age, would not be).
+// never on the order they arrived. The probes are therefore deterministic; a model of the
+// insertions under random interleavings, tables that drop entries at max_age included, always
+// ends in one table (tests/work/hash_and_array_work_test.cpp).
 std::vector<WorkCounter> HaBuffer::query_work_counters() {
   return {
       {"", "hash_probes", WorkShape::Distribution, "slots",
