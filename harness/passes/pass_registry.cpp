@@ -23,7 +23,7 @@ std::vector<Entry>& registry() {
       {"hbao", Hbao::parameters, Hbao::columns, [](StructureParams& p) { return std::make_unique<Hbao>(p); }, Hbao::work_counters},
       {"gtao", Gtao::parameters, Gtao::columns, [](StructureParams& p) { return std::make_unique<Gtao>(p); }, Gtao::work_counters},
       {"rtao", Rtao::parameters, Rtao::columns, [](StructureParams& p) { return std::make_unique<Rtao>(p); }},
-      {"rtao_gpu", RtaoGpu::parameters, RtaoGpu::columns, [](StructureParams& p) { return std::make_unique<RtaoGpu>(p); }},
+      {"rtao_gpu", RtaoGpu::parameters, RtaoGpu::columns, [](StructureParams& p) { return std::make_unique<RtaoGpu>(p); }, RtaoGpu::work_counters},
       {"indirect", IndirectLighting::parameters, IndirectLighting::columns, [](StructureParams& p) { return std::make_unique<IndirectLighting>(p); }, IndirectLighting::work_counters, {"photon_tracing", "photon_census", "photon_rebuild"}},
   };
   return entries;
