@@ -172,6 +172,14 @@ PhotonLighting::PhotonLighting(const LdmStructure& structure, const BuildInputs&
   compile();
 }
 
+void PhotonLighting::continue_sizing_from(const PhotonLighting& measured) {
+  sizing_state_ = measured.sizing_state_;
+  if (measured.sized_ && !capacity_fixed_) {
+    allocate_photons(measured.capacity_);
+    sized_ = true;
+  }
+}
+
 void PhotonLighting::allocate_photons(uint64_t capacity) {
   const uint64_t bytes = checked_storage_block("indirect", "photons",
                                                std::max<uint64_t>(capacity, 1) * kPhotonBytes);
