@@ -30,6 +30,7 @@ Runner add_merge_command(CLI::App& app, const std::string& command_line);  // ld
 Runner add_reference_command(CLI::App& app);
 Runner add_report_command(CLI::App& app);  // ldmbench report RUN... (plots, pages)
 Runner add_advise_command(CLI::App& app);  // ldmbench advise (scripts/advise/)
+Runner add_model_command(CLI::App& app);   // ldmbench model RUN... (scripts/model/)
 Runner add_compare_command(CLI::App& app);
 Runner add_compare_runs_command(CLI::App& app);  // ldmbench compare BASE NEW
 Runner add_listing_commands(CLI::App& app);

@@ -5,6 +5,7 @@
 //   ldmbench reference       render a path-traced reference image
 //   ldmbench compare-images  error metrics between two images
 //   ldmbench report          tables, plots and pages from runs (scripts/report/)
+//   ldmbench model           a cost model fitted on work counters (scripts/model/)
 //   ldmbench compare         regressions between two runs (time, memory, accuracy, status)
 //   ldmbench interleave      two builds measured alternately on one sweep, then compared
 //   ldmbench view            interactive viewer of one configuration (GLFW, Dear ImGui)
@@ -64,6 +65,7 @@ int main(int argc, char** argv) {
       {"compare-images", ldm::cli::add_compare_command(app)},
       {"report", ldm::cli::add_report_command(app)},
       {"advise", ldm::cli::add_advise_command(app)},
+      {"model", ldm::cli::add_model_command(app)},
       {"compare", ldm::cli::add_compare_runs_command(app)},
       {"listing", ldm::cli::add_listing_commands(app)},
       {"view", ldm::cli::add_view_command(app, argv[0])},
