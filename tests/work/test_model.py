@@ -122,7 +122,8 @@ class FitMaths(unittest.TestCase):
         X = np.array([[1.0], [1.0], [2.0], [2.0], [3.0], [3.0]])
         y_ms = np.array([1.0, 1.2, 2.0, 2.4, 3.0, 3.6])
         r = fit.fit(X, y_ms, ["a"], ["x", "x", "y", "y", "z", "z"], folds=3)
-        self.assertAlmostEqual(r["repeat_spread"], 0.1 / 1.1, places=6)
+        # each record against the other of its pair: |1 - 1.2| / 1, |1.2 - 1| / 1.2, ...
+        self.assertAlmostEqual(r["repeat_spread"], float(np.median([0.2, 0.2 / 1.2] * 3)), places=6)
 
 
 class Columns(unittest.TestCase):

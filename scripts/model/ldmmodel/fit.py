@@ -125,12 +125,14 @@ def fit(X, y_ms, names, groups, folds=5, intercept=True, relative=True):
     held, k = cross_validate(Xk, y, groups, folds, intercept, relative)
     ok = ~np.isnan(held)
     rel = np.abs(held[ok] - y[ok]) / y[ok]
-    # Records of one configuration (several runs): how far each lies from its configuration's
-    # median time. No model of the counters, which are equal, can be closer: the noise floor.
+    # Records of one configuration (several runs): each against the median of the others.
+    # Their counters are equal, so no model of the counters can predict a held-out record
+    # better than its configuration's other records do: the noise floor of the held-out error.
     by_group = {}
     for g, t in zip(groups, y):
         by_group.setdefault(g, []).append(t)
-    spread = [abs(t - np.median(ts)) / np.median(ts) for ts in by_group.values() if len(ts) > 1 for t in ts]
+    spread = [abs(t - np.median(ts[:i] + ts[i + 1:])) / t
+              for ts in by_group.values() if len(ts) > 1 for i, t in enumerate(ts)]
     return {
         "intercept_ns": c0,
         "coefficients_ns": {names[j]: float(c[i]) for i, j in enumerate(kept)},

@@ -135,7 +135,7 @@ def fit_runs(runs, schema, folds=5, by=(), intercept=True, relative=True, driver
     for key in keys:
         mine = [(run, r) for run, r in rows if group_key(r, by) == key]
         for subpass, names in plan:
-            X, y, ids, notes = [], [], [], 0
+            X, y, ids, kinds, notes = [], [], [], [], 0
             for run, r in mine:
                 t = time_of(r, subpass)
                 values, present = counters(r, names)
@@ -147,6 +147,7 @@ def fit_runs(runs, schema, folds=5, by=(), intercept=True, relative=True, driver
                 X.append(values)
                 y.append(t)
                 ids.append(text(r, "config_id"))
+                kinds.append(text(r, "structure"))
             label = describe_group(key, by) + " · " + subpass
             if len(y) < 2:
                 if y or notes:
@@ -163,6 +164,7 @@ def fit_runs(runs, schema, folds=5, by=(), intercept=True, relative=True, driver
                 "configurations": len(set(ids)),
                 "left_out_zero_time": notes,
                 "config_ids": ids,
+                "structures": kinds,
                 "measured_ms": y,
                 "intercept": intercept,
                 "mean_counts": {n: float(v) for n, v in zip(names, np.mean(np.array(X), axis=0))},

@@ -37,8 +37,8 @@ def fit_table(f, by=()):
             f"(p90 {pct(f['heldout_p90_error'])}, {f['folds']}-fold by configuration)")
     measured = np.array(f["measured_ms"]) * 1e6
     if f.get("repeat_spread") is not None:
-        head += (f"\n  noise floor: a record lies {pct(f['repeat_spread'])} (median) from its configuration's "
-                 "median time over the runs given (equal counters: no model of them does better)")
+        head += (f"\n  noise floor: a record lies {pct(f['repeat_spread'])} (median) from the median of its "
+                 "configuration's other records (equal counters: no model of them predicts it better)")
     rows = [["counter", "coefficient", "unit", "share of time"]]
     mean_t = float(np.mean(measured))
     if f.get("intercept", True):
@@ -49,6 +49,15 @@ def fit_table(f, by=()):
         rows.append([short_name(name, f["subpass"]), f"{c:.4g}", f"ns per {f['units'][name]}",
                      "—" if share is None else f"{100 * share:.1f} %"])
     text = [head, render(rows, "lrlr")]
+    kinds = f.get("structures", [])
+    if len(set(kinds)) > 1 and all(v is not None for v in f["heldout_ms"]):
+        parts = []
+        for k in sorted(set(kinds)):
+            pairs = [(h, m) for h, m, s in zip(f["heldout_ms"], f["measured_ms"], kinds) if s == k]
+            err = np.median([abs(h - m) / m for h, m in pairs])
+            bias = np.median([(h - m) / m for h, m in pairs])
+            parts.append(f"{k} {100 * err:.0f} % ({100 * bias:+.0f} %)")
+        text.append("  held-out median error (and median signed error) by structure: " + ", ".join(parts))
     if f["dropped"]:
         text.append("  dropped: " + "; ".join(f"{short_name(d['column'], f['subpass'])} ({d['reason']})"
                                               for d in f["dropped"]))
