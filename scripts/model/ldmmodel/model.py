@@ -7,6 +7,7 @@ enters a fit when its status is ok or lossy, its time is a positive number and i
 least one of the fit's counters; a counter it lacks (the column does not apply to its
 structure or pass) counts 0.
 """
+import json
 import os
 import sys
 
@@ -212,7 +213,6 @@ def describe_group(key_or_group, by=()):
 def load_fit(path):
     try:
         with open(path) as f:
-            import json
             document = json.load(f)
     except (OSError, ValueError) as e:
         raise InputError(f"{path}: cannot read the fit: {e}")
