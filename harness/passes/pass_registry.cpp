@@ -24,7 +24,7 @@ std::vector<Entry>& registry() {
       {"gtao", Gtao::parameters, Gtao::columns, [](StructureParams& p) { return std::make_unique<Gtao>(p); }},
       {"rtao", Rtao::parameters, Rtao::columns, [](StructureParams& p) { return std::make_unique<Rtao>(p); }},
       {"rtao_gpu", RtaoGpu::parameters, RtaoGpu::columns, [](StructureParams& p) { return std::make_unique<RtaoGpu>(p); }},
-      {"indirect", IndirectLighting::parameters, IndirectLighting::columns, [](StructureParams& p) { return std::make_unique<IndirectLighting>(p); }, IndirectLighting::work_counters, {"photon_tracing"}},
+      {"indirect", IndirectLighting::parameters, IndirectLighting::columns, [](StructureParams& p) { return std::make_unique<IndirectLighting>(p); }, IndirectLighting::work_counters, {"photon_tracing", "photon_census"}},
   };
   return entries;
 }
