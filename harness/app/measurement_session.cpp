@@ -252,6 +252,7 @@ void MeasurementSession::count_work() {
       sizer = std::make_unique<SizingDriver>(*structure, *s.setup->inputs);
       pass->prepare({s.setup->scene, *s.setup->gpu_scene, s.setup->inputs.get(), structure.get(),
                      s.request.width, s.request.height});
+      pass->continue_sizing_from(*s.pass);
     } else {
       pass->prepare({*s.peer_scene, *s.peer_gpu_scene, nullptr, nullptr, s.request.width,
                      s.request.height});
@@ -262,11 +263,17 @@ void MeasurementSession::count_work() {
       pass->render(&timer);
       timer.end_frame();
     };
-    // A frame to settle what the measured frames' warm-up settled (a sizing policy's first
-    // guess, previous_frame's growth), uncounted; then the counted one.
-    if (sizer) frame();
+    // One counted frame, its structure sized as the measured frames' next would be. Where
+    // a sizing policy still grew inside it (the indirect pass's photon buffer under
+    // previous_frame, which the pass sizes itself), its rebuild counted the work twice:
+    // that frame settled the sizes, and the next one is counted.
+    if (sizer) sizer->continue_from(*s.sizer);
     counts.clear();
     frame();
+    if (counts.began("rebuild") || counts.began("photon_rebuild")) {
+      counts.clear();
+      frame();
+    }
   }
   s.m.work = counts.read(&s.work_problems);
   s.m.work_counted = true;

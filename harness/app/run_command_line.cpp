@@ -143,7 +143,7 @@ std::string sweep_file_json(const RunSettings& s, const std::string& description
                        {"target", s.precision.target},
                        {"cap_s", s.precision.cap_seconds},
                        {"max_frames", s.precision.max_frames}};
-  file["settings"] = {{"reference", reference}, {"images", s.write_images}, {"timer", s.timer},
+  file["settings"] = {{"reference", reference}, {"images", s.write_images}, {"work", s.count_work}, {"timer", s.timer},
                       {"verify", s.verify}, {"timing", timing}};
   return file.dump(2) + "\n";
 }

@@ -67,6 +67,7 @@ std::string resolve_scene(const std::string& spec, const fs::path& sweep_dir) {
 
 void apply_settings(const json& settings, RunSettings& s) {
   if (settings.contains("images")) s.write_images = settings["images"].get<bool>();
+  if (settings.contains("work")) s.count_work = settings["work"].get<bool>();
   if (settings.contains("timer")) s.timer = settings["timer"].get<std::string>();
   if (settings.contains("verify")) s.verify = settings["verify"].get<std::string>();
   if (settings.contains("timing")) {

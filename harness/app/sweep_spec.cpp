@@ -194,7 +194,7 @@ void check_settings(const json& settings, const std::string& name) {
   for (const auto& [key, value] : settings.items()) {
     const std::string path = "settings." + key;
     if (key == "comment") continue;
-    if (key == "images") {
+    if (key == "images" || key == "work") {
       if (!value.is_boolean()) fail(name, path, "expected true or false, got " + type_name(value));
     } else if (key == "timer") {
       static const std::vector<std::string> timers = {"auto", "gl_timestamp", "fenced_wall_clock"};

@@ -11,8 +11,11 @@
 namespace ldm {
 namespace {
 
-// A distribution's words before its bins: count (lo, hi), sum (lo, hi), max.
-constexpr uint32_t kDistributionHeader = 5;
+// A distribution's words before its bins: the sum (lo, hi) and the max of the values at or
+// above kWorkExactBins only. A value below it (nearly every one) costs the replay a single
+// atomic, its bin's: the count, the sum and the max of the small values follow exactly from
+// the exact bins (work_distribution_stats).
+constexpr uint32_t kDistributionHeader = 3;
 
 uint32_t counter_words(WorkShape shape) {
   return shape == WorkShape::Total ? 2 : kDistributionHeader + kWorkBins;
@@ -96,10 +99,16 @@ uint32_t work_histogram_quantile(const uint32_t* bins, uint64_t count, double q)
 
 WorkDistributionStats work_distribution_stats(const uint32_t* words) {
   WorkDistributionStats s;
-  s.count = word_pair(words);
-  s.sum = word_pair(words + 2);
-  s.max = words[4];
   const uint32_t* bins = words + kDistributionHeader;
+  s.sum = word_pair(words);  // of the large values
+  s.max = words[2];          // of the large values (0: none)
+  for (uint32_t bin = 0; bin < kWorkBins; ++bin) {
+    s.count += bins[bin];
+    if (bin < kWorkExactBins && bins[bin] != 0) {
+      s.sum += uint64_t(bin) * bins[bin];
+      s.max = std::max(s.max, bin);
+    }
+  }
   s.p50 = work_histogram_quantile(bins, s.count, 0.50);
   s.p99 = work_histogram_quantile(bins, s.count, 0.99);
   return s;
@@ -156,6 +165,7 @@ void WorkCounterBuffer::clear() {
   std::fill(ran_.begin(), ran_.end(), false);
   statistic_sums_.assign(scratch_ + 1, std::vector<uint64_t>(statistic_queries_.size(), 0));
   undeclared_seen_.clear();
+  began_.clear();
   bind_block(scratch_);
 }
 
@@ -168,6 +178,7 @@ void WorkCounterBuffer::subpass_begun(const std::string& subpass) {
   const auto found = block_of_.find(subpass);
   const size_t block = found == block_of_.end() ? scratch_ : found->second;
   if (found == block_of_.end()) undeclared_seen_.push_back(subpass);
+  began_.insert(subpass);
   ran_[block] = true;
   bind_block(block);
   for (size_t i = 0; i < statistic_queries_.size(); ++i)

@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
@@ -103,6 +104,8 @@ class WorkCounterBuffer : public SubpassObserver {
   // SubpassObserver: bind the sub-pass's block (or the scratch block) for what follows.
   void subpass_begun(const std::string& subpass) override;
   void subpass_ended(const std::string& subpass) override;
+  // Whether a sub-pass of this name (declared or not) began since clear().
+  bool began(const std::string& subpass) const { return began_.count(subpass) != 0; }
 
   // The record fields of every declared counter whose sub-pass ran since clear()
   // (distributions of no samples are left out), and, in `problems`, sub-passes that counted
@@ -120,7 +123,8 @@ class WorkCounterBuffer : public SubpassObserver {
   std::vector<std::vector<uint64_t>> statistic_sums_;  // [block][statistic]
   std::map<std::string, uint32_t> slot_;        // counter name -> word offset in a block
   std::map<std::string, size_t> block_of_;      // sub-pass -> block index
-  std::vector<std::string> undeclared_seen_;    // sub-passes begun that declare no counters
+  std::vector<std::string> undeclared_seen_;
+  std::set<std::string> began_;                 // every sub-pass begun since clear()    // sub-passes begun that declare no counters
   std::vector<bool> ran_;                       // per block: begun since clear()
   uint32_t block_words_ = 0;                    // padded to the buffer offset alignment
   size_t scratch_ = 0;                          // the last block

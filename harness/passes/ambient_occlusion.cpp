@@ -28,13 +28,16 @@ std::vector<AxisSpec> AmbientOcclusion::parameters() {
 }
 
 std::vector<WorkCounter> AmbientOcclusion::work_counters() {
-  return {
+  std::vector<WorkCounter> counters = gbuffer_work_counters("gbuffer");
+  const std::vector<WorkCounter> own = {
       {"ao", "covered_pixels", WorkShape::Total, "pixels", "ao: image pixels that see a surface and trace every view"},
       {"ao", "entries_read", WorkShape::Distribution, "fragments",
        "ao: fragments the LDM trace read per view traced (one per covered pixel and view; 0 outside the view)"},
       {"ao", "trace_steps", WorkShape::Distribution, "iterations",
        "ao: loop iterations per view traced: the walk's and the structure's own query loops' (trace_steps_max's count)"},
   };
+  counters.insert(counters.end(), own.begin(), own.end());
+  return counters;
 }
 
 std::vector<ColumnSpec> AmbientOcclusion::columns() {

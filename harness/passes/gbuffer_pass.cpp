@@ -10,6 +10,18 @@ namespace ldm {
 // output locations).
 constexpr int kTriangleIdAttachment = 3;
 
+std::vector<WorkCounter> gbuffer_work_counters(const std::string& subpass) {
+  return {
+      {subpass, "vertices", WorkShape::Total, "invocations",
+       subpass + ": vertex shader invocations of the G-buffer draw (one indexed draw of the scene; "
+                 "the post-transform cache may shade a shared vertex once)"},
+      {subpass, "fragments", WorkShape::Total, "fragments",
+       subpass + ": fragments the G-buffer draw shaded (every rasterised fragment in the image: with "
+                 "the counting variant's side effects no early depth test culls any; helpers left "
+                 "out): the camera's depth complexity summed over its pixels"},
+  };
+}
+
 GBufferPass::GBufferPass(int width, int height, bool albedo, bool triangle_ids)
     : width_(width),
       height_(height),

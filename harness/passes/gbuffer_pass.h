@@ -10,10 +10,17 @@
 #include "harness/gl/gl_objects.h"
 #include "harness/image/image.h"
 #include "harness/measure/gpu_timer.h"
+#include "harness/measure/work_counters.h"
 #include "harness/scene/gpu_scene.h"
 #include "ldm_impls/ldm_structure.h"
 
 namespace ldm {
+
+// The work gbuffer.vert and gbuffer.frag count in the counting replay (harness/measure/
+// work_counters.h) under `subpass` (the name render_view() is timed under: "gbuffer", the
+// indirect pass's "light_gbuffer"): vertex shader invocations and fragments shaded. Every
+// pass that draws a G-buffer declares them for each sub-pass it draws one in.
+std::vector<WorkCounter> gbuffer_work_counters(const std::string& subpass);
 
 class GBufferPass {
  public:

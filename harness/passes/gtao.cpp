@@ -88,6 +88,26 @@ std::vector<ColumnSpec> Gtao::columns() {
   return columns;
 }
 
+std::vector<WorkCounter> Gtao::work_counters() {
+  std::vector<WorkCounter> counters = gbuffer_work_counters("gbuffer");
+  const std::vector<WorkCounter> own = {
+      {"gtao", "fragments", WorkShape::Total, "fragments",
+       "gtao: fragments the full-screen horizon search shaded (every image pixel)"},
+      {"gtao", "covered_pixels", WorkShape::Total, "pixels", "gtao: image pixels that see a surface (searched)"},
+      {"gtao", "slices", WorkShape::Total, "slices",
+       "gtao: slices searched on both sides (of the slices per covered pixel, those on screen, with a "
+       "normal not normal to the slice and a radius of at least a pixel)"},
+      {"gtao", "samples", WorkShape::Total, "samples",
+       "gtao: G-buffer samples the horizon search read (slices x 2 sides x steps where no search leaves the image)"},
+      {"gtao", "horizon_rises", WorkShape::Total, "samples", "gtao: samples that raised a horizon (the ones that add occlusion)"},
+      {"gtao", "steps", WorkShape::Distribution, "samples",
+       "gtao: search steps (samples read) per covered pixel, over its slices' both sides"},
+  };
+  counters.insert(counters.end(), own.begin(), own.end());
+  for (WorkCounter c : hbao_blur_work_counters("denoise")) counters.push_back(std::move(c));
+  return counters;
+}
+
 Gtao::~Gtao() = default;
 
 AoSettings Gtao::settings_for(const Scene& scene) const {

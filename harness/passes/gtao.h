@@ -42,6 +42,8 @@ class Gtao : public Pass {
   explicit Gtao(StructureParams& params);
   static std::vector<AxisSpec> parameters();
   static std::vector<ColumnSpec> columns();
+  // What its shaders count in the counting replay (harness/measure/work_counters.h).
+  static std::vector<WorkCounter> work_counters();
   ~Gtao() override;
 
   std::string name() const override { return "gtao"; }

@@ -76,6 +76,27 @@ std::vector<ColumnSpec> Hbao::columns() {
   return columns;
 }
 
+std::vector<WorkCounter> Hbao::work_counters() {
+  std::vector<WorkCounter> counters = gbuffer_work_counters("gbuffer");
+  const std::vector<WorkCounter> own = {
+      {"hbao", "fragments", WorkShape::Total, "fragments",
+       "hbao: fragments the full-screen horizon search shaded (every image pixel)"},
+      {"hbao", "covered_pixels", WorkShape::Total, "pixels", "hbao: image pixels that see a surface (searched)"},
+      {"hbao", "directions", WorkShape::Total, "directions",
+       "hbao: directions marched (of N_HBAO per covered pixel, those whose tangent plus the angle bias "
+       "stays below the zenith)"},
+      {"hbao", "samples", WorkShape::Total, "samples",
+       "hbao: G-buffer samples the march read (directions x S_HBAO where no march leaves the image)"},
+      {"hbao", "horizon_rises", WorkShape::Total, "samples",
+       "hbao: samples that raised a horizon (the ones that add occlusion)"},
+      {"hbao", "steps", WorkShape::Distribution, "samples",
+       "hbao: march steps (samples read) per covered pixel, over its directions"},
+  };
+  counters.insert(counters.end(), own.begin(), own.end());
+  for (WorkCounter c : hbao_blur_work_counters("blur")) counters.push_back(std::move(c));
+  return counters;
+}
+
 Hbao::~Hbao() = default;
 
 AoSettings Hbao::settings_for(const Scene& scene) const {

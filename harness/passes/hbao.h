@@ -30,6 +30,8 @@ class Hbao : public Pass {
   static std::vector<AxisSpec> parameters();
   // The record columns it writes (describe(), results(), its counts), declared.
   static std::vector<ColumnSpec> columns();
+  // What its shaders count in the counting replay (harness/measure/work_counters.h).
+  static std::vector<WorkCounter> work_counters();
   ~Hbao() override;
 
   std::string name() const override { return "hbao"; }

@@ -5,6 +5,17 @@
 #include "harness/reference/pcg32.h"
 
 namespace ldm {
+
+std::vector<WorkCounter> hbao_blur_work_counters(const std::string& subpass) {
+  return {
+      {subpass, "fragments", WorkShape::Total, "fragments",
+       subpass + ": fragments the separable cross-bilateral blur shaded (a horizontal and a vertical "
+                 "full-screen pass: twice the image's pixels)"},
+      {subpass, "taps", WorkShape::Total, "taps",
+       subpass + ": neighbour taps the blur weighed (inside the image and over a surface; the "
+                 "pixel's own is not counted)"},
+  };
+}
 namespace {
 
 // The tiled random table's stream: fixed, so a jittered image is reproducible.

@@ -13,6 +13,7 @@
 #include <glm/glm.hpp>
 
 #include "harness/gl/gl_objects.h"
+#include "harness/measure/work_counters.h"
 #include "harness/scene/scene.h"
 
 namespace ldm {
@@ -51,6 +52,10 @@ class HbaoKernel {
   GlVertexArray empty_vao_;
   GlProgram program_;
 };
+
+// What hbao_blur.frag counts in the counting replay under `subpass` (HBAO's "blur", GTAO's
+// "denoise"): fragments shaded (two directions: twice the image's pixels) and taps weighed.
+std::vector<WorkCounter> hbao_blur_work_counters(const std::string& subpass);
 
 class HbaoBlur {
  public:

@@ -89,7 +89,54 @@ std::vector<AxisSpec> IndirectLighting::parameters() {
           ao_pass_parameter(AoAxis::Visibility)};
 }
 
-std::vector<WorkCounter> IndirectLighting::work_counters() { return {}; }
+std::vector<WorkCounter> IndirectLighting::work_counters() {
+  std::vector<WorkCounter> counters = gbuffer_work_counters("gbuffer");
+  for (WorkCounter c : gbuffer_work_counters("light_gbuffer")) counters.push_back(std::move(c));
+  // The trace (photon_trace.comp) runs as photon_tracing every frame, and under the sizing
+  // policies also as photon_census (census: counting only, capacity 0, nothing stored) and
+  // photon_rebuild (previous_frame, after an overflow).
+  for (const std::string subpass : {"photon_tracing", "photon_census", "photon_rebuild"}) {
+    const std::string what = subpass + ": ";
+    const std::vector<WorkCounter> trace = {
+        {subpass, "invocations", WorkShape::Total, "invocations",
+         what + "compute invocations over the light's texels (R_light^2)"},
+        {subpass, "photons_primary", WorkShape::Total, "photons",
+         what + "primary photons (light texels inside the cone that hit a surface; photons_primary)"},
+        {subpass, "photons_traced", WorkShape::Total, "photons",
+         what + "secondary photons traced through the LDM (photons_emitted)"},
+        {subpass, "photons_appended", WorkShape::Total, "photons",
+         what + "photons appended to the photon buffer, stored or not (photons_stored + photons_overflow)"},
+        {subpass, "photons_stored", WorkShape::Total, "photons",
+         what + "photons written into the photon buffer (how many is deterministic; which, under overflow, is not; "
+                "0 in the census)"},
+        {subpass, "trace_steps", WorkShape::Distribution, "iterations",
+         what + "loop iterations per secondary photon traced: the walk's and the structure's own query loops'"},
+        {subpass, "entries_read", WorkShape::Distribution, "fragments",
+         what + "fragments the LDM trace read per secondary photon traced"},
+    };
+    counters.insert(counters.end(), trace.begin(), trace.end());
+  }
+  const std::vector<WorkCounter> own = {
+      {"splatting", "vertices", WorkShape::Total, "invocations",
+       "splatting: vertex shader invocations of the splat draw (one point per stored photon)"},
+      {"splatting", "quads", WorkShape::Total, "quads",
+       "splatting: footprint quads the geometry shader emitted (one per stored photon)"},
+      {"splatting", "fragments", WorkShape::Total, "fragments",
+       "splatting: fragments the splat quads shaded (helpers left out); grows with s^2 (thesis §6.2.2). "
+       "Which photons are stored decides it, which arrival order decides only where the photon buffer "
+       "overflowed: equal between runs otherwise",
+       WorkOrder::ArrivalDependent},
+      {"splatting", "fragments_in_kernel", WorkShape::Total, "fragments",
+       "splatting: of those, fragments over a surface inside the kernel's support (blended into the image); "
+       "equal between runs unless the photon buffer overflowed",
+       WorkOrder::ArrivalDependent},
+      {"direct", "fragments", WorkShape::Total, "fragments", "direct: fragments of the full-screen direct light (every image pixel)"},
+      {"direct", "covered_pixels", WorkShape::Total, "pixels", "direct: image pixels that see a surface (lit or shadowed)"},
+      {"composite", "fragments", WorkShape::Total, "fragments", "composite: fragments of the full-screen sum (every image pixel)"},
+  };
+  counters.insert(counters.end(), own.begin(), own.end());
+  return counters;
+}
 
 std::vector<ColumnSpec> IndirectLighting::columns() {
   std::vector<ColumnSpec> columns = {
@@ -284,6 +331,11 @@ std::vector<std::string> IndirectLighting::warnings() const {
   const std::string detail =
       photon_resolution_detail(photon_resolution(lighting_->read_photons(), settings_.splat_scale));
   return detail.empty() ? std::vector<std::string>{} : std::vector<std::string>{detail};
+}
+
+void IndirectLighting::continue_sizing_from(const Pass& measured) {
+  const auto* other = dynamic_cast<const IndirectLighting*>(&measured);
+  if (other && other->lighting_ && lighting_) lighting_->continue_sizing_from(*other->lighting_);
 }
 
 double IndirectLighting::image_order_tolerance() const {

@@ -46,6 +46,7 @@ class IndirectLighting : public Pass {
   std::vector<std::pair<std::string, RecordValue>> results() const override;
   Image coverage() const override;
   std::string loss() const override;
+  void continue_sizing_from(const Pass& measured) override;
   // The splats are blended additively in the order photon_tracing appended the photons,
   // which its atomics decide: float sums of up to thousands of splats per pixel in another
   // order differ by up to n * 2^-24 relative (1e-4 holds n <= ~1,600). Where the photon

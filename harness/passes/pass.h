@@ -111,6 +111,10 @@ class Pass {
   // checked against the measured frames' with. Not 0 only where the image sums in an order
   // the device chooses (additive blending of primitives appended by atomics).
   virtual double image_order_tolerance() const { return 0.0; }
+  // The counting replay's pass, prepared, takes the sizing state of the measured one (same
+  // configuration) so that its first render needs no growth (the photon buffer); nothing
+  // by default.
+  virtual void continue_sizing_from(const Pass& /*measured*/) {}
   // Work the pass's own configured capacity dropped in the last render(), counted (e.g. the
   // indirect pass's photon-buffer overflow), one sentence; empty when nothing was dropped. A
   // non-empty answer makes the record lossy, as a structure's counted loss does.

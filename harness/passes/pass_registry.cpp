@@ -20,11 +20,11 @@ using Entry = PassRegistration;
 std::vector<Entry>& registry() {
   static std::vector<Entry> entries = {
       {"ao", AmbientOcclusion::parameters, AmbientOcclusion::columns, [](StructureParams& p) { return std::make_unique<AmbientOcclusion>(p); }, AmbientOcclusion::work_counters, {"ao"}},
-      {"hbao", Hbao::parameters, Hbao::columns, [](StructureParams& p) { return std::make_unique<Hbao>(p); }},
-      {"gtao", Gtao::parameters, Gtao::columns, [](StructureParams& p) { return std::make_unique<Gtao>(p); }},
+      {"hbao", Hbao::parameters, Hbao::columns, [](StructureParams& p) { return std::make_unique<Hbao>(p); }, Hbao::work_counters},
+      {"gtao", Gtao::parameters, Gtao::columns, [](StructureParams& p) { return std::make_unique<Gtao>(p); }, Gtao::work_counters},
       {"rtao", Rtao::parameters, Rtao::columns, [](StructureParams& p) { return std::make_unique<Rtao>(p); }},
-      {"rtao_gpu", RtaoGpu::parameters, RtaoGpu::columns, [](StructureParams& p) { return std::make_unique<RtaoGpu>(p); }},
-      {"indirect", IndirectLighting::parameters, IndirectLighting::columns, [](StructureParams& p) { return std::make_unique<IndirectLighting>(p); }, IndirectLighting::work_counters, {"photon_tracing", "photon_census"}},
+      {"rtao_gpu", RtaoGpu::parameters, RtaoGpu::columns, [](StructureParams& p) { return std::make_unique<RtaoGpu>(p); }, RtaoGpu::work_counters},
+      {"indirect", IndirectLighting::parameters, IndirectLighting::columns, [](StructureParams& p) { return std::make_unique<IndirectLighting>(p); }, IndirectLighting::work_counters, {"photon_tracing", "photon_census", "photon_rebuild"}},
   };
   return entries;
 }

@@ -200,6 +200,9 @@ class PhotonLighting {
   std::vector<std::pair<std::string, std::string>> sizing() const;
   uint64_t rebuilds() const { return sizing_counts_.rebuilds; }
   uint64_t reallocations() const { return sizing_counts_.reallocations; }
+  // Takes the photon buffer's sizing state of `measured` (the same configuration's), so that
+  // this one's first render is sized as `measured`'s next would be: the counting replay's.
+  void continue_sizing_from(const PhotonLighting& measured) { sizing_state_ = measured.sizing_state_; }
   float depth_threshold() const { return depth_threshold_; }  // the effective one
   // The photon trace's loop iterations over every trace so far (harness/passes/trace_steps.h).
   TraceStepCounts trace_steps() const { return steps_.read(); }

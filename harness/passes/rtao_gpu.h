@@ -22,10 +22,13 @@
 //                silhouettes, where the rasteriser snaps vertices to its sub-pixel grid)
 //   d_max, visibility   as the LDM AO (also from --d-max / --visibility)
 //
-// Work: an untimed counting replay after the measured frames (the shaders compiled with
-// RTAO_GPU_COUNT) counts the BVH nodes each ray visits and the triangles it tests, and the
-// loop iterations of each invocation, which llvmpipe's loop limiter judges (trace_steps.h);
-// its image must equal the measured frames' bit for bit. Records: rtao_gpu.cpp's columns().
+// Work: the shared counting replay (harness/measure/work_counters.h; work_counters()) counts
+// the rays, the BVH nodes each ray visits and the triangles it tests: the record's
+// work_rtao_gpu_* columns. Its own untimed replay on the measured instance (work(), the
+// shaders compiled with RTAO_GPU_COUNT) stays for what must be judged there, also under
+// --no-work: the loop iterations of each invocation, which llvmpipe's loop limiter judges
+// (trace_steps.h; problems()), and that its image equals the measured frames' bit for bit.
+// Records: rtao_gpu.cpp's columns() and work_counters().
 #include <memory>
 #include <optional>
 
@@ -56,6 +59,8 @@ class RtaoGpu : public Pass {
   explicit RtaoGpu(StructureParams& params);
   static std::vector<AxisSpec> parameters();
   static std::vector<ColumnSpec> columns();
+  // What its shaders count in the shared counting replay (harness/measure/work_counters.h).
+  static std::vector<WorkCounter> work_counters();
   ~RtaoGpu() override;
 
   std::string name() const override { return "rtao_gpu"; }

@@ -31,6 +31,10 @@ class SizingDriver {
   ~SizingDriver();
 
   void build(GpuTimer* timer);
+  // Takes the sizing state of `measured`, a driver of the same configuration, so that this
+  // one's first frame is sized as `measured`'s next would be (previous_frame: grown to what
+  // its last frame needed, no overflow to rebuild): the counting replay's single frame.
+  void continue_from(const SizingDriver& measured) { state_ = measured.state_; }
 
   // Rebuilds after an overflow and reallocations, over every build so far.
   uint64_t rebuilds() const { return counts_.rebuilds; }

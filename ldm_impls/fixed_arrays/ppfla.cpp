@@ -12,10 +12,56 @@ Ppfla::Ppfla(StructureParams& params) : requested_k_(read_fixed_array_k(params))
 std::vector<WorkCounter> Ppfla::work_counters() {
   std::vector<WorkCounter> counters;
   for (WorkCounter c : geometry_work_counters("construct")) counters.push_back(std::move(c));
+  constexpr WorkOrder kArrival = WorkOrder::ArrivalDependent;
+  const std::vector<WorkCounter> own = {
+      // shaders/ldm/fixed_arrays/ppfla_build.frag: which entry a fragment takes depends on
+      // the order they arrive, how many each pixel fills does not.
+      {"construct", "atomic_add", WorkShape::Total, "atomics",
+       "construct: atomicAdd on a pixel's count (one per fragment) and atomic counter increments "
+       "of the fragments dropped beyond k"},
+      {"construct", "bytes_loaded_counts", WorkShape::Total, "bytes",
+       "construct: counts read (the atomicAdd's read, 4 bytes per fragment)"},
+      {"construct", "bytes_stored_counts", WorkShape::Total, "bytes",
+       "construct: counts written (the atomicAdd's write, 4 bytes per fragment)"},
+      {"construct", "bytes_stored_entries", WorkShape::Total, "bytes",
+       "construct: array entries written (4 bytes per fragment stored)"},
+      {"construct", "fragments_dropped", WorkShape::Total, "fragments",
+       "construct: fragments beyond their pixel's k entries, dropped (a lossy build)"},
+      // shaders/ldm/fixed_arrays/ppfla_sort.comp with ldm/common/heap_sort.glsl: the heap
+      // sort's steps depend on the order the construct left the entries in.
+      {"sort", "invocations", WorkShape::Total, "invocations",
+       "sort: compute invocations of the sort dispatch (one per pixel, the last group's padding "
+       "included)"},
+      {"sort", "list_length", WorkShape::Distribution, "entries",
+       "sort: entries a pixel's sort ordered (min(count, k); one value per pixel, empty ones "
+       "included)"},
+      {"sort", "bytes_loaded_counts", WorkShape::Total, "bytes", "sort: counts read (4 bytes per pixel)"},
+      {"sort", "bytes_loaded_entries", WorkShape::Total, "bytes",
+       "sort: array entries the heap sort read (4 bytes each)", kArrival},
+      {"sort", "bytes_stored_entries", WorkShape::Total, "bytes",
+       "sort: array entries the heap sort wrote (4 bytes each)", kArrival},
+      {"sort", "comparisons", WorkShape::Total, "comparisons",
+       "sort: depth comparisons of the heap sort (ldm/common/heap_sort.glsl)", kArrival},
+      {"sort", "moves", WorkShape::Total, "moves",
+       "sort: entries the heap sort moved (ldm/common/heap_sort.glsl)", kArrival},
+  };
+  counters.insert(counters.end(), own.begin(), own.end());
   return counters;
 }
 
-std::vector<WorkCounter> Ppfla::query_work_counters() { return {}; }
+// shaders/ldm/fixed_arrays/ppfla_query.glsl; a query is one ldm_begin or ldm_next. The sorted
+// arrays are the same whatever the order of arrival, so their reads are deterministic.
+std::vector<WorkCounter> Ppfla::query_work_counters() {
+  return {
+      {"", "slots_scanned", WorkShape::Distribution, "slots",
+       "array slots one query of PPFLA or PSPPFLA (an ldm_begin or ldm_next) moved to or read to "
+       "find the pixel's next entry: 1, or 0 past the last (PPFLA, whose count tells where its "
+       "entries end; PSPPFLA reads the empty entry after its last and scans 0 only past k)"},
+      {"", "bytes_loaded_counts", WorkShape::Total, "bytes", "PPFLA counts its queries read (one per ldm_begin)"},
+      {"", "bytes_loaded_entries", WorkShape::Total, "bytes",
+       "PPFLA or PSPPFLA array entries its queries read (4 bytes each)"},
+  };
+}
 
 std::vector<AxisSpec> Ppfla::parameters() { return {fixed_array_k_parameter()}; }
 

@@ -2,6 +2,7 @@
 #include "ldm_impls/common/sizing_strategy.h"
 
 #include "harness/gl/bindings.h"
+#include "ldm_impls/fixed_arrays/ppfla.h"
 
 namespace ldm {
 
@@ -16,10 +17,43 @@ Psppfla::Psppfla(StructureParams& params) : requested_k_(read_fixed_array_k(para
 std::vector<WorkCounter> Psppfla::work_counters() {
   std::vector<WorkCounter> counters;
   for (WorkCounter c : geometry_work_counters("construct")) counters.push_back(std::move(c));
+  // shaders/ldm/fixed_arrays/psppfla_build.frag. Every walk ends at the first empty entry it
+  // meets and every entry ends exactly one walk, so a pixel of c fragments takes
+  // 1 + 2 + ... + min(c, k) atomicMin (plus k per fragment dropped) whatever the order; the
+  // entries each fragment shifted depend on the order.
+  const std::vector<WorkCounter> own = {
+      {"construct", "atomic_min", WorkShape::Total, "atomics",
+       "construct: atomicMin of the insertion walks (one per entry walked)"},
+      {"construct", "bytes_loaded_entries", WorkShape::Total, "bytes",
+       "construct: array entries read by the atomicMin (4 bytes each)"},
+      {"construct", "bytes_stored_entries", WorkShape::Total, "bytes",
+       "construct: array entries written by the atomicMin (4 bytes each, counted whether or not it "
+       "changed the entry)"},
+      {"construct", "slots_shifted", WorkShape::Distribution, "entries",
+       "construct: entries one fragment's insertion replaced by a nearer depth, each carried on "
+       "one slot (one value per fragment)",
+       WorkOrder::ArrivalDependent},
+      {"construct", "atomic_add", WorkShape::Total, "atomics",
+       "construct: atomic counter increments of the fragments dropped beyond k, and (previous_frame "
+       "sizing) their atomicAdd on the pixel's overflow count"},
+      {"construct", "bytes_loaded_overflow_counts", WorkShape::Total, "bytes",
+       "construct: overflow counts read by their atomicAdd (previous_frame sizing, a lossy build)"},
+      {"construct", "bytes_stored_overflow_counts", WorkShape::Total, "bytes",
+       "construct: overflow counts written by their atomicAdd (previous_frame sizing, a lossy build)"},
+      {"construct", "fragments_dropped", WorkShape::Total, "fragments",
+       "construct: fragments beyond their pixel's k entries, dropped (a lossy build)"},
+  };
+  counters.insert(counters.end(), own.begin(), own.end());
   return counters;
 }
 
-std::vector<WorkCounter> Psppfla::query_work_counters() { return {}; }
+// shaders/ldm/fixed_arrays/psppfla_query.glsl; a query is one ldm_begin or ldm_next.
+std::vector<WorkCounter> Psppfla::query_work_counters() {
+  std::vector<WorkCounter> counters;
+  for (WorkCounter c : Ppfla::query_work_counters())
+    if (c.name != "bytes_loaded_counts") counters.push_back(std::move(c));  // PSPPFLA has none
+  return counters;
+}
 
 std::vector<AxisSpec> Psppfla::parameters() { return {fixed_array_k_parameter()}; }
 

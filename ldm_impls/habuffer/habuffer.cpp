@@ -91,10 +91,68 @@ HaBuffer::HaBuffer(StructureParams& params) {
 std::vector<WorkCounter> HaBuffer::work_counters() {
   std::vector<WorkCounter> counters;
   for (WorkCounter c : geometry_work_counters("construct")) counters.push_back(std::move(c));
+  // Counted by shaders/ldm/habuffer/ha_build.frag, once per fragment. Every insertion chain
+  // depends on what arrived before it (which entry an atomicMax finds), so all but the
+  // tickets are arrival-dependent; the table they end in is not (see query_work_counters()).
+  constexpr WorkOrder kArrival = WorkOrder::ArrivalDependent;
+  const std::vector<WorkCounter> construct = {
+      {"construct", "hash_probes", WorkShape::Distribution, "slots",
+       "construct: slots one fragment's insertion tried (an atomicMax on the table each), "
+       "evicted entries carried on included", kArrival},
+      {"construct", "atomic_max", WorkShape::Total, "atomics",
+       "construct: 32-bit atomicMax: on the table (32-bit keys) and on the age table (one per "
+       "placement)", kArrival},
+      {"construct", "atomic_max_64", WorkShape::Total, "atomics",
+       "construct: 64-bit atomicMax on the table (key_bits=64 only; 0 with 32-bit keys)", kArrival},
+      {"construct", "atomic_max_failed", WorkShape::Total, "atomics",
+       "construct: atomicMax on the table that left the slot's key (an older entry, the same "
+       "pixel's nearer fragment, or an equal key): the carried entry moves on unchanged", kArrival},
+      {"construct", "evictions", WorkShape::Total, "entries",
+       "construct: entries a carried entry took the slot of (Robin Hood), carried on in its place", kArrival},
+      {"construct", "age_bumps", WorkShape::Total, "steps",
+       "construct: times a carried entry aged by one to try its next slot", kArrival},
+      {"construct", "atomic_add", WorkShape::Total, "atomics",
+       "construct: atomic counter increments of the ticket each fragment takes while "
+       "previous_frame's first guess is built (else 0)"},
+      {"construct", "atomic_add_on_loss", WorkShape::Total, "atomics",
+       "construct: atomic counter increments of insertions dropped at max_age or aborted (a "
+       "lossy HA-buffer build only)", kArrival},
+      {"construct", "bytes_loaded_table", WorkShape::Total, "bytes",
+       "construct: table bytes read by the atomicMax (key_bits / 8 each)", kArrival},
+      {"construct", "bytes_stored_table", WorkShape::Total, "bytes",
+       "construct: table bytes written by the atomicMax (key_bits / 8 each, counted whether or "
+       "not it changed the key)", kArrival},
+      {"construct", "bytes_loaded_age_table", WorkShape::Total, "bytes",
+       "construct: age table bytes read by the atomicMax of each placement", kArrival},
+      {"construct", "bytes_stored_age_table", WorkShape::Total, "bytes",
+       "construct: age table bytes written by the atomicMax of each placement", kArrival},
+      {"construct", "bytes_loaded_ha_offsets", WorkShape::Total, "bytes",
+       "construct: offsets o_a read: one per slot tried, one per eviction (the evicted entry's pixel)",
+       kArrival},
+  };
+  counters.insert(counters.end(), construct.begin(), construct.end());
   return counters;
 }
 
-std::vector<WorkCounter> HaBuffer::query_work_counters() { return {}; }
+// Counted by shaders/ldm/habuffer/ha_query.glsl; a query is one ldm_begin or ldm_next. Robin
+// Hood by age is history independent: at a slot the older entry wins, and two entries of one
+// age at one slot belong to one pixel, so which slots each pixel's entries end in depends only
+// on how many fragments each pixel has (the order of one pixel's own entries is by depth),
+// never on the order they arrived. The probes are therefore deterministic; a model of the
+// insertions under random interleavings, tables that drop entries at max_age included, always
+// ends in one table (tests/work/hash_and_array_work_test.cpp).
+std::vector<WorkCounter> HaBuffer::query_work_counters() {
+  return {
+      {"", "hash_probes", WorkShape::Distribution, "slots",
+       "slots one query of the HA-buffer read (an ldm_begin or ldm_next seeking the pixel's next "
+       "entry; 0 past its last); slots of other pixels' entries are skipped"},
+      {"", "bytes_loaded_table", WorkShape::Total, "bytes", "HA-buffer table bytes its queries read"},
+      {"", "bytes_loaded_ha_offsets", WorkShape::Total, "bytes",
+       "HA-buffer offsets o_a its queries read (one per probe)"},
+      {"", "bytes_loaded_age_table", WorkShape::Total, "bytes",
+       "HA-buffer age table bytes its queries read (one word per ldm_begin)"},
+  };
+}
 
 std::vector<AxisSpec> HaBuffer::parameters() {
   AxisSpec load_factor;

@@ -33,12 +33,15 @@ uint work_bin(uint value) {
   return uint(WORK_EXACT_BINS) + uint(findMSB(value)) - uint(WORK_EXACT_BITS);
 }
 
-// Count (2 words), sum (2), max, then the histogram.
+// The sum (2 words) and max of the large values, then the histogram: a value below
+// WORK_EXACT_BINS is counted by its bin alone (one atomic), its share of the count, sum and
+// max read back from the exact bins (harness/measure/work_counters.cpp).
 void work_sample_at(uint slot, uint value) {
-  work_add_at(slot, 1u);
-  work_add_at(slot + 2u, value);
-  atomicMax(work_words[slot + 4u], value);
   atomicAdd(work_words[slot + uint(WORK_DISTRIBUTION_HEADER) + work_bin(value)], 1u);
+  if (value >= uint(WORK_EXACT_BINS)) {
+    work_add_at(slot, value);
+    atomicMax(work_words[slot + 2u], value);
+  }
 }
 
 #define work_add(name, n) work_add_at(uint(WORK_##name), uint(n))

@@ -8,7 +8,10 @@
 //
 // Needs RTAO_GPU_STACK (the tree's depth), the bindings RTAO_GPU_NODES_BINDING,
 // RTAO_GPU_TRIANGLES_BINDING, RTAO_GPU_SLOTS_BINDING, and RTAO_GPU_COUNT (1: count the nodes
-// and triangles of the current ray in trace_nodes and trace_triangles).
+// and triangles of the current ray in trace_nodes and trace_triangles; so does the shared
+// counting replay's variant, WORK_COUNTING, whose callers work_sample them per ray).
+#include "common/work_counters.glsl"
+#define RTAO_GPU_COUNT_RAY (RTAO_GPU_COUNT || WORK_COUNTING)
 
 layout(std430, binding = RTAO_GPU_NODES_BINDING) restrict readonly buffer BvhNodes {
   // 4 per node (gpu_bvh.h). Read as words: the child words are small integers, whose bits as
@@ -87,7 +90,7 @@ uint trace_node, trace_leaf_next, trace_leaf_left;
 uint trace_stack_word[RTAO_GPU_STACK], trace_stack_count[RTAO_GPU_STACK];
 float trace_stack_enter[RTAO_GPU_STACK];
 int trace_stack_size;
-#if RTAO_GPU_COUNT
+#if RTAO_GPU_COUNT_RAY
 uint trace_nodes, trace_triangles;  // of the current ray
 #endif
 
@@ -102,7 +105,7 @@ void trace_begin(vec3 origin, vec3 direction, float t_far) {
   trace_node = 0u;  // the root
   trace_leaf_left = 0u;
   trace_stack_size = 0;
-#if RTAO_GPU_COUNT
+#if RTAO_GPU_COUNT_RAY
   trace_nodes = 0u;
   trace_triangles = 0u;
 #endif
@@ -112,7 +115,7 @@ void trace_begin(vec3 origin, vec3 direction, float t_far) {
 // `any_hit` the first hit ends the ray.
 bool trace_step(bool any_hit) {
   if (trace_leaf_left > 0u) {  // one triangle of the current leaf
-#if RTAO_GPU_COUNT
+#if RTAO_GPU_COUNT_RAY
     ++trace_triangles;
 #endif
     vec2 uv;
@@ -133,7 +136,7 @@ bool trace_step(bool any_hit) {
     return true;
   }
   if (trace_node != kNone) {  // one inner node: both children's boxes
-#if RTAO_GPU_COUNT
+#if RTAO_GPU_COUNT_RAY
     ++trace_nodes;
 #endif
     const uvec4 a = bvh_nodes[4u * trace_node], b = bvh_nodes[4u * trace_node + 1u],

@@ -1,3 +1,4 @@
+#include "common/work_counters.glsl"
 in vec3 v_position;
 in vec3 v_normal;
 uniform vec3 camera_eye;
@@ -12,6 +13,9 @@ layout(location = 3) out uint out_triangle;  // the scene triangle's index + 1 (
 #endif
 
 void main() {
+#if WORK_COUNTING
+  if (!gl_HelperInvocation) work_add(fragments, 1);
+#endif
   vec3 n = normalize(v_normal);
   // Surfaces are two-sided: the normal faces the viewer (the reference renderer does the same).
   if (dot(n, camera_eye - v_position) < 0.0) n = -n;

@@ -39,6 +39,7 @@
 // (GTAO_NORMALIZED 0), or as that sum over the sum of the open hemispheres' |n_p| (cos gamma +
 // gamma sin gamma) (GTAO_NORMALIZED 1): then an unoccluded point is exactly 1 for any slice
 // count, where the mean has the quadrature error of GTAO_SLICES directions.
+#include "common/work_counters.glsl"
 layout(binding = 0) uniform sampler2D gbuffer_position;
 layout(binding = 1) uniform sampler2D gbuffer_normal;
 uniform vec3 camera_eye;
@@ -57,6 +58,10 @@ uniform int gtao_jitter;            // 1: per-pixel slice rotation and step offs
 layout(location = 0) out float out_ao;
 
 const float kPi = 3.14159265358979;
+
+#if WORK_COUNTING
+uint work_samples = 0u, work_rises = 0u;  // of the pixel: G-buffer samples read, horizon rises
+#endif
 
 // The 4x4 Bayer matrix: 16 stratified values in every 4x4 block of pixels, so that a denoise
 // over a few pixels averages evenly spread slice rotations and step offsets.
@@ -98,6 +103,9 @@ float side_visibility(vec2 pixel, vec2 direction, float side, float gamma, vec3 
     const vec2 sample_pixel = pixel + side * direction * (1.0 + u * (radius_pixels - 1.0));
     if (any(lessThan(sample_pixel, vec2(0.0))) || any(greaterThanEqual(sample_pixel, size)))
       break;  // off screen: the depth buffer knows nothing there
+#if WORK_COUNTING
+    ++work_samples;
+#endif
     const vec4 sample_position = texelFetch(gbuffer_position, ivec2(sample_pixel), 0);
     if (sample_position.w == 0.0) continue;  // background occludes nothing
     const vec3 delta = sample_position.xyz - x;
@@ -110,6 +118,9 @@ float side_visibility(vec2 pixel, vec2 direction, float side, float gamma, vec3 
     if (theta_s < theta_h) {
       occlusion += occluder_weight(r) * (arc_integral(theta_h, g) - arc_integral(theta_s, g));
       theta_h = theta_s;
+#if WORK_COUNTING
+      ++work_rises;
+#endif
     } else if (gtao_thickness > 0.0) {
       const float theta_new = min(theta_h + gtao_thickness * (theta_s - theta_h), theta_low);
       const float band = low_integral - arc_integral(theta_h, g);
@@ -126,10 +137,15 @@ float side_visibility(vec2 pixel, vec2 direction, float side, float gamma, vec3 
 void main() {
   const ivec2 pixel = ivec2(gl_FragCoord.xy);
   const vec4 position = texelFetch(gbuffer_position, pixel, 0);
+  work_add(fragments, 1);
   if (position.w == 0.0) {  // background
     out_ao = 0.0;
     return;
   }
+  work_add(covered_pixels, 1);
+#if WORK_COUNTING
+  uint work_slices = 0u;  // slices marched (both sides), of the pixel
+#endif
   const vec3 x = position.xyz;
   const vec3 n = texelFetch(gbuffer_normal, pixel, 0).xyz;
   const vec3 v = normalize(camera_eye - x);
@@ -162,6 +178,9 @@ void main() {
     if (n_p_length < 1e-6) continue;  // n normal to the slice: it weighs nothing
     const float gamma = sign(dot(n_p, d)) * acos(clamp(dot(n_p, v) / n_p_length, -1.0, 1.0));
     if (radius_pixels >= 1.0) {
+#if WORK_COUNTING
+      ++work_slices;
+#endif
       visible += n_p_length * (side_visibility(gl_FragCoord.xy, direction, 1.0, gamma, x, n, v,
                                                radius_pixels, step_noise, size) +
                                side_visibility(gl_FragCoord.xy, direction, -1.0, gamma, x, n, v,
@@ -171,6 +190,10 @@ void main() {
     }
     open += n_p_length * (cos(gamma) + gamma * sin(gamma));
   }
+  work_add(slices, work_slices);
+  work_add(samples, work_samples);
+  work_add(horizon_rises, work_rises);
+  work_sample(steps, work_samples);
 #if GTAO_NORMALIZED
   out_ao = open > 0.0 ? visible / open : 1.0;
 #else

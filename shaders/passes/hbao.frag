@@ -10,6 +10,7 @@
 // V = min(d/d_max, 1)^e as 1 - V, e = 2 the 1 - r^2/R^2 of Bavoil et al.) or 1
 // (HBAO_ATTENUATED 0). Elevations are measured from the view
 // plane, as in the thesis (eye-space z over the length of eye-space xy).
+#include "common/work_counters.glsl"
 layout(binding = 0) uniform sampler2D gbuffer_position;
 layout(binding = 1) uniform sampler2D gbuffer_normal;
 uniform vec3 camera_eye;
@@ -54,10 +55,17 @@ float tan_to_sin(float t) { return t * inversesqrt(t * t + 1.0); }
 void main() {
   const ivec2 pixel = ivec2(gl_FragCoord.xy);
   const vec4 position = texelFetch(gbuffer_position, pixel, 0);
+  work_add(fragments, 1);
   if (position.w == 0.0) {  // background
     out_ao = 0.0;
     return;
   }
+  work_add(covered_pixels, 1);
+#if WORK_COUNTING
+  // Directions marched (not skipped for a tangent above the horizon), samples read and
+  // horizon rises, summed over the pixel's directions.
+  uint work_directions = 0u, work_samples = 0u, work_rises = 0u;
+#endif
   const vec3 x = position.xyz;
   const float view_depth = dot(x - camera_eye, camera_forward);
   const float radius_pixels = hbao_radius * focal_pixels / view_depth;
@@ -84,10 +92,16 @@ void main() {
     if (horizon_angle >= 0.5 * kPi) continue;  // nothing in this slice rises above it
     float tan_horizon = tan(horizon_angle);
     float sin_horizon = sin(horizon_angle);
+#if WORK_COUNTING
+    ++work_directions;
+#endif
     for (int j = 0; j < HBAO_STEPS; ++j) {
       const vec2 sample_pixel = gl_FragCoord.xy + direction * (step_pixels * (float(j) + jitter.y));
       if (any(lessThan(sample_pixel, vec2(0.0))) || any(greaterThanEqual(sample_pixel, size)))
         break;  // off screen: the depth buffer knows nothing there
+#if WORK_COUNTING
+      ++work_samples;
+#endif
       const vec4 sample_position = texelFetch(gbuffer_position, ivec2(sample_pixel), 0);
       if (sample_position.w == 0.0) continue;  // background occludes nothing
       const vec3 ray = sample_position.xyz - x;
@@ -108,9 +122,16 @@ void main() {
       const float falloff = 1.0;
 #endif
       occlusion += (sin_sample - sin_horizon) * falloff;
+#if WORK_COUNTING
+      ++work_rises;
+#endif
       tan_horizon = tan_sample;
       sin_horizon = sin_sample;
     }
   }
+  work_add(directions, work_directions);
+  work_add(samples, work_samples);
+  work_add(horizon_rises, work_rises);
+  work_sample(steps, work_samples);
   out_ao = 1.0 - occlusion / float(HBAO_DIRECTIONS);
 }

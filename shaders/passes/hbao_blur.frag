@@ -6,6 +6,7 @@
 // weigh by distance alone; taps on another surface (a depth edge, the other wall of a corner)
 // weigh ~0, so occlusion does not bleed across them. Background taps are skipped, and a
 // background pixel stays 0.
+#include "common/work_counters.glsl"
 layout(binding = 0) uniform sampler2D gbuffer_position;
 layout(binding = 1) uniform sampler2D gbuffer_normal;
 layout(binding = 2) uniform sampler2D blur_source;
@@ -18,10 +19,14 @@ layout(location = 0) out float out_ao;
 void main() {
   const ivec2 pixel = ivec2(gl_FragCoord.xy);
   const vec4 position = texelFetch(gbuffer_position, pixel, 0);
+  work_add(fragments, 1);
   if (position.w == 0.0) {
     out_ao = 0.0;
     return;
   }
+#if WORK_COUNTING
+  uint work_taps = 0u;  // taps weighed (inside the image, over a surface)
+#endif
   const vec3 x = position.xyz;
   const vec3 n = texelFetch(gbuffer_normal, pixel, 0).xyz;
   const float footprint = dot(x - camera_eye, camera_forward) / focal_pixels;
@@ -38,6 +43,10 @@ void main() {
     const float w = exp(-float(k * k) / (2.0 * sigma * sigma) - plane_distance * plane_distance);
     sum += w * texelFetch(blur_source, tap, 0).r;
     weights += w;
+#if WORK_COUNTING
+    ++work_taps;
+#endif
   }
+  work_add(taps, work_taps);
   out_ao = sum / weights;
 }

@@ -73,6 +73,7 @@ void main() {
   const ivec2 size = imageSize(ao_image);
   const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(pixel, size))) return;
+  work_add(invocations, 1);
   const vec4 position = texelFetch(gbuffer_position, pixel, 0);
   const uint triangle_id = texelFetch(gbuffer_triangle, pixel, 0).r;
   if (position.w == 0.0 || triangle_id == 0u) {  // background
@@ -124,6 +125,8 @@ void main() {
           total += partial;
           partial = 0.0;
         }
+        work_sample(nodes, trace_nodes);
+        work_sample(triangles, trace_triangles);
 #if RTAO_GPU_COUNT
         pixel_nodes += trace_nodes;
         pixel_triangles += trace_triangles;
@@ -140,6 +143,7 @@ void main() {
     ray_live = trace_step(any_hit);
   }
   total += partial;
+  work_add(rays, RTAO_GPU_SPP);
   imageStore(ao_image, pixel, vec4(total / float(RTAO_GPU_SPP)));
 #if RTAO_GPU_COUNT
   count_pixel[pixel.y * size.x + pixel.x] = uvec2(pixel_nodes, pixel_triangles);

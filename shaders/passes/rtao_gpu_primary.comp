@@ -36,6 +36,7 @@ void main() {
   const ivec2 size = imageSize(out_position);
   const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(pixel, size))) return;
+  work_add(invocations, 1);
   // CameraFrame::ray_direction of image pixel (x, y), y = 0 the top row.
   const int y = size.y - 1 - pixel.y;
   const float nx = (float(pixel.x) + 0.5) / float(size.x) * 2.0 - 1.0;
@@ -52,6 +53,8 @@ void main() {
 #endif
     if (!trace_step(false)) break;
   }
+  work_sample(nodes, trace_nodes);
+  work_sample(triangles, trace_triangles);
 #if RTAO_GPU_COUNT
   count_pixel[pixel.y * size.x + pixel.x] = uvec2(trace_nodes, trace_triangles);
   atomicMax(count_max_nodes, trace_nodes);

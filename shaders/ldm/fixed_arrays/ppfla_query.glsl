@@ -1,6 +1,11 @@
 // PPFLA query API (see common/ldm_query_api.glsl): the pixel's first min(count, k) entries,
 // sorted by the sort pass.
+// Work counted (Ppfla::query_work_counters(), deterministic): one query is one ldm_begin or
+// ldm_next; its slots_scanned are the array slots it moves the cursor over to the pixel's
+// next entry (1; 0 past the last, which the count tells without reading the array). Bytes
+// are counted where they are read: the count in ldm_begin, an entry in ldm_depth.
 #include "common/ldm_query_api.glsl"
+#include "common/work_counters.glsl"
 #include "ldm/fixed_arrays/fixed_array.glsl"
 
 layout(std430, binding = LDM_STRUCTURE_BINDING0) readonly restrict buffer PpflaEntries {
@@ -17,8 +22,18 @@ struct LdmCursor {
 
 LdmCursor ldm_begin(uint pixel) {
   const uint base = fa_entry(pixel, 0u);
-  return LdmCursor(base, base + min(ppfla_counts[pixel], FA_K));
+  const LdmCursor c = LdmCursor(base, base + min(ppfla_counts[pixel], FA_K));
+  work_add(bytes_loaded_counts, 4u);
+  work_sample(slots_scanned, c.entry < c.end ? 1u : 0u);
+  return c;
 }
 bool ldm_valid(LdmCursor c) { return c.entry < c.end; }
-float ldm_depth(LdmCursor c) { return uintBitsToFloat(ppfla_entries[c.entry]); }
-LdmCursor ldm_next(LdmCursor c) { return LdmCursor(c.entry + 1u, c.end); }
+float ldm_depth(LdmCursor c) {
+  work_add(bytes_loaded_entries, 4u);
+  return uintBitsToFloat(ppfla_entries[c.entry]);
+}
+LdmCursor ldm_next(LdmCursor c) {
+  const LdmCursor next = LdmCursor(c.entry + 1u, c.end);
+  work_sample(slots_scanned, next.entry < next.end ? 1u : 0u);
+  return next;
+}

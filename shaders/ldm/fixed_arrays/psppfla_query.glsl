@@ -1,6 +1,10 @@
 // PSPPFLA query API (see common/ldm_query_api.glsl): the pixel's entries up to the first
 // empty one (or k); sorted during construction.
+// Work counted (Psppfla::query_work_counters(), deterministic): one query is one ldm_begin or
+// ldm_next; its slots_scanned are the array slots it read to find the pixel's next entry (1,
+// the first empty one past the last included; 0 once past k).
 #include "common/ldm_query_api.glsl"
+#include "common/work_counters.glsl"
 #include "ldm/fixed_arrays/fixed_array.glsl"
 #include "ldm/fixed_arrays/ordered_depth.glsl"
 
@@ -15,6 +19,8 @@ struct LdmCursor {
 };
 
 LdmCursor psppfla_cursor(uint entry, uint end) {
+  work_sample(slots_scanned, entry < end ? 1u : 0u);
+  work_add(bytes_loaded_entries, entry < end ? 4u : 0u);
   return LdmCursor(entry, end, entry < end ? psppfla_entries[entry] : 0xFFFFFFFFu);
 }
 

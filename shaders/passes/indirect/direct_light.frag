@@ -2,6 +2,7 @@
 // G-buffer used as a shadow map: L = rho/pi * I(x - light) * max(0, n.l) / r^2, where the
 // light's texel toward x holds a surface no nearer than x (within a slope-scaled bias).
 #include "common/spot_light.glsl"
+#include "common/work_counters.glsl"
 
 layout(binding = 0) uniform sampler2D camera_position;
 layout(binding = 1) uniform sampler2D camera_normal;
@@ -15,7 +16,9 @@ void main() {
   const ivec2 pixel = ivec2(gl_FragCoord.xy);
   const vec4 x = texelFetch(camera_position, pixel, 0);
   out_radiance = vec4(0.0);
+  work_add(fragments, 1);
   if (x.w == 0.0) return;
+  work_add(covered_pixels, 1);
   const vec3 n = texelFetch(camera_normal, pixel, 0).xyz;
   const vec3 to_light = spot_position - x.xyz;
   const float r = length(to_light);

@@ -5,6 +5,7 @@
 #ifndef PHOTON_SPLAT_QUAD_SCALE
 #define PHOTON_SPLAT_QUAD_SCALE 1.0
 #endif
+#include "common/work_counters.glsl"
 layout(points) in;
 layout(triangle_strip, max_vertices = 4) out;
 
@@ -41,6 +42,7 @@ void corner(float su, float sv) {
 }
 
 void main() {
+  work_add(quads, 1);
   corner(-1.0, -1.0);
   corner(-1.0, 1.0);
   corner(1.0, -1.0);

@@ -2,6 +2,7 @@
 // photon buffer by index. Scales the differential by s, builds the matrix M into filter
 // coordinates and the irradiance estimate E = Phi / A_p (Eq. 24, A_p = pi/4 |s Du x s Dv|).
 #include "passes/indirect/photon.glsl"
+#include "common/work_counters.glsl"
 
 layout(std430, binding = INDIRECT_PHOTONS_BINDING) readonly restrict buffer Photons {
   Photon photons[];
@@ -20,6 +21,7 @@ out PhotonSplat {
 } photon;
 
 void main() {
+  work_add(vertices, 1);
   const Photon p = photons[gl_VertexID];
   const vec3 n = p.normal.xyz;
   const vec3 du = p.du.xyz * splat_scale;

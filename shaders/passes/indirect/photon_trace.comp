@@ -19,6 +19,7 @@
 #include "common/spot_light.glsl"
 #include "passes/indirect/photon.glsl"
 #include "passes/indirect/photon_differential.glsl"
+#include "common/work_counters.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -51,6 +52,9 @@ uniform float normal_offset_pixels;
 uniform int emission_normalized;    // 0: thesis (|cos| 2 / N), 1: normalized
 
 uint counts[PHOTON_COUNTERS];
+#if WORK_COUNTING
+uint work_stored = 0u;  // photons this invocation wrote into the buffer
+#endif
 
 // Traces one secondary photon and returns its fate (a PHOTON_TALLY_* index).
 uint emit_secondary(uint texel_index, uint view, bool ahead, vec3 x1, vec3 n1, vec3 d1,
@@ -90,6 +94,9 @@ uint emit_secondary(uint texel_index, uint view, bool ahead, vec3 x1, vec3 n1, v
   ++counts[PHOTON_COUNT_APPENDS];
   const uint id = atomicAdd(photon_counters[PHOTON_COUNT_APPENDS], 1u);
   if (id >= photon_capacity) return PHOTON_TALLY_OVERFLOW;  // counted by the counter, not stored
+#if WORK_COUNTING
+  ++work_stored;
+#endif
   photons[id].position = vec4(x2, uintBitsToFloat(texel_index));
   photons[id].normal = vec4(n2, uintBitsToFloat(view * 2u + (ahead ? 1u : 0u)));
   photons[id].du = vec4(p.du_x, 0.0);
@@ -101,6 +108,7 @@ uint emit_secondary(uint texel_index, uint view, bool ahead, vec3 x1, vec3 n1, v
 void main() {
   const ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(texel, ivec2(light_resolution)))) return;
+  work_add(invocations, 1);
   for (uint i = 0u; i < PHOTON_COUNTERS; ++i) counts[i] = 0u;
   const uint texel_index = uint(texel.y * light_resolution + texel.x);
   vec3 fate[PHOTON_TALLY_ENTRIES];
@@ -146,9 +154,12 @@ void main() {
         ++counts[PHOTON_COUNT_EMITTED];
         fate[PHOTON_TALLY_EMITTED] += flux;
         const uint before = trace_steps_so_far();
+        const uint entries_before = ldm_walk_steps;
         const uint where = emit_secondary(texel_index, view, cos_o > 0.0, x1, n1, d1, primary, flux);
         fate[where] += flux;
         trace_steps_max(view, trace_steps_so_far() - before);
+        work_sample(trace_steps, trace_steps_so_far() - before);
+        work_sample(entries_read, ldm_walk_steps - entries_before);
       }
       // The view loop's iterations (twice with the normaliser's loop) beside the walks'.
       trace_steps_max(LDM_VIEW_COUNT,
@@ -161,4 +172,8 @@ void main() {
   // The append counter is counted as it goes; the rest once per invocation.
   for (uint i = 1u; i < PHOTON_COUNTERS; ++i)
     if (counts[i] != 0u) atomicAdd(photon_counters[i], counts[i]);
+  work_add(photons_primary, counts[PHOTON_COUNT_PRIMARY]);
+  work_add(photons_traced, counts[PHOTON_COUNT_EMITTED]);
+  work_add(photons_appended, counts[PHOTON_COUNT_APPENDS]);
+  work_add(photons_stored, work_stored);
 }
