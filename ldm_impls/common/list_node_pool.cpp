@@ -30,6 +30,21 @@ AxisSpec ListNodePool::capacity_parameter() {
   return p;
 }
 
+std::vector<WorkCounter> ListNodePool::query_work_counters() {
+  // A query is one ldm_begin or ldm_next; the lists are sorted whatever the order their
+  // fragments arrived in, so every count is deterministic.
+  return {
+      {"", "nodes_visited", WorkShape::Distribution, "nodes",
+       "PSPPSLL, PPSLL or DF-buffer: nodes (DF-buffer: depth-array entries) one query (an "
+       "ldm_begin or ldm_next) moved the cursor onto: 1, or 0 at the end of the list"},
+      {"", "bytes_loaded_heads", WorkShape::Total, "bytes",
+       "PSPPSLL or PPSLL: list heads its queries read (4 bytes per ldm_begin)"},
+      {"", "bytes_loaded_nodes", WorkShape::Total, "bytes",
+       "PSPPSLL or PPSLL: node bytes its queries read (a next index per ldm_next, a depth per "
+       "ldm_depth; 4 bytes each)"},
+  };
+}
+
 void ListNodePool::prepare(const BuildInputs& in, const std::string& build_shader,
                            ShaderDefines extra_defines) {
   heads_ = in.views.views().total_pixels();

@@ -27,6 +27,9 @@ class ListNodePool {
   ListNodePool(const std::string& structure, StructureParams& params);
   // The `capacity` parameter of a structure built on a pool.
   static AxisSpec capacity_parameter();
+  // What the list query (shaders/ldm/common/list_query.glsl) counts in a pass's sub-pass
+  // (the sub-pass filled in by the caller): PSPPSLL's and PPSLL's query_work_counters().
+  static std::vector<WorkCounter> query_work_counters();
 
   // Sizes the pool by the sizing plan and compiles `build_shader` (a fragment shader of the
   // LDM geometry pass) with the pool's defines and `extra_defines`.

@@ -25,10 +25,73 @@ std::vector<WorkCounter> DfBuffer::work_counters() {
   std::vector<WorkCounter> counters;
   for (WorkCounter c : geometry_work_counters("count")) counters.push_back(std::move(c));
   for (WorkCounter c : geometry_work_counters("construct")) counters.push_back(std::move(c));
+  constexpr WorkOrder kArrival = WorkOrder::ArrivalDependent;
+  const std::vector<WorkCounter> own = {
+      // shaders/ldm/dfbuffer/count.frag
+      {"count", "atomic_add", WorkShape::Total, "atomics", "count: DF-buffer atomicAdd on a pixel's count (one per fragment)"},
+      // scan_blocks.comp and scan_add.comp, every level
+      {"prefix_sum", "invocations", WorkShape::Total, "invocations",
+       "prefix_sum: compute invocations of the scan's dispatches (every level, scan and uniform add)"},
+      {"prefix_sum", "bytes_loaded_counts", WorkShape::Total, "bytes", "prefix_sum: counts read (4 bytes per pixel)"},
+      {"prefix_sum", "bytes_loaded_offsets", WorkShape::Total, "bytes",
+       "prefix_sum: offsets read by the uniform add (4 bytes per value of the blocks after the first)"},
+      {"prefix_sum", "bytes_stored_offsets", WorkShape::Total, "bytes",
+       "prefix_sum: offsets written (the scan's pixels + 1, and again by the uniform add)"},
+      {"prefix_sum", "bytes_loaded_scan_block_sums", WorkShape::Total, "bytes",
+       "prefix_sum: block sums read (higher levels' scans, the uniform add's block offsets)"},
+      {"prefix_sum", "bytes_stored_scan_block_sums", WorkShape::Total, "bytes",
+       "prefix_sum: block sums written (each block's sum, higher levels' scans and uniform adds)"},
+      // build.frag
+      {"construct", "atomic_add", WorkShape::Total, "atomics",
+       "construct: DF-buffer atomicAdd decrementing a pixel's count (one per fragment) and "
+       "atomic counter increments of lost fragments"},
+      {"construct", "bytes_loaded_offsets", WorkShape::Total, "bytes",
+       "construct: DF-buffer offsets read (8 bytes per fragment: the pixel's and the next)"},
+      {"construct", "bytes_stored_depths", WorkShape::Total, "bytes",
+       "construct: DF-buffer depths written (4 bytes per fragment stored)"},
+      // sort.comp with ldm/common/post_sort.glsl and heap_sort.glsl
+      {"sort", "invocations", WorkShape::Total, "invocations",
+       "sort: compute invocations of the sort dispatch (one per pixel, the last group's padding "
+       "included)"},
+      {"sort", "list_length", WorkShape::Distribution, "entries",
+       "sort: PPSLL or DF-buffer fragments of one pixel's list or range (one value per pixel, "
+       "empty ones included)"},
+      {"sort", "comparisons", WorkShape::Total, "comparisons",
+       "sort: depth comparisons of the sorts (insertion sort in the local array, "
+       "ldm/common/post_sort.glsl; PPSLL's merge sort in place; heap sort in place, "
+       "ldm/common/heap_sort.glsl)", kArrival},
+      {"sort", "moves", WorkShape::Total, "moves",
+       "sort: entries the sorts moved (local-array writes of the insertion sort; nodes PPSLL's "
+       "merge sort relinked; heap_store calls of the heap sort)", kArrival},
+      {"sort", "bytes_loaded_offsets", WorkShape::Total, "bytes", "sort: DF-buffer offsets read (8 bytes per pixel)"},
+      {"sort", "bytes_loaded_depths", WorkShape::Total, "bytes",
+       "sort: DF-buffer depths copied into the local array (4 bytes each; ranges of 2 up to local)"},
+      {"sort", "bytes_stored_depths", WorkShape::Total, "bytes",
+       "sort: DF-buffer depths written back from the local array (4 bytes each)"},
+      {"sort", "bytes_loaded_depths_heap", WorkShape::Total, "bytes",
+       "sort: DF-buffer depths the heap sort in place read (ranges longer than local)", kArrival},
+      {"sort", "bytes_stored_depths_heap", WorkShape::Total, "bytes",
+       "sort: DF-buffer depths the heap sort in place wrote", kArrival},
+      {"sort", "atomic_add", WorkShape::Total, "atomics",
+       "sort: atomic counter increments of lists sorted in place (longer than the local array)"},
+  };
+  counters.insert(counters.end(), own.begin(), own.end());
   return counters;
 }
 
-std::vector<WorkCounter> DfBuffer::query_work_counters() { return {}; }
+// shaders/ldm/dfbuffer/query.glsl: a query is one ldm_begin or ldm_next; the ranges are
+// sorted whatever the order of arrival, so every count is deterministic.
+std::vector<WorkCounter> DfBuffer::query_work_counters() {
+  return {
+      {"", "nodes_visited", WorkShape::Distribution, "nodes",
+       "PSPPSLL, PPSLL or DF-buffer: nodes (DF-buffer: depth-array entries) one query (an "
+       "ldm_begin or ldm_next) moved the cursor onto: 1, or 0 at the end of the list"},
+      {"", "bytes_loaded_offsets", WorkShape::Total, "bytes",
+       "DF-buffer offsets its queries read (8 bytes per ldm_begin)"},
+      {"", "bytes_loaded_depths", WorkShape::Total, "bytes",
+       "DF-buffer depths its queries read (4 bytes per ldm_depth)"},
+  };
+}
 
 std::vector<AxisSpec> DfBuffer::parameters() { return {sort_local_parameter()}; }
 

@@ -49,6 +49,9 @@ void PrefixSum::scan_level(const GlBuffer& input, uint64_t input_count, const Gl
   scan_program_.set("scan_input_count", unsigned(input_count));
   scan_program_.set("scan_count", unsigned(count));
   scan_program_.set("scan_group_count", unsigned(groups));
+  // Only the counting variant has it (elsewhere a no-op): level 0 reads the counts and writes
+  // the offsets, the others scan block sums.
+  scan_program_.set("work_scan_level", unsigned(&block_sums == &block_sums_[0] ? 0 : 1));
   dispatch_linear_groups(groups);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
@@ -61,6 +64,8 @@ void PrefixSum::add_block_offsets(const GlBuffer& values, uint64_t count,
   add_program_.use();
   add_program_.set("scan_count", unsigned(count));
   add_program_.set("scan_group_count", unsigned(groups));
+  // Only the counting variant has it: level 0 adds to the offsets, the others to block sums.
+  add_program_.set("work_scan_level", unsigned(&block_offsets == &block_sums_[0] ? 0 : 1));
   dispatch_linear_groups(groups);
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }

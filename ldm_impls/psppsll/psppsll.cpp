@@ -11,10 +11,40 @@ Psppsll::Psppsll(StructureParams& params) : pool_("psppsll", params) {
 std::vector<WorkCounter> Psppsll::work_counters() {
   std::vector<WorkCounter> counters;
   for (WorkCounter c : geometry_work_counters("construct")) counters.push_back(std::move(c));
+  // shaders/ldm/psppsll/build.frag: where an insertion walks, and how often its
+  // compare-and-swap loses, depends on the order the fragments arrive.
+  constexpr WorkOrder kArrival = WorkOrder::ArrivalDependent;
+  const std::vector<WorkCounter> own = {
+      {"construct", "atomic_add", WorkShape::Total, "atomics",
+       "construct: atomic counter increments (PSPPSLL, PPSLL: one node allocation per fragment, "
+       "and PSPPSLL's abandoned insertions)"},
+      {"construct", "atomic_cas", WorkShape::Total, "atomics",
+       "construct: compare-and-swaps that publish a PSPPSLL node (one per fragment and one per retry)",
+       kArrival},
+      {"construct", "atomic_cas_failed", WorkShape::Total, "atomics",
+       "construct: PSPPSLL compare-and-swaps that lost to a concurrent insertion (each a retry)",
+       kArrival},
+      {"construct", "insert_steps", WorkShape::Distribution, "steps",
+       "construct: iterations of one PSPPSLL insertion's loop (one per node passed or retry, "
+       "plus the one that inserts; one value per fragment given a node)", kArrival},
+      {"construct", "bytes_loaded_heads", WorkShape::Total, "bytes",
+       "construct: PSPPSLL list heads read (the walk's start, 4 bytes per fragment)"},
+      {"construct", "bytes_loaded_nodes", WorkShape::Total, "bytes",
+       "construct: PSPPSLL node bytes the insertion walks read (depths and next indices, 4 bytes "
+       "each; compare-and-swaps not included)", kArrival},
+      {"construct", "bytes_stored_nodes", WorkShape::Total, "bytes",
+       "construct: PSPPSLL or PPSLL node bytes written: each new node's depth and its next "
+       "index (8 bytes per fragment stored; PSPPSLL's rewrites after a lost compare-and-swap "
+       "apart)"},
+      {"construct", "bytes_stored_nodes_relinked", WorkShape::Total, "bytes",
+       "construct: PSPPSLL next indices rewritten after a lost compare-and-swap (4 bytes each)",
+       kArrival},
+  };
+  counters.insert(counters.end(), own.begin(), own.end());
   return counters;
 }
 
-std::vector<WorkCounter> Psppsll::query_work_counters() { return {}; }
+std::vector<WorkCounter> Psppsll::query_work_counters() { return ListNodePool::query_work_counters(); }
 
 std::vector<AxisSpec> Psppsll::parameters() {
   AxisSpec atomic_reads;

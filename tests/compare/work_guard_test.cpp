@@ -78,6 +78,16 @@ TEST(WorkGuard, ATraceThatNoLongerStopsEarlyFails) {
   expect_work_regression(guard_with_shaders(shaders), "work_ao_entries_read");
 }
 
+// 2. PPSLL's sort walks every list once more after sorting it locally (through the sort's
+// own node accessor, whose loads are counted).
+TEST(WorkGuard, OneMorePassOverEveryListInTheSortFails) {
+  const fs::path shaders = patched_shaders(
+      "ldm/ppsll/sort.comp", "  insertion_sort_local(count);\n",
+      "  insertion_sort_local(count);\n"
+      "  for (uint again = head; again != 0u; again = next_node(again)) {}  // slowdown: one more pass\n");
+  expect_work_regression(guard_with_shaders(shaders), "work_sort_bytes_loaded_nodes");
+}
+
 // 3. The HA-buffer's query probes one slot more before its probe sequence (the key it reads
 // is ignored): every query's probe count grows by one, its result stays.
 TEST(WorkGuard, AHashProbeSequenceOneStepLongerFails) {

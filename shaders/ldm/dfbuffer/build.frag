@@ -4,6 +4,8 @@
 // A fragment that finds no slot is counted, never dropped silently:
 //   lost_beyond_count     count[p] was already 0: more fragments than the count pass saw
 //   lost_beyond_capacity  its slot lies past the depth array (the scan's total exceeds it)
+// Work counted (DfBuffer::work_counters(), "construct", deterministic): the atomics (the
+// decrement; a lost fragment's counter), the two offsets read and the depth stored.
 #include "ldm/ldm_fragment.glsl"
 #include "ldm/dfbuffer/layout.glsl"
 
@@ -25,14 +27,19 @@ void main() {
   // atomicAdd of -1 returns the old count: k = --count. A count already at 0 wraps, and so
   // does k, past any length.
   const uint k = atomicAdd(df_counts[pixel], 0xffffffffu) - 1u;
+  work_add(bytes_loaded_offsets, 8u);
   if (k >= length) {
     atomicCounterIncrement(lost_beyond_count);
+    work_add(atomic_add, 2u);
     return;
   }
   const uint slot = first + k;
   if (slot >= LDM_DF_CAPACITY) {
     atomicCounterIncrement(lost_beyond_capacity);
+    work_add(atomic_add, 2u);
     return;
   }
   df_depths[slot] = floatBitsToUint(v_depth);
+  work_add(atomic_add, 1u);
+  work_add(bytes_stored_depths, 4u);
 }

@@ -9,8 +9,12 @@
 //   4. the results go back through shared memory to coalesced writes of scan_count values.
 // Input and output may be one buffer (block sums scanned in place): each block reads all
 // of its values before it writes any, and touches no other block's.
+// Work counted (DfBuffer::work_counters(), "prefix_sum", deterministic): invocations and the
+// bytes read and written, per buffer: level 0 reads the counts and writes the offsets,
+// higher levels scan the block sums in place; every level writes its block sums.
 layout(local_size_x = SCAN_GROUP_SIZE) in;
 
+#include "common/work_counters.glsl"
 #include "ldm/common/compute_grid.glsl"
 
 const uint SCAN_BLOCK = SCAN_GROUP_SIZE * SCAN_PER_INVOCATION;
@@ -28,6 +32,9 @@ layout(std430, binding = LDM_STRUCTURE_BINDING2) writeonly restrict buffer ScanB
 uniform uint scan_input_count;  // values to read; the rest of the block reads as 0
 uniform uint scan_count;        // values to write
 uniform uint scan_group_count;  // blocks of this level
+#if WORK_COUNTING
+uniform uint work_scan_level;  // the level scanned (PrefixSum::scan_level)
+#endif
 
 shared uint block_values[SCAN_BLOCK];
 shared uint invocation_sums[SCAN_GROUP_SIZE];
@@ -59,14 +66,21 @@ uint scan_invocation_sums(uint t) {
 }
 
 void main() {
+  if (gl_LocalInvocationIndex == 0u) work_add(invocations, gl_WorkGroupSize.x);
   const uint group = linear_workgroup_index();
   if (group >= scan_group_count) return;  // the grid's last row overshoots; whole groups leave
+#if WORK_COUNTING
+  uint work_loads = 0u, work_stores = 0u;
+#endif
   const uint t = gl_LocalInvocationID.x;
   const uint block_first = group * SCAN_BLOCK;
 
   for (uint i = 0u; i < SCAN_PER_INVOCATION; ++i) {
     const uint at = block_first + i * SCAN_GROUP_SIZE + t;
     block_values[i * SCAN_GROUP_SIZE + t] = at < scan_input_count ? scan_input[at] : 0u;
+#if WORK_COUNTING
+    if (at < scan_input_count) ++work_loads;
+#endif
   }
   barrier();
 
@@ -87,6 +101,19 @@ void main() {
   for (uint i = 0u; i < SCAN_PER_INVOCATION; ++i) {
     const uint at = block_first + i * SCAN_GROUP_SIZE + t;
     if (at < scan_count) scan_output[at] = block_values[i * SCAN_GROUP_SIZE + t];
+#if WORK_COUNTING
+    if (at < scan_count) ++work_stores;
+#endif
   }
   if (t == 0u) scan_block_sums[group] = block_total;
+#if WORK_COUNTING
+  if (work_scan_level == 0u) {
+    work_add(bytes_loaded_counts, 4u * work_loads);
+    work_add(bytes_stored_offsets, 4u * work_stores);
+  } else {
+    work_add(bytes_loaded_scan_block_sums, 4u * work_loads);
+    work_add(bytes_stored_scan_block_sums, 4u * work_stores);
+  }
+  if (t == 0u) work_add(bytes_stored_scan_block_sums, 4u);
+#endif
 }

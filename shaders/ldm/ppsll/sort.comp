@@ -3,8 +3,16 @@
 // back along the same nodes in ascending order: the links stay, the values move, so the
 // sorted lists are read by the unchanged list query. A list longer than LDM_SORT_LOCAL is
 // merge-sorted in place by relinking its nodes (counted).
+//
+// Work counted (Ppsll::work_counters(), "sort"): invocations, each list's length, the sorts'
+// comparisons and moves (post_sort.glsl; the merge sort's relinks), and the bytes at every
+// access site, tallied per invocation: heads read and rewritten; nodes read through
+// next_node() / depth_bits() (bytes_loaded_nodes, which depends only on the lists' lengths,
+// so that one more pass over a list shows as a deterministic count) and written; the depths
+// the merge sort compares (bytes_loaded_nodes_compared: how many depends on the order).
 layout(local_size_x = 64) in;
 
+#include "common/work_counters.glsl"
 #include "ldm/common/compute_grid.glsl"
 #include "ldm/common/list_nodes.glsl"
 #include "ldm/common/post_sort.glsl"
@@ -14,11 +22,34 @@ layout(std430, binding = LDM_STRUCTURE_BINDING0) restrict buffer PpsllData {
 };
 layout(binding = LDM_COUNTER_BINDING, offset = 4) uniform atomic_uint lists_sorted_in_place;
 
-uint next_node(uint node) { return data[list_next_slot(node)]; }
-uint depth_bits(uint node) { return data[list_depth_slot(node)]; }
-float node_depth(uint node) { return uintBitsToFloat(depth_bits(node)); }
+#if WORK_COUNTING
+uint work_node_loads = 0u, work_node_stores = 0u, work_compared_loads = 0u;
+uint work_comparisons = 0u, work_relinks = 0u;
+uint work_merge_length = 0u;  // nodes the merge sort's first round took: the list's length
+#define PPSLL_COUNT(statement) statement
+#else
+#define PPSLL_COUNT(statement)
+#endif
 
-void set_next(uint node, uint next) { data[list_next_slot(node)] = next; }
+uint next_node(uint node) {
+  PPSLL_COUNT(++work_node_loads);
+  return data[list_next_slot(node)];
+}
+uint depth_bits(uint node) {
+  PPSLL_COUNT(++work_node_loads);
+  return data[list_depth_slot(node)];
+}
+float node_depth(uint node) { return uintBitsToFloat(depth_bits(node)); }
+// A depth the merge sort compares: how many it reads depends on the order of the list.
+float compared_depth(uint node) {
+  PPSLL_COUNT(++work_compared_loads);
+  return uintBitsToFloat(data[list_depth_slot(node)]);
+}
+
+void set_next(uint node, uint next) {
+  PPSLL_COUNT(++work_node_stores);
+  data[list_next_slot(node)] = next;
+}
 
 // Bottom-up merge sort of the list by relinking its nodes: runs of 1, 2, 4, ... nodes are
 // merged pairwise until one run is left; O(n log n) steps and no extra memory. Stable: on
@@ -45,7 +76,8 @@ uint merge_sort_list(uint head) {
       while (a_left > 0u || (b_left > 0u && b != 0u)) {
         uint taken;
         const bool take_b = a_left == 0u ||
-                            (b_left > 0u && b != 0u && node_depth(b) < node_depth(a));
+                            (b_left > 0u && b != 0u && compared_depth(b) < compared_depth(a));
+        PPSLL_COUNT(work_comparisons += (a_left > 0u && b_left > 0u && b != 0u) ? 1u : 0u);
         if (take_b) {
           taken = b;
           b = next_node(b);
@@ -57,6 +89,7 @@ uint merge_sort_list(uint head) {
         }
         if (merged_tail == 0u) merged_head = taken;
         else set_next(merged_tail, taken);
+        PPSLL_COUNT(++work_relinks; if (width == 1u) ++work_merge_length);
         merged_tail = taken;
       }
       rest = b;
@@ -68,7 +101,24 @@ uint merge_sort_list(uint head) {
   return head;
 }
 
+// The invocation's tally, added once per list.
+void ppsll_work_flush(uint length, bool in_place) {
+#if WORK_COUNTING
+  work_sample(list_length, length);
+  work_add(bytes_loaded_heads, 4u);
+  work_add(bytes_stored_heads, in_place ? 4u : 0u);
+  work_add(atomic_add, in_place ? 1u : 0u);
+  work_add(bytes_loaded_nodes, 4u * work_node_loads);
+  work_add(bytes_stored_nodes, 4u * work_node_stores);
+  work_add(bytes_loaded_nodes_compared, 4u * work_compared_loads);
+  work_add(comparisons, work_comparisons);
+  work_add(moves, work_relinks);
+#endif
+}
+
 void main() {
+  // Every invocation of the dispatch, those past the last pixel included: one add per group.
+  if (gl_LocalInvocationIndex == 0u) work_add(invocations, gl_WorkGroupSize.x);
   const uint pixel = linear_invocation_index();
   if (pixel >= LDM_HEADS_TOTAL) return;
   const uint head = data[pixel];
@@ -80,10 +130,15 @@ void main() {
   if (node != 0u) {  // longer than the local array
     data[pixel] = merge_sort_list(head);
     atomicCounterIncrement(lists_sorted_in_place);
+    PPSLL_COUNT(ppsll_work_flush(work_merge_length, true));
     return;
   }
   insertion_sort_local(count);
+  const uint length = count;
   count = 0u;
-  for (node = head; node != 0u; node = next_node(node))
+  for (node = head; node != 0u; node = next_node(node)) {
     data[list_depth_slot(node)] = sort_local[count++];
+    PPSLL_COUNT(++work_node_stores);
+  }
+  ppsll_work_flush(length, false);
 }

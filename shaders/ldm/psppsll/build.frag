@@ -12,6 +12,12 @@
 // contention test). Both order this invocation's buffer writes the same way; the driver
 // self-test (harness/gl/driver_probe.h) checks memoryBarrier() in such a loop on every driver,
 // and the structure refuses to build where it fails.
+//
+// Work counted (Psppsll::work_counters(), tallied in locals, added once per fragment): the
+// node counter's increments; compare-and-swaps and failed ones; the insertion's steps; the
+// head read, the walk's node reads, the node's depth and first link, and its link rewritten
+// after each failed compare-and-swap. Everything the walk does depends on the order the
+// fragments arrive, except the head read and the node's own depth and first link.
 #include "ldm/common/list_nodes.glsl"
 #include "ldm/ldm_fragment.glsl"
 
@@ -28,11 +34,36 @@ layout(binding = LDM_COUNTER_BINDING, offset = 4) uniform atomic_uint lost_count
 #define READ_NEXT(slot) data[slot]
 #endif
 
+#if WORK_COUNTING
+uint work_steps = 0u, work_cas = 0u, work_cas_failed = 0u;
+uint work_node_loads = 0u;  // walk reads of nodes (a depth or a next index)
+uint work_links = 0u;       // writes of the new node's next index
+#define PSPPSLL_COUNT(statement) statement
+// The insertion's tally, added once: before every return past the allocation.
+void psppsll_work_flush() {
+  work_add(atomic_add, 1u);
+  work_add(bytes_loaded_heads, 4u);
+  work_add(bytes_stored_nodes, 4u + 4u * min(work_links, 1u));
+  work_add(bytes_stored_nodes_relinked, 4u * (work_links - min(work_links, 1u)));
+  work_add(bytes_loaded_nodes, 4u * work_node_loads);
+  work_add(atomic_cas, work_cas);
+  work_add(atomic_cas_failed, work_cas_failed);
+  work_sample(insert_steps, work_steps);
+}
+#define PSPPSLL_FLUSH() psppsll_work_flush()
+#else
+#define PSPPSLL_COUNT(statement)
+#define PSPPSLL_FLUSH()
+#endif
+
 void main() {
   LDM_SKIP_HELPER_INVOCATIONS;
   const uint pixel = ldm_fragment_pixel();
   const uint node = atomicCounterIncrement(node_counter) + 1u;
-  if (node > LDM_NODE_CAPACITY) return;
+  if (node > LDM_NODE_CAPACITY) {
+    work_add(atomic_add, 1u);
+    return;
+  }
   const float depth = v_depth;
   const uint node_slot = list_next_slot(node);
   data[list_depth_slot(node)] = floatBitsToUint(depth);
@@ -40,22 +71,33 @@ void main() {
   uint previous_slot = pixel;  // the head index acts as the "next" field of a virtual node 0
   uint current = READ_NEXT(previous_slot);
   for (uint step = 0u; step < LDM_MAX_INSERT_STEPS; ++step) {
+    PSPPSLL_COUNT(++work_steps);
     if (current == 0u || depth < uintBitsToFloat(data[list_depth_slot(current)])) {
+      PSPPSLL_COUNT(work_node_loads += current == 0u ? 0u : 1u);
       // Complete the new node before it becomes visible to other invocations.
       data[node_slot] = current;
+      PSPPSLL_COUNT(++work_links);
       memoryBarrier();
       const uint seen = atomicCompSwap(data[previous_slot], current, node);
-      if (seen == current) return;
+      PSPPSLL_COUNT(++work_cas);
+      if (seen == current) {
+        PSPPSLL_FLUSH();
+        return;
+      }
       // Another invocation inserted here first: continue from its node. Acquire: its depth
       // and next index were written before its compare-and-swap published it (the barrier
       // above, on its side); this barrier keeps our reads of them after our atomic.
       LDM_COUNT_RETRY();
+      PSPPSLL_COUNT(++work_cas_failed);
       memoryBarrier();
       current = seen;
     } else {
+      PSPPSLL_COUNT(work_node_loads += 2u);  // current's depth, then its next index
       previous_slot = list_next_slot(current);
       current = READ_NEXT(previous_slot);
     }
   }
   atomicCounterIncrement(lost_counter);
+  work_add(atomic_add, 1u);  // the lost counter's increment
+  PSPPSLL_FLUSH();
 }
