@@ -1,0 +1,66 @@
+#pragma once
+// The work suite's shared fixture: one AO measurement of a structure on the Cornell box at
+// test size, its work_* fields as numbers, and sums over the census's depth profile.
+#include <gtest/gtest.h>
+
+#include <map>
+#include <string>
+#include <variant>
+
+#include "harness/app/measurement.h"
+#include "harness/scene/scene_loader.h"
+#include "support/test_support.h"
+
+namespace ldm::work_test {
+
+struct Counted {
+  Measurement m;
+  std::map<std::string, double> work;  // work_* fields as numbers
+  // A counter the record must carry.
+  double operator[](const std::string& column) const {
+    const auto found = work.find(column);
+    EXPECT_NE(found, work.end()) << column << " missing from the record";
+    return found == work.end() ? -1.0 : found->second;
+  }
+};
+
+inline double as_number(const RecordValue& value) {
+  if (const auto* i = std::get_if<int64_t>(&value)) return double(*i);
+  if (const auto* d = std::get_if<double>(&value)) return *d;
+  ADD_FAILURE() << "a work field that is not a number";
+  return -1.0;
+}
+
+// Measures `structure` with the AO pass (48x40, 1 warm-up, 2 frames) and its counting
+// replay, whose check (sorted lists and images equal the measured frames') must pass.
+inline Counted count(const std::string& structure, uint32_t views, uint32_t resolution,
+                     const std::map<std::string, std::string>& params = {}) {
+  test::gl_context();
+  static const Scene scene = load_scene("cornell");
+  MeasurementRequest request;
+  request.structure = structure;
+  request.structure_params = params;
+  request.pass = "ao";
+  request.views = views;
+  request.resolution = resolution;
+  request.width = 48;
+  request.height = 40;
+  request.warmup = 1;
+  request.frames = 2;
+  Counted c{measure(scene, request), {}};
+  for (const auto& [name, value] : c.m.work) c.work[name] = as_number(value);
+  EXPECT_TRUE(c.m.work_counted);
+  EXPECT_EQ(c.m.status, BuildStatus::Ok) << structure << ": " << c.m.status_detail;
+  return c;
+}
+
+// Σ over pixels of f(fragments of the pixel), from the census's depth profile.
+template <typename F>
+double over_pixels(const Counted& c, F f) {
+  double sum = 0;
+  const auto& by_length = c.m.census.profile.pixels_by_length;
+  for (size_t n = 0; n < by_length.size(); ++n) sum += double(by_length[n]) * f(double(n));
+  return sum;
+}
+
+}  // namespace ldm::work_test
