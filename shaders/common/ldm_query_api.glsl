@@ -7,6 +7,10 @@
 //   bool  ldm_valid(LdmCursor c);         false once past the farthest fragment
 //   float ldm_depth(LdmCursor c);         depth along the view's forward axis (scene units)
 //   LdmCursor ldm_next(LdmCursor c);      the next fragment in ascending depth
+//   void  ldm_work_flush();               adds what this invocation's queries counted to
+//                                         the work counters (the counting replay: the
+//                                         queries tally, common/work_counters.glsl); a pass
+//                                         calls it once, after its last query
 //
 // Fragments come out in ascending depth (ties in any order). LDM_MAX_LIST_LENGTH (a define,
 // the scene's measured maximum depth complexity) bounds every walk, so that a corrupted

@@ -11,7 +11,7 @@
 // arguments are not even evaluated, so the measured code is the code without counting.
 //
 // Counting in a hot loop: sum into a local variable and add it once per invocation, which
-// keeps the replay's atomics few.
+// keeps the replay's atomics few (the tallies below, where the loop is someone else's).
 #ifndef LDM_WORK_COUNTERS_GLSL
 #define LDM_WORK_COUNTERS_GLSL
 
@@ -46,6 +46,39 @@ void work_sample_at(uint slot, uint value) {
 
 #define work_add(name, n) work_add_at(uint(WORK_##name), uint(n))
 #define work_sample(name, value) work_sample_at(uint(WORK_##name), uint(value))
+
+// Tallies: counting in a hot loop that has no end of its own (a structure's query, called
+// per node a pass visits), summed in a private variable and added once per invocation by
+// the code that owns the loop (ldm_work_flush()). Each atomic of the counting replay costs
+// about what the work it counts does, so per-node atomics would triple the frame it counts.
+//   WORK_TALLY(var)                       a total's tally
+//   work_tally(var, n)                    adds n to it
+//   work_add_tally(name, var)             adds it to the total `name` and clears it
+//   WORK_SAMPLE_TALLY(var)                a distribution's tally: its values 0 to 3, counted
+//   work_sample_tally(var, name, value)   one value (4 or more: sampled at once)
+//   work_sample_flush(name, var)          adds the tallied values to `name` and clears it
+#define WORK_TALLY(var) uint var = 0u;
+#define work_tally(var, n) (var += uint(n))
+#define work_add_tally(name, var) (work_add_at(uint(WORK_##name), var), var = 0u)
+#define WORK_SAMPLE_TALLY(var) uvec4 var = uvec4(0u);
+#define work_sample_tally(var, name, value) work_sample_tally_at(var, uint(WORK_##name), uint(value))
+#define work_sample_flush(name, var) (work_sample_flush_at(uint(WORK_##name), var), var = uvec4(0u))
+
+void work_sample_tally_at(inout uvec4 tally, uint slot, uint value) {
+  if (value == 0u) tally.x += 1u;
+  else if (value == 1u) tally.y += 1u;
+  else if (value == 2u) tally.z += 1u;
+  else if (value == 3u) tally.w += 1u;
+  else work_sample_at(slot, value);
+}
+
+void work_sample_flush_at(uint slot, uvec4 tally) {
+  const uint bins = slot + uint(WORK_DISTRIBUTION_HEADER);  // values below 4 are exact bins
+  if (tally.x != 0u) atomicAdd(work_words[bins], tally.x);
+  if (tally.y != 0u) atomicAdd(work_words[bins + 1u], tally.y);
+  if (tally.z != 0u) atomicAdd(work_words[bins + 2u], tally.z);
+  if (tally.w != 0u) atomicAdd(work_words[bins + 3u], tally.w);
+}
 // Code that only counting needs (a local tally): compiled only in the counting variant.
 #define WORK_COUNTING 1
 
@@ -53,6 +86,12 @@ void work_sample_at(uint slot, uint value) {
 
 #define work_add(name, n)
 #define work_sample(name, value)
+#define WORK_TALLY(var)
+#define work_tally(var, n)
+#define work_add_tally(name, var)
+#define WORK_SAMPLE_TALLY(var)
+#define work_sample_tally(var, name, value)
+#define work_sample_flush(name, var)
 #define WORK_COUNTING 0
 
 #endif

@@ -56,6 +56,7 @@ void main() {
     work_sample(trace_steps, trace_steps_so_far() - before);
   }
   trace_steps_max(LDM_VIEW_COUNT, trace_steps_so_far() + LDM_VIEW_COUNT);
+  ldm_work_flush();
 #if AO_NORMALIZED
   out_ao = sum.y > 0.0 ? sum.x / sum.y : 1.0;
 #else

@@ -16,20 +16,29 @@ struct LdmCursor {
   uint node;  // 0 past the end
 };
 
+WORK_TALLY(list_heads_bytes)
+WORK_TALLY(list_nodes_bytes)
+WORK_SAMPLE_TALLY(list_nodes_visited)
+
 LdmCursor ldm_begin(uint pixel) {
   const LdmCursor c = LdmCursor(data[pixel]);
-  work_add(bytes_loaded_heads, 4u);
-  work_sample(nodes_visited, c.node != 0u ? 1u : 0u);
+  work_tally(list_heads_bytes, 4u);
+  work_sample_tally(list_nodes_visited, nodes_visited, c.node != 0u ? 1u : 0u);
   return c;
 }
 bool ldm_valid(LdmCursor c) { return c.node != 0u; }
 float ldm_depth(LdmCursor c) {
-  work_add(bytes_loaded_nodes, 4u);
+  work_tally(list_nodes_bytes, 4u);
   return uintBitsToFloat(data[list_depth_slot(c.node)]);
 }
 LdmCursor ldm_next(LdmCursor c) {
   const LdmCursor next = LdmCursor(data[list_next_slot(c.node)]);
-  work_add(bytes_loaded_nodes, 4u);
-  work_sample(nodes_visited, next.node != 0u ? 1u : 0u);
+  work_tally(list_nodes_bytes, 4u);
+  work_sample_tally(list_nodes_visited, nodes_visited, next.node != 0u ? 1u : 0u);
   return next;
+}
+void ldm_work_flush() {
+  work_add_tally(bytes_loaded_heads, list_heads_bytes);
+  work_add_tally(bytes_loaded_nodes, list_nodes_bytes);
+  work_sample_flush(nodes_visited, list_nodes_visited);
 }

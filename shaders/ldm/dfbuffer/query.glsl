@@ -20,19 +20,28 @@ struct LdmCursor {
   uint end;    // one past the pixel's last slot
 };
 
+WORK_TALLY(df_offsets_bytes)
+WORK_TALLY(df_depths_bytes)
+WORK_SAMPLE_TALLY(df_nodes_visited)
+
 LdmCursor ldm_begin(uint pixel) {
   const LdmCursor c = LdmCursor(df_offsets[pixel], min(df_offsets[pixel + 1u], LDM_DF_CAPACITY));
-  work_add(bytes_loaded_offsets, 8u);
-  work_sample(nodes_visited, c.index < c.end ? 1u : 0u);
+  work_tally(df_offsets_bytes, 8u);
+  work_sample_tally(df_nodes_visited, nodes_visited, c.index < c.end ? 1u : 0u);
   return c;
 }
 bool ldm_valid(LdmCursor c) { return c.index < c.end; }
 float ldm_depth(LdmCursor c) {
-  work_add(bytes_loaded_depths, 4u);
+  work_tally(df_depths_bytes, 4u);
   return uintBitsToFloat(df_depths[c.index]);
 }
 LdmCursor ldm_next(LdmCursor c) {
   const LdmCursor next = LdmCursor(c.index + 1u, c.end);
-  work_sample(nodes_visited, next.index < next.end ? 1u : 0u);
+  work_sample_tally(df_nodes_visited, nodes_visited, next.index < next.end ? 1u : 0u);
   return next;
+}
+void ldm_work_flush() {
+  work_add_tally(bytes_loaded_offsets, df_offsets_bytes);
+  work_add_tally(bytes_loaded_depths, df_depths_bytes);
+  work_sample_flush(nodes_visited, df_nodes_visited);
 }

@@ -20,20 +20,29 @@ struct LdmCursor {
   uint end;    // one past the pixel's last stored entry
 };
 
+WORK_TALLY(ppfla_counts_bytes)
+WORK_TALLY(ppfla_entries_bytes)
+WORK_SAMPLE_TALLY(ppfla_slots_scanned)
+
 LdmCursor ldm_begin(uint pixel) {
   const uint base = fa_entry(pixel, 0u);
   const LdmCursor c = LdmCursor(base, base + min(ppfla_counts[pixel], FA_K));
-  work_add(bytes_loaded_counts, 4u);
-  work_sample(slots_scanned, c.entry < c.end ? 1u : 0u);
+  work_tally(ppfla_counts_bytes, 4u);
+  work_sample_tally(ppfla_slots_scanned, slots_scanned, c.entry < c.end ? 1u : 0u);
   return c;
 }
 bool ldm_valid(LdmCursor c) { return c.entry < c.end; }
 float ldm_depth(LdmCursor c) {
-  work_add(bytes_loaded_entries, 4u);
+  work_tally(ppfla_entries_bytes, 4u);
   return uintBitsToFloat(ppfla_entries[c.entry]);
 }
 LdmCursor ldm_next(LdmCursor c) {
   const LdmCursor next = LdmCursor(c.entry + 1u, c.end);
-  work_sample(slots_scanned, next.entry < next.end ? 1u : 0u);
+  work_sample_tally(ppfla_slots_scanned, slots_scanned, next.entry < next.end ? 1u : 0u);
   return next;
+}
+void ldm_work_flush() {
+  work_add_tally(bytes_loaded_counts, ppfla_counts_bytes);
+  work_add_tally(bytes_loaded_entries, ppfla_entries_bytes);
+  work_sample_flush(slots_scanned, ppfla_slots_scanned);
 }

@@ -18,9 +18,12 @@ struct LdmCursor {
   uint ordered;  // the entry's value; 0xFFFFFFFF once past the last stored depth
 };
 
+WORK_TALLY(psppfla_entries_bytes)
+WORK_SAMPLE_TALLY(psppfla_slots_scanned)
+
 LdmCursor psppfla_cursor(uint entry, uint end) {
-  work_sample(slots_scanned, entry < end ? 1u : 0u);
-  work_add(bytes_loaded_entries, entry < end ? 4u : 0u);
+  work_sample_tally(psppfla_slots_scanned, slots_scanned, entry < end ? 1u : 0u);
+  work_tally(psppfla_entries_bytes, entry < end ? 4u : 0u);
   return LdmCursor(entry, end, entry < end ? psppfla_entries[entry] : 0xFFFFFFFFu);
 }
 
@@ -31,3 +34,7 @@ LdmCursor ldm_begin(uint pixel) {
 bool ldm_valid(LdmCursor c) { return c.ordered != 0xFFFFFFFFu; }
 float ldm_depth(LdmCursor c) { return depth_from_ordered_bits(c.ordered); }
 LdmCursor ldm_next(LdmCursor c) { return psppfla_cursor(c.entry + 1u, c.end); }
+void ldm_work_flush() {
+  work_add_tally(bytes_loaded_entries, psppfla_entries_bytes);
+  work_sample_flush(slots_scanned, psppfla_slots_scanned);
+}

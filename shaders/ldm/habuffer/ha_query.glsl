@@ -31,6 +31,9 @@ struct LdmCursor {
 #if WORK_COUNTING
 uint ha_query_probes = 0u;  // slots read by the running seek
 #endif
+WORK_TALLY(ha_probes_read)
+WORK_TALLY(ha_age_table_bytes)
+WORK_SAMPLE_TALLY(ha_hash_probes)
 
 // One probe: the key in pixel p's age-a slot.
 HaKey ha_probe(uint pixel, uint age) {
@@ -50,14 +53,13 @@ LdmCursor ha_seek(LdmCursor c) {
     c.key = ha_probe(c.pixel, c.age);
     if (ha_key_age(c.key) == c.age) break;
   }
-  work_sample(hash_probes, ha_query_probes);
-  work_add(bytes_loaded_table, ha_query_probes * uint(HA_KEY_BITS / 8));
-  work_add(bytes_loaded_ha_offsets, ha_query_probes * 4u);  // o_a of each probed slot
+  work_sample_tally(ha_hash_probes, hash_probes, ha_query_probes);
+  work_tally(ha_probes_read, ha_query_probes);
   return c;
 }
 
 LdmCursor ldm_begin(uint pixel) {
-  work_add(bytes_loaded_age_table, 4u);
+  work_tally(ha_age_table_bytes, 4u);
   return ha_seek(LdmCursor(pixel, 0u, ha_age_counts[pixel], HA_EMPTY_KEY));
 }
 bool ldm_valid(LdmCursor c) { return c.age < c.end; }
@@ -65,4 +67,13 @@ float ldm_depth(LdmCursor c) { return ha_key_depth(c.key); }
 LdmCursor ldm_next(LdmCursor c) {
   ++c.age;
   return ha_seek(c);
+}
+void ldm_work_flush() {
+#if WORK_COUNTING
+  work_add(bytes_loaded_table, ha_probes_read * uint(HA_KEY_BITS / 8));
+  work_add(bytes_loaded_ha_offsets, ha_probes_read * 4u);  // o_a of each probed slot
+  ha_probes_read = 0u;
+#endif
+  work_add_tally(bytes_loaded_age_table, ha_age_table_bytes);
+  work_sample_flush(hash_probes, ha_hash_probes);
 }

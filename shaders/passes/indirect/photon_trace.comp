@@ -176,4 +176,5 @@ void main() {
   work_add(photons_traced, counts[PHOTON_COUNT_EMITTED]);
   work_add(photons_appended, counts[PHOTON_COUNT_APPENDS]);
   work_add(photons_stored, work_stored);
+  ldm_work_flush();
 }
