@@ -2,7 +2,8 @@
 # advise against an exhaustive sweep of the same space (issue 24's proof), one command:
 #   scripts/advise-vs-exhaustive.sh [OUT]        (default results/runs/advise-vs-exhaustive)
 # On the Cornell box, the atrium and the teapots (a real scene, scenes/teapots.json): the whole space of docs/measured/advise/space.json at a
-# normal run's precision, then `ldmbench advise` for two budgets each; the comparison
+# normal run's precision, measured twice (the second run shows how often the exhaustive method
+# agrees with itself), then `ldmbench advise` for two budgets each; the comparison
 # (recommendation on the exhaustive front, same answer, wall-time ratio) in
 # OUT/comparison.md. Resumable: a rerun keeps what finished. The small files (records,
 # results, reports; no images) are copied to docs/measured/advise/.
@@ -17,9 +18,12 @@ DOCS=docs/measured/advise
 for f in comparison.md comparison.json; do cp "$OUT/$f" "$DOCS/$f"; done
 for scene in cornell atrium teapots; do
   [ -d "$OUT/$scene" ] || continue
-  mkdir -p "$DOCS/$scene/exhaustive"
-  cp "$OUT/$scene/exhaustive/sweep.json" "$OUT/$scene/exhaustive/wall_s.txt" "$OUT/$scene/exhaustive/run/records.csv" \
-     "$DOCS/$scene/exhaustive/"
+  for run in exhaustive exhaustive-again; do
+    [ -f "$OUT/$scene/$run/run/records.csv" ] || continue
+    mkdir -p "$DOCS/$scene/$run"
+    cp "$OUT/$scene/$run/sweep.json" "$OUT/$scene/$run/wall_s.txt" "$OUT/$scene/$run/run/records.csv" \
+       "$DOCS/$scene/$run/"
+  done
   for advice in "$OUT/$scene"/advise-*; do
     [ -f "$advice/advice/result.json" ] || continue
     dest="$DOCS/$scene/$(basename "$advice")"

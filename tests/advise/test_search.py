@@ -293,6 +293,22 @@ class UncertainAtEveryLevel(unittest.TestCase):
         self.assertEqual(outcome.recommended, a.key)
         self.assertEqual(outcome.uncertain, [b.key])
 
+    def test_uncertain_candidates_whose_median_is_within_go_to_verification_first(self):
+        """b and d are better than a and both straddle the budget; b has the least error but
+        its median is over the budget, d's is under it: d is listed first, so the limited
+        verification measures the one likely to be found within before the one likely not."""
+        a, b, d = (Candidate("a-n8-r64", "a", 8, 64), Candidate("b-n8-r64", "b", 8, 64),
+                   Candidate("d-n8-r64", "d", 8, 64))
+        values = {"a": (10, 9, 11, 0.3), "b": (23, 18, 29, 0.1), "d": (20, 16, 24, 0.2)}
+
+        def measure(cands, level, stage):
+            return {x.key: Measurement(values[x.group][0], values[x.group][1], values[x.group][2],
+                                       values[x.group][3], 0.001, 100) for x in cands}
+
+        outcome = Search([a, b, d], Goal(budget_ms=22), 2, measure).run()
+        self.assertEqual(outcome.recommended, a.key)
+        self.assertEqual(outcome.uncertain, [d.key, b.key])
+
 
 class NoisyModels(unittest.TestCase):
     def test_noisy_measurements_find_a_tied_optimum(self):

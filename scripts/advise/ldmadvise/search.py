@@ -95,6 +95,11 @@ class Goal:
     def memory_fits(self, m):
         return self.budget_bytes is None or m.memory <= self.budget_bytes
 
+    def likely_within(self, m):
+        """The medians within every budget (the interval may still straddle one)."""
+        return (self.memory_fits(m) and (self.budget_ms is None or m.time <= self.budget_ms) and
+                (self.max_error is None or m.error <= self.max_error))
+
     def verdict(self, m):
         """yes: surely within every budget; no: surely outside one; maybe otherwise."""
         if not self.memory_fits(m):
@@ -434,7 +439,11 @@ class Search:
                      goal.verdict(s.measurement) == MAYBE and
                      (primary_tied(goal, s.measurement, best.measurement) or
                       primary_value(goal, s.measurement) < primary_value(goal, best.measurement))]
-        uncertain.sort(key=lambda k: rank_key(goal, self.states[k].measurement))
+        # Verified first (ldmbench_advise.py verifies the first few): those whose medians are
+        # within the budgets, best first; they are the ones a verification is likely to find
+        # surely within. Those whose median is over a budget come after.
+        uncertain.sort(key=lambda k: (not goal.likely_within(self.states[k].measurement),
+                                      rank_key(goal, self.states[k].measurement)))
         return Outcome(best.candidate.key, ties, [s.candidate.key for s in self.alive()], why, uncertain)
 
     def run(self, level=None):
