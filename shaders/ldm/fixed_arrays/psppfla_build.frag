@@ -43,23 +43,21 @@ void fa_count_insertion() {
 #define FA_COUNT(statement)
 #endif
 
-void main() {
-  LDM_SKIP_HELPER_INVOCATIONS;
+// One fragment's insertion, carried along the pixel's k entries by atomicMin. Its tally is
+// added once after it returns (fa_count_insertion() in main), not at the return inside the
+// loop, where a SIMD rasteriser would run the counting's atomics, masked, on every iteration.
+void psppfla_insert() {
   const uint pixel = ldm_fragment_pixel();
   const uint base = fa_entry(pixel, 0u);
   uint carried = ordered_depth_bits(v_depth);
   for (uint i = 0u; i < FA_K; ++i) {
     const uint previous = atomicMin(psppfla_entries[base + i], carried);
     FA_COUNT(++fa_walked);
-    if (previous == FA_EMPTY) {  // the entry was free: the carried value now sits there
-      FA_COUNT(fa_count_insertion());
-      return;
-    }
+    if (previous == FA_EMPTY) return;  // the entry was free: the carried value now sits there
     FA_COUNT(fa_shifted += previous > carried ? 1u : 0u);
     carried = max(previous, carried);
   }
   atomicCounterIncrement(dropped_fragments);
-  FA_COUNT(fa_count_insertion());
   work_add(fragments_dropped, 1u);
   work_add(atomic_add, 1u);
 #if FA_TRACK_OVERFLOW
@@ -68,4 +66,10 @@ void main() {
   work_add(bytes_loaded_overflow_counts, 4u);
   work_add(bytes_stored_overflow_counts, 4u);
 #endif
+}
+
+void main() {
+  LDM_SKIP_HELPER_INVOCATIONS;
+  psppfla_insert();
+  FA_COUNT(fa_count_insertion());
 }

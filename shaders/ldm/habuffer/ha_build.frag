@@ -22,7 +22,9 @@
 //
 // Work counted in the counting replay (HaBuffer::work_counters(); arrival-dependent but the
 // tickets: an insertion's chain depends on what arrived before it): per fragment, tallied in locals and
-// added once when its insertion ends (ha_count_insertion()).
+// added once when its insertion ends (ha_count_insertion(), after ha_insert() returns: not
+// at the returns inside its loop, where a SIMD rasteriser would run the counting's atomics,
+// masked, on every iteration).
 #if HA_KEY_BITS == 64
 #extension GL_ARB_gpu_shader_int64 : require
 #extension GL_NV_shader_atomic_int64 : require
@@ -78,14 +80,11 @@ void ha_count_insertion() {
 #define HA_INSERTION_ENDS()
 #endif
 
-void main() {
-  LDM_SKIP_HELPER_INVOCATIONS;
+// One fragment's insertion: placed, evicting along its chain, or dropped.
+void ha_insert() {
 #if HA_STOP_WHEN_FULL
   HA_COUNT(++ha_tickets);
-  if (atomicCounterIncrement(attempted) >= HA_STOP_TICKET) {
-    HA_INSERTION_ENDS();
-    return;
-  }
+  if (atomicCounterIncrement(attempted) >= HA_STOP_TICKET) return;
 #endif
   uint pixel = ldm_fragment_pixel();
   uint age = 0u;
@@ -99,10 +98,7 @@ void main() {
     if (previous < key) {
       atomicMax(ha_age_counts[pixel], age + 1u);
       HA_COUNT(++ha_age_raises);
-      if (previous == HA_EMPTY_KEY) {
-        HA_INSERTION_ENDS();
-        return;
-      }
+      if (previous == HA_EMPTY_KEY) return;
       HA_COUNT(++ha_evictions);
       key = previous;
       age = ha_key_age(previous);
@@ -111,7 +107,6 @@ void main() {
     if (age == HA_MAX_AGE) {
       atomicCounterIncrement(dropped_max_age);
       HA_COUNT(++ha_losses);
-      HA_INSERTION_ENDS();
       return;
     }
     ++age;
@@ -120,5 +115,10 @@ void main() {
   }
   atomicCounterIncrement(aborted_insertions);
   HA_COUNT(++ha_losses);
+}
+
+void main() {
+  LDM_SKIP_HELPER_INVOCATIONS;
+  ha_insert();
   HA_INSERTION_ENDS();
 }

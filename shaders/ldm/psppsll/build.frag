@@ -35,12 +35,15 @@ layout(binding = LDM_COUNTER_BINDING, offset = 4) uniform atomic_uint lost_count
 #endif
 
 #if WORK_COUNTING
+bool work_allocated = false;  // the insertion got a node (its tally is flushed)
 uint work_steps = 0u, work_cas = 0u, work_cas_failed = 0u;
 uint work_node_loads = 0u;  // walk reads of nodes (a depth or a next index)
 uint work_links = 0u;       // writes of the new node's next index
 #define PSPPSLL_COUNT(statement) statement
-// The insertion's tally, added once: before every return past the allocation.
+// The insertion's tally, added once after psppsll_insert() returns (not at the returns inside
+// its loop, where a SIMD rasteriser would run these atomics, masked, on every iteration).
 void psppsll_work_flush() {
+  if (!work_allocated) return;
   work_add(atomic_add, 1u);
   work_add(bytes_loaded_heads, 4u);
   work_add(bytes_stored_nodes, 4u + 4u * min(work_links, 1u));
@@ -56,14 +59,15 @@ void psppsll_work_flush() {
 #define PSPPSLL_FLUSH()
 #endif
 
-void main() {
-  LDM_SKIP_HELPER_INVOCATIONS;
+// One fragment's insertion: a node allocated and linked in depth order, or lost.
+void psppsll_insert() {
   const uint pixel = ldm_fragment_pixel();
   const uint node = atomicCounterIncrement(node_counter) + 1u;
   if (node > LDM_NODE_CAPACITY) {
     work_add(atomic_add, 1u);
     return;
   }
+  PSPPSLL_COUNT(work_allocated = true);
   const float depth = v_depth;
   const uint node_slot = list_next_slot(node);
   data[list_depth_slot(node)] = floatBitsToUint(depth);
@@ -80,10 +84,7 @@ void main() {
       memoryBarrier();
       const uint seen = atomicCompSwap(data[previous_slot], current, node);
       PSPPSLL_COUNT(++work_cas);
-      if (seen == current) {
-        PSPPSLL_FLUSH();
-        return;
-      }
+      if (seen == current) return;
       // Another invocation inserted here first: continue from its node. Acquire: its depth
       // and next index were written before its compare-and-swap published it (the barrier
       // above, on its side); this barrier keeps our reads of them after our atomic.
@@ -99,5 +100,10 @@ void main() {
   }
   atomicCounterIncrement(lost_counter);
   work_add(atomic_add, 1u);  // the lost counter's increment
+}
+
+void main() {
+  LDM_SKIP_HELPER_INVOCATIONS;
+  psppsll_insert();
   PSPPSLL_FLUSH();
 }
