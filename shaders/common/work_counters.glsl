@@ -54,30 +54,54 @@ void work_sample_at(uint slot, uint value) {
 //   WORK_TALLY(var)                       a total's tally
 //   work_tally(var, n)                    adds n to it
 //   work_add_tally(name, var)             adds it to the total `name` and clears it
-//   WORK_SAMPLE_TALLY(var)                a distribution's tally: its values 0 to 3, counted
-//   work_sample_tally(var, name, value)   one value (4 or more: sampled at once)
+//   WORK_SAMPLE_TALLY(var)                a distribution's tally: its values 0 to 3 counted,
+//                                         and the sum and max of its large values
+//   work_sample_tally(var, name, value)   one value (4 to 255: its bin's atomic at once;
+//                                         larger: the bin's atomic, the sum and max tallied)
 //   work_sample_flush(name, var)          adds the tallied values to `name` and clears it
 #define WORK_TALLY(var) uint var = 0u;
 #define work_tally(var, n) (var += uint(n))
 #define work_add_tally(name, var) (work_add_at(uint(WORK_##name), var), var = 0u)
-#define WORK_SAMPLE_TALLY(var) uvec4 var = uvec4(0u);
+#define WORK_SAMPLE_TALLY(var) WorkSampleTally var = work_sample_tally_zero();
 #define work_sample_tally(var, name, value) work_sample_tally_at(var, uint(WORK_##name), uint(value))
-#define work_sample_flush(name, var) (work_sample_flush_at(uint(WORK_##name), var), var = uvec4(0u))
+#define work_sample_flush(name, var) (work_sample_flush_at(uint(WORK_##name), var), var = work_sample_tally_zero())
 
-void work_sample_tally_at(inout uvec4 tally, uint slot, uint value) {
-  if (value == 0u) tally.x += 1u;
-  else if (value == 1u) tally.y += 1u;
-  else if (value == 2u) tally.z += 1u;
-  else if (value == 3u) tally.w += 1u;
-  else work_sample_at(slot, value);
+struct WorkSampleTally {
+  uvec4 small;          // how many values 0, 1, 2 and 3
+  uint sum_lo, sum_hi;  // the sum of the values of WORK_EXACT_BINS or more
+  uint large_max;       // and their max
+};
+
+WorkSampleTally work_sample_tally_zero() { return WorkSampleTally(uvec4(0u), 0u, 0u, 0u); }
+
+void work_sample_tally_at(inout WorkSampleTally tally, uint slot, uint value) {
+  if (value == 0u) tally.small.x += 1u;
+  else if (value == 1u) tally.small.y += 1u;
+  else if (value == 2u) tally.small.z += 1u;
+  else if (value == 3u) tally.small.w += 1u;
+  else {
+    atomicAdd(work_words[slot + uint(WORK_DISTRIBUTION_HEADER) + work_bin(value)], 1u);
+    if (value >= uint(WORK_EXACT_BINS)) {
+      uint carry;
+      tally.sum_lo = uaddCarry(tally.sum_lo, value, carry);
+      tally.sum_hi += carry;
+      tally.large_max = max(tally.large_max, value);
+    }
+  }
 }
 
-void work_sample_flush_at(uint slot, uvec4 tally) {
+void work_sample_flush_at(uint slot, WorkSampleTally tally) {
   const uint bins = slot + uint(WORK_DISTRIBUTION_HEADER);  // values below 4 are exact bins
-  if (tally.x != 0u) atomicAdd(work_words[bins], tally.x);
-  if (tally.y != 0u) atomicAdd(work_words[bins + 1u], tally.y);
-  if (tally.z != 0u) atomicAdd(work_words[bins + 2u], tally.z);
-  if (tally.w != 0u) atomicAdd(work_words[bins + 3u], tally.w);
+  if (tally.small.x != 0u) atomicAdd(work_words[bins], tally.small.x);
+  if (tally.small.y != 0u) atomicAdd(work_words[bins + 1u], tally.small.y);
+  if (tally.small.z != 0u) atomicAdd(work_words[bins + 2u], tally.small.z);
+  if (tally.small.w != 0u) atomicAdd(work_words[bins + 3u], tally.small.w);
+  if (tally.large_max != 0u) {  // the header: the large values' sum (2 words) and max
+    const uint before = atomicAdd(work_words[slot], tally.sum_lo);
+    const uint carry = before > 0xFFFFFFFFu - tally.sum_lo ? 1u : 0u;
+    if (tally.sum_hi + carry != 0u) atomicAdd(work_words[slot + 1u], tally.sum_hi + carry);
+    atomicMax(work_words[slot + 2u], tally.large_max);
+  }
 }
 // Code that only counting needs (a local tally): compiled only in the counting variant.
 #define WORK_COUNTING 1

@@ -37,6 +37,10 @@ vec2 ao_contribution(uint view_index, vec3 x, vec3 n) {
   return vec2(visibility(cos_theta > 0.0 ? hits.ahead : hits.behind) * weight, weight);
 }
 
+// One value per direction traced, tallied and added once per pixel (work_counters.glsl).
+WORK_SAMPLE_TALLY(ao_entries_read)
+WORK_SAMPLE_TALLY(ao_trace_steps)
+
 void main() {
   const ivec2 pixel = ivec2(gl_FragCoord.xy);
   const vec4 position = texelFetch(gbuffer_position, pixel, 0);
@@ -52,10 +56,12 @@ void main() {
     const uint entries_before = ldm_walk_steps;
     sum += ao_contribution(v, position.xyz, n);
     trace_steps_max(v, trace_steps_so_far() - before);
-    work_sample(entries_read, ldm_walk_steps - entries_before);
-    work_sample(trace_steps, trace_steps_so_far() - before);
+    work_sample_tally(ao_entries_read, entries_read, ldm_walk_steps - entries_before);
+    work_sample_tally(ao_trace_steps, trace_steps, trace_steps_so_far() - before);
   }
   trace_steps_max(LDM_VIEW_COUNT, trace_steps_so_far() + LDM_VIEW_COUNT);
+  work_sample_flush(entries_read, ao_entries_read);
+  work_sample_flush(trace_steps, ao_trace_steps);
   ldm_work_flush();
 #if AO_NORMALIZED
   out_ao = sum.y > 0.0 ? sum.x / sum.y : 1.0;

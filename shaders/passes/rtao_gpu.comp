@@ -69,6 +69,11 @@ float visibility(bool found, float t) {
 #endif
 }
 
+// One value per ray, tallied and added once per pixel (the sample sits in the traversal
+// loop, whose every step a SIMD device runs it on, masked; work_counters.glsl).
+WORK_SAMPLE_TALLY(rtao_nodes)
+WORK_SAMPLE_TALLY(rtao_triangles)
+
 void main() {
   const ivec2 size = imageSize(ao_image);
   const ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
@@ -125,8 +130,8 @@ void main() {
           total += partial;
           partial = 0.0;
         }
-        work_sample(nodes, trace_nodes);
-        work_sample(triangles, trace_triangles);
+        work_sample_tally(rtao_nodes, nodes, trace_nodes);
+        work_sample_tally(rtao_triangles, triangles, trace_triangles);
 #if RTAO_GPU_COUNT
         pixel_nodes += trace_nodes;
         pixel_triangles += trace_triangles;
@@ -144,6 +149,8 @@ void main() {
   }
   total += partial;
   work_add(rays, RTAO_GPU_SPP);
+  work_sample_flush(nodes, rtao_nodes);
+  work_sample_flush(triangles, rtao_triangles);
   imageStore(ao_image, pixel, vec4(total / float(RTAO_GPU_SPP)));
 #if RTAO_GPU_COUNT
   count_pixel[pixel.y * size.x + pixel.x] = uvec2(pixel_nodes, pixel_triangles);

@@ -105,6 +105,10 @@ uint emit_secondary(uint texel_index, uint view, bool ahead, vec3 x1, vec3 n1, v
   return PHOTON_TALLY_STORED;
 }
 
+// One value per secondary photon traced, tallied and added once per invocation.
+WORK_SAMPLE_TALLY(photon_trace_steps)
+WORK_SAMPLE_TALLY(photon_entries_read)
+
 void main() {
   const ivec2 texel = ivec2(gl_GlobalInvocationID.xy);
   if (any(greaterThanEqual(texel, ivec2(light_resolution)))) return;
@@ -158,8 +162,8 @@ void main() {
         const uint where = emit_secondary(texel_index, view, cos_o > 0.0, x1, n1, d1, primary, flux);
         fate[where] += flux;
         trace_steps_max(view, trace_steps_so_far() - before);
-        work_sample(trace_steps, trace_steps_so_far() - before);
-        work_sample(entries_read, ldm_walk_steps - entries_before);
+        work_sample_tally(photon_trace_steps, trace_steps, trace_steps_so_far() - before);
+        work_sample_tally(photon_entries_read, entries_read, ldm_walk_steps - entries_before);
       }
       // The view loop's iterations (twice with the normaliser's loop) beside the walks'.
       trace_steps_max(LDM_VIEW_COUNT,
@@ -176,5 +180,7 @@ void main() {
   work_add(photons_traced, counts[PHOTON_COUNT_EMITTED]);
   work_add(photons_appended, counts[PHOTON_COUNT_APPENDS]);
   work_add(photons_stored, work_stored);
+  work_sample_flush(trace_steps, photon_trace_steps);
+  work_sample_flush(entries_read, photon_entries_read);
   ldm_work_flush();
 }
