@@ -11,11 +11,15 @@ like a sweep: every shard skips what it recorded. Under Slurm the journal keeps 
 submission's job ids; a rerun while they are still queued or running waits for them
 (reattaches) instead of submitting the stage twice.
 """
-import csv
 import json
 import os
 import subprocess
+import sys
 import time
+
+# The one records reader (scripts/ldmrecords, installed beside the advise folder).
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
+import ldmrecords  # noqa: E402
 
 SWEEP_FINISHED = (0, 3)  # ok; finished with some records failed (those are pruned)
 
@@ -28,8 +32,7 @@ def complete(records_csv, keys):
     """Whether records_csv holds every key (a config_id column)."""
     if not os.path.isfile(records_csv):
         return False
-    with open(records_csv, newline="", encoding="utf-8") as f:
-        have = {row.get("config_id") for row in csv.DictReader(f)}
+    have = ldmrecords.by_config_id(records_csv)
     return all(k in have for k in keys)
 
 

@@ -1,10 +1,10 @@
 """Measuring candidates: each stage is an ordinary sweep file run by `ldmbench sweep` into
 its own folder under OUT/stages/ (resumable like any sweep: a rerun of advise regenerates
 the same file and the sweep skips what it recorded), read back from its records.csv."""
-import csv
 import json
 import math
 import os
+import sys
 import time
 
 from .launch import LaunchError
@@ -36,12 +36,12 @@ class MeasureError(Exception):
     pass
 
 
-def number(row, column):
-    try:
-        v = float(row.get(column, ""))
-    except ValueError:
-        return math.nan
-    return v
+# The one records reader (scripts/ldmrecords, installed beside the advise folder).
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
+import ldmrecords  # noqa: E402
+
+# A column's value as a float, NaN where absent or not a number.
+number = ldmrecords.value
 
 
 def measurement_of(row, metric):
@@ -69,9 +69,7 @@ def measurement_of(row, metric):
                        max_depth=int(depth) if math.isfinite(depth) else None)
 
 
-def read_records(path):
-    with open(path, newline="", encoding="utf-8") as f:
-        return {row["config_id"]: row for row in csv.DictReader(f)}
+read_records = ldmrecords.by_config_id
 
 
 class StageRunner:

@@ -7,16 +7,17 @@ paths, which records store relative to their run folder, still resolve when the 
 moved together).
 """
 import csv
-import json
 import os
+import sys
+
+# The one records reader (scripts/ldmrecords, installed beside the report folder).
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
+import ldmrecords  # noqa: E402
+from ldmrecords import (REQUIRED_COLUMNS, InputError, format_double, json_value_text,  # noqa: E402,F401
+                        records_file_of, run_metadata)
 
 RUN_COLUMN = "run"
 RUN_DIR_COLUMN = "run_dir"
-REQUIRED_COLUMNS = ("config_id", "status")
-
-
-class InputError(Exception):
-    """A RUN argument or tidy CSV that cannot be used; the message names the path."""
 
 
 class Run:
@@ -28,95 +29,8 @@ class Run:
         self.columns, self.rows, self.metadata = columns, rows, metadata
 
 
-def records_file_of(path):
-    """The records file a RUN argument names: a run folder's records.csv (else its
-    records.json), or a records .csv / .json file itself."""
-    if os.path.isdir(path):
-        for name in ("records.csv", "records.json"):
-            candidate = os.path.join(path, name)
-            if os.path.isfile(candidate):
-                return candidate
-        raise InputError(f"{path}: a folder without records.csv or records.json "
-                         "(expected an ldmbench run folder)")
-    if not os.path.exists(path):
-        raise InputError(f"{path}: no such file or folder")
-    if not path.endswith((".csv", ".json")):
-        raise InputError(f"{path}: expected a run folder, a records.csv or a records.json")
-    return path
-
-
-def json_value_text(value):
-    """A records.json value as records.csv writes it (null is a non-finite number there)."""
-    if value is None:
-        return "nan"
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, float):
-        return format_double(value)
-    return str(value)
-
-
-def format_double(x):
-    """As ldmbench's format_double: the shortest %.Ng (N >= 6) that reads back to x."""
-    if x != x:
-        return "nan"
-    if x in (float("inf"), float("-inf")):
-        return "inf" if x > 0 else "-inf"
-    for precision in range(6, 18):
-        text = "%.*g" % (precision, x)
-        if float(text) == x:
-            return text
-    return text
-
-
-def read_csv_records(path):
-    try:
-        with open(path, newline="") as f:
-            lines = list(csv.reader(f))
-    except (OSError, UnicodeDecodeError, csv.Error) as e:
-        raise InputError(f"{path}: cannot read: {e}")
-    if not lines:
-        raise InputError(f"{path}: empty (expected ldmbench records with a header line)")
-    header = lines[0]
-    missing = [c for c in REQUIRED_COLUMNS if c not in header]
-    if missing:
-        raise InputError(f"{path}: not ldmbench records (no column {', '.join(missing)})")
-    rows = []
-    for number, line in enumerate(lines[1:], start=2):
-        if len(line) != len(header):
-            raise InputError(f"{path}:{number}: {len(line)} fields, the header has {len(header)}")
-        rows.append(dict(zip(header, line)))
-    return header, rows
-
-
-def read_json_records(path):
-    try:
-        with open(path) as f:
-            root = json.load(f)
-    except (OSError, UnicodeDecodeError, ValueError) as e:
-        raise InputError(f"{path}: not JSON: {e}")
-    if not isinstance(root, dict) or not isinstance(root.get("records"), list):
-        raise InputError(f"{path}: not an ldmbench records.json (no \"records\" array)")
-    columns, rows = [], []
-    for i, record in enumerate(root["records"]):
-        if not isinstance(record, dict) or not all(c in record for c in REQUIRED_COLUMNS):
-            raise InputError(f"{path}: record {i} has no {' or '.join(REQUIRED_COLUMNS)}")
-        for key in record:
-            if key not in columns:
-                columns.append(key)
-        rows.append({k: json_value_text(v) for k, v in record.items()})
-    return columns, rows, root.get("run", {}) if isinstance(root.get("run"), dict) else {}
-
-
-def run_metadata(folder):
-    """The `run` object of a folder's records.json (device, command, ...), if there is one."""
-    path = os.path.join(folder, "records.json")
-    try:
-        with open(path) as f:
-            run = json.load(f).get("run", {})
-        return run if isinstance(run, dict) else {}
-    except (OSError, ValueError, AttributeError):
-        return {}
+read_csv_records = ldmrecords.read_csv_table
+read_json_records = ldmrecords.read_json_table
 
 
 def read_run(path):
