@@ -6,7 +6,7 @@
 
 #include "harness/app/measurement.h"
 #include "harness/app/timing_columns.h"
-#include "harness/compare/samples.h"
+#include "harness/measure/frame_samples.h"
 #include "harness/records/harness_columns.h"
 #include "harness/util/error.h"
 

@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <ctime>
 #include <filesystem>
+#include <functional>
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -30,6 +31,7 @@
 #include "harness/records/record.h"
 #include "harness/records/run_folder.h"
 #include "harness/records/run_lock.h"
+#include "harness/records/run_records_writer.h"
 #include "harness/reference/reference_cache.h"
 #include "harness/scene/scene_loader.h"
 #include "harness/util/error.h"
@@ -453,51 +455,22 @@ std::map<std::string, size_t> recorded_repetitions(const std::string& out_dir, s
   return out;
 }
 
-int run_configurations(const ConfigurationRun& job, const std::string& command_line, std::ostream& log) {
-  const std::string out_dir = default_out_dir(job.out_dir);
-  // Two configurations of one id would be measured twice and journaled as one (-N 4,4).
+namespace {
+
+// Two configurations of one id would be measured twice and journaled as one (-N 4,4).
+void check_distinct_ids(const std::vector<PlannedConfiguration>& configurations) {
   std::map<std::string, size_t> seen;
-  for (size_t k = 0; k < job.configurations.size(); ++k) {
-    const auto [it, fresh] = seen.emplace(job.configurations[k].config.id(), k);
+  for (size_t k = 0; k < configurations.size(); ++k) {
+    const auto [it, fresh] = seen.emplace(configurations[k].config.id(), k);
     if (!fresh)
       throw UserError("configurations " + std::to_string(it->second + 1) + " and " + std::to_string(k + 1) +
                       " are the same, " + it->first + " (a value given twice?)");
   }
-  // One writer per folder, from before it is read to the end (records/run_lock.h).
-  const RunFolderLock lock(out_dir, command_line, log);
-  if (job.isolation == RepetitionIsolation::Process && job.step.empty())
-    return drive_repetition_processes(job, command_line, out_dir, log);
-  const RunFolderPlan plan = plan_run_folder(out_dir, job.sweep_key, job.overwrite);
-  const size_t repetitions = size_t(std::max(1, job.repetitions));
-  // A step (one repetition, in a child) says only what it measured: its parent has the rest.
-  const bool stepping = !job.step.empty();
-  std::ostringstream discarded;
-  std::ostream& detail = stepping ? discarded : log;
-  if (stepping && std::none_of(job.configurations.begin(), job.configurations.end(),
-                               [&](const PlannedConfiguration& p) { return p.config.id() == job.step; }))
-    throw UserError("--step " + job.step + ": no such configuration in this sweep");
+}
 
-  auto context = HeadlessContext::create(job.context);
-  const DeviceInfo device = context->device();
-  detail << "device: " << device.gl_renderer << " (" << device.gl_version << ", EGL "
-         << device.egl_platform << "; " << device.device_choice << ")\n";
-  // The run-to-run spread that widens every record's interval (harness/app/calibration.h).
-  const ResolvedCalibration calibration = resolve_calibration(job.calibration, device, detail);
-  const RunToRunSpread* spread = calibration.spread ? &*calibration.spread : nullptr;
-  detail << "time intervals: " << (spread ? "widened by the run-to-run spread, " : "") << calibration.source << "\n";
-
-  const MeasurementPaths paths{out_dir, (std::filesystem::path(out_dir) / "images").string()};
-  prepare_run_folder(out_dir, plan);
-  const std::string csv_path = (std::filesystem::path(out_dir) / "records.csv").string();
-  const std::string json_path = (std::filesystem::path(out_dir) / "records.json").string();
-  RecordJournal journal((std::filesystem::path(out_dir) / kJournalFile).string());
-  install_stop_handlers();
-
-  FolderProgress state = folder_progress(plan.previous, job.redo_failed, out_dir);
-  std::vector<Record>& records = state.records;
-  std::set<std::string>& finished = state.finished;
-  std::map<std::string, std::vector<Record>>& partial = state.partial;
-
+// The run entry of the journal: what measured, on what, how.
+Record run_entry(const ConfigurationRun& job, const std::string& command_line, const DeviceInfo& device,
+                 size_t repetitions, const FolderProgress& state) {
   Record run;
   run.set("command", command_line);
   run.set("sweep_key", job.sweep_key);
@@ -513,273 +486,323 @@ int run_configurations(const ConfigurationRun& job, const std::string& command_l
   run.set("schema_always_written", always_written_columns_text());
   run.set("repetitions", uint64_t(repetitions));
   run.set("isolation", repetition_isolation_name(job.isolation));
-  run.set("resumed_records", uint64_t(records.size()));
+  run.set("resumed_records", uint64_t(state.records.size()));
   if (state.partial_repetitions) run.set("resumed_repetitions", uint64_t(state.partial_repetitions));
   for (const auto& [key, value] : job.metadata.fields()) run.put(key, value);
-  journal.append_run(run);
-  if (!plan.previous.records.empty() || state.partial_repetitions) {
-    detail << "resuming: " << records.size() << " configuration(s) already recorded in "
-           << out_dir << "/" << kJournalFile;
-    if (state.partial_repetitions)
-      detail << ", " << state.partial_repetitions << " repetition(s) of unfinished ones";
-    if (!state.redone.empty()) detail << " (" << state.redone.size() << " failed one(s) to redo)";
-    detail << "\n";
-    write_records(csv_path, json_path, records, run);  // re-derived: consistent after any kill
-  }
+  return run;
+}
 
-  const auto& configurations = job.configurations;
+// "resuming: ..." of a folder that holds records or repetitions already.
+void print_resume(const FolderProgress& state, const std::string& out_dir, std::ostream& detail) {
+  detail << "resuming: " << state.records.size() << " configuration(s) already recorded in " << out_dir << "/"
+         << kJournalFile;
+  if (state.partial_repetitions) detail << ", " << state.partial_repetitions << " repetition(s) of unfinished ones";
+  if (!state.redone.empty()) detail << " (" << state.redone.size() << " failed one(s) to redo)";
+  detail << "\n";
+}
+
+// "[3/12] ID (repetition 2/5) ... ": the start of a configuration's progress line.
+std::string progress_prefix(size_t i, size_t count, const std::string& id, const Repetition& repetition) {
+  std::ostringstream prefix;
+  prefix << "[" << i + 1 << "/" << count << "] " << id;
+  if (repetition.count > 1) prefix << " (repetition " << repetition.index + 1 << "/" << repetition.count << ")";
+  prefix << " ... ";
+  return prefix.str();
+}
+
+// The record of a configuration that failed: it keeps no file, its record says why, and
+// names none (the images of its first repetition neither, when a later one fails).
+Record failed_record(const PlannedConfiguration& planned, const DeviceInfo& device, const Repetition& repetition,
+                     const std::exception& e) {
+  Record record = measurement_record();
+  describe_configuration(record, planned.config, planned.settings, device);
+  record.set(columns::kStatus, "failed");
+  std::ostringstream why;
+  if (repetition.count > 1) why << "repetition " << repetition.index + 1 << ": ";
+  why << e.what();
+  record.set(columns::kStatusDetail, why.str());
+  return record;
+}
+
+// The measuring of one process (`ldmbench run`, or one --step of it): round robin over the
+// configurations, each repetition recorded through the run's RunRecordsWriter, the
+// repetitions of a configuration combined into its record after the last.
+class ConfigurationLoop {
+ public:
+  ConfigurationLoop(const ConfigurationRun& job, const std::string& out_dir, std::ostream& log)
+      : job_(job), out_dir_(out_dir), log_(log), repetitions_(size_t(std::max(1, job.repetitions))),
+        stepping_(!job.step.empty()), detail_(stepping_ ? discarded_ : log) {}
+
+  int run(const std::string& command_line);
+
+ private:
+  // What a measured repetition came to.
+  struct Outcome {
+    Record record;
+    bool failed = false;
+    std::vector<std::string> written;  // every file this configuration wrote
+  };
+
+  void open_context_and_calibration();
+  void start_records(const RunFolderPlan& plan, const std::string& command_line);
+  size_t repetitions_to_measure();
+  bool skipped(const std::string& id) const { return writer_->finished(id) || (stepping_ && id != job_.step); }
+  [[noreturn]] void stop_for_io(const IoError& e, const std::string& id, const std::vector<std::string>& written);
+  void combine(const std::string& id, const std::vector<Record>& reps, const RunSettings& settings);
+  void combine_journaled_repetitions();
+  void measure_round(size_t round);
+  // Measures repetition `round` of configuration i; false when the run is to stop.
+  bool measure_one(size_t i, size_t round, bool& context_used);
+  // Measures it; nullopt when a signal abandoned it (interrupted_by_ set).
+  std::optional<Outcome> measure(const PlannedConfiguration& planned, const Repetition& repetition,
+                                 const std::function<void()>& begin_line);
+  void record_outcome(const PlannedConfiguration& planned, const Repetition& repetition, Outcome outcome);
+
+  const ConfigurationRun& job_;
+  const std::string out_dir_;
+  std::ostream& log_;
+  const size_t repetitions_;
+  // A step (one repetition, in a child) says only what it measured: its parent has the rest.
+  const bool stepping_;
+  std::ostringstream discarded_;
+  std::ostream& detail_;
+
+  std::unique_ptr<HeadlessContext> context_;
+  DeviceInfo device_;
+  ResolvedCalibration calibration_;
+  const RunToRunSpread* spread_ = nullptr;
+  MeasurementPaths paths_;
+  FolderProgress state_;
+  std::optional<RunRecordsWriter> writer_;
+  std::optional<SweepProgress> progress_;
+  HarnessCost cost_;
+  int interrupted_by_ = 0;
+  bool stepped_ = false;  // a step measures one repetition, then stops
+};
+
+void ConfigurationLoop::open_context_and_calibration() {
+  context_ = HeadlessContext::create(job_.context);
+  device_ = context_->device();
+  detail_ << "device: " << device_.gl_renderer << " (" << device_.gl_version << ", EGL " << device_.egl_platform
+          << "; " << device_.device_choice << ")\n";
+  // The run-to-run spread that widens every record's interval (harness/app/calibration.h).
+  calibration_ = resolve_calibration(job_.calibration, device_, detail_);
+  spread_ = calibration_.spread ? &*calibration_.spread : nullptr;
+  detail_ << "time intervals: " << (spread_ ? "widened by the run-to-run spread, " : "") << calibration_.source
+          << "\n";
+}
+
+void ConfigurationLoop::start_records(const RunFolderPlan& plan, const std::string& command_line) {
+  paths_ = MeasurementPaths{out_dir_, (std::filesystem::path(out_dir_) / "images").string()};
+  prepare_run_folder(out_dir_, plan);
+  state_ = folder_progress(plan.previous, job_.redo_failed, out_dir_);
+  const Record run = run_entry(job_, command_line, device_, repetitions_, state_);
+  writer_.emplace(out_dir_, state_.records, state_.finished, [] { return timestamp("%Y-%m-%dT%H:%M:%S%z"); });
+  install_stop_handlers();
+  writer_->start_run(run);
+  if (!plan.previous.records.empty() || state_.partial_repetitions) {
+    print_resume(state_, out_dir_, detail_);
+    writer_->write_tables();  // re-derived: consistent after any kill
+  }
+}
+
+size_t ConfigurationLoop::repetitions_to_measure() {
   size_t to_measure = 0;
-  for (const auto& planned : configurations)
-    if (!finished.count(planned.config.id()))
-      to_measure += repetitions - std::min(repetitions, partial[planned.config.id()].size());
-  SweepProgress progress(to_measure, SweepProgress::stderr_if_terminal());
-  int interrupted_by = 0;
+  for (const auto& planned : job_.configurations)
+    if (!writer_->finished(planned.config.id()))
+      to_measure += repetitions_ - std::min(repetitions_, state_.partial[planned.config.id()].size());
+  return to_measure;
+}
 
-  // Tables that cannot be brought in line with the journal are removed (unlinking frees
-  // space, so a full disk allows it): a folder with its journal and no tables is
-  // consistent, and the next run into it (or `ldmbench merge`) writes them from the journal.
-  auto drop_tables = [&] {
-    std::error_code ignored;
-    std::filesystem::remove(csv_path, ignored);
-    std::filesystem::remove(json_path, ignored);
-  };
-  // Whether the entry whose append (or the tables after it) failed stayed whole in the
-  // journal: the failure could not be taken back (a disk that stays full refuses even the
-  // cut). It then counts, like any journaled entry, and its files stay; the tables follow
-  // at the next run, which derives them from the journal.
-  bool kept_in_journal = false;
-  auto journal_holds = [&](off_t before, off_t length) {
-    off_t now = before;
-    try {
-      now = journal.size();
-    } catch (const IoError&) {
-    }
-    return now == before + length;
-  };
-  // The record of a finished configuration: journaled (durable before the tables change),
-  // in the tables (a redone configuration takes its failed record's place). When the tables
-  // cannot be written (a full disk), the journal is cut back and the tables rewritten as
-  // they were, so that the folder stays in its state before this record; the IoError goes on.
-  auto finish = [&](const Record& record) {
-    const std::string id = config_id_of(record);
-    const off_t before = journal.size();
-    const off_t length = off_t(journal_line("record", record).size());
-    const auto same = std::find_if(records.begin(), records.end(),
-                                   [&](const Record& r) { return config_id_of(r) == id; });
-    const size_t index = size_t(same - records.begin());
-    const bool redone = same != records.end();
-    std::optional<Record> replaced;  // the (failed) record this one takes the place of
-    auto apply = [&] {
-      if (redone) {
-        replaced = records[index];
-        records[index] = record;
-      } else {
-        records.push_back(record);
-      }
-    };
-    bool appended = false;
-    try {
-      journal.append_record(record);  // on failure it takes its line back itself
-      appended = true;
-      apply();
-      run.set("finished", timestamp("%Y-%m-%dT%H:%M:%S%z"));
-      write_records(csv_path, json_path, records, run);
-    } catch (const IoError&) {
-      if (appended) {
-        try {
-          journal.truncate(before);
-        } catch (const IoError&) {
-        }
-      }
-      if (journal_holds(before, length)) {
-        if (!appended) apply();
-        finished.insert(id);
-        kept_in_journal = true;
-        drop_tables();  // they lag the journal now; the next run writes them from it
-        throw;
-      }
-      if (appended) {
-        if (redone)
-          records[index] = *replaced;
-        else
-          records.pop_back();
-        try {
-          write_records(csv_path, json_path, records, run);
-        } catch (const IoError&) {
-          drop_tables();  // the disk refuses even that (one table may be a record ahead)
-        }
-      }
-      throw;
-    }
-    finished.insert(id);
-  };
-  auto append_repetition = [&](const Record& repetition) {
-    const off_t before = journal.size();
-    const off_t length = off_t(journal_line("repetition", repetition).size());
-    try {
-      journal.append_repetition(repetition);
-    } catch (const IoError&) {
-      kept_in_journal = journal_holds(before, length);
-      throw;
-    }
-  };
-  // An I/O failure (a full disk) stops the run: the configuration in flight leaves nothing
-  // (its files removed, no record; a resume measures it again), what is recorded stays
-  // consistent, and the error says so (exit kExitIoError).
-  auto stop_for_io = [&](const IoError& e, const std::string& id, const std::vector<std::string>& written) {
-    if (!kept_in_journal) remove_files(written);
-    progress.erase();
-    std::string what = std::string(e.what()) + "\n  the run stopped";
-    if (!id.empty())
-      what += kept_in_journal ? "; " + id + " is in the journal, and the tables follow it at the next run"
-                              : "; " + id + " was abandoned (none of its files kept)";
-    throw IoError(what + "; " + std::to_string(records.size()) + " of " + std::to_string(configurations.size()) +
-                      " configurations are recorded in " + out_dir +
-                      "; once the cause is fixed, run the same command again to measure the rest",
-                  e.error_number());
-  };
+// An I/O failure (a full disk) stops the run: the configuration in flight leaves nothing
+// (its files removed, no record; a resume measures it again), what is recorded stays
+// consistent, and the error says so (exit kExitIoError).
+void ConfigurationLoop::stop_for_io(const IoError& e, const std::string& id, const std::vector<std::string>& written) {
+  const bool kept = writer_->kept_in_journal();
+  if (!kept) remove_files(written);
+  progress_->erase();
+  std::string what = std::string(e.what()) + "\n  the run stopped";
+  if (!id.empty())
+    what += kept ? "; " + id + " is in the journal, and the tables follow it at the next run"
+                 : "; " + id + " was abandoned (none of its files kept)";
+  throw IoError(what + "; " + std::to_string(writer_->records().size()) + " of " +
+                    std::to_string(job_.configurations.size()) + " configurations are recorded in " + out_dir_ +
+                    "; once the cause is fixed, run the same command again to measure the rest",
+                e.error_number());
+}
 
-  // One record of all of a configuration's repetitions, their frames in one samples file.
-  auto combine = [&](const std::string& id, const std::vector<Record>& reps, const RunSettings& settings) {
-    std::vector<std::string> combined_written;
-    try {
-      Record combined = combine_repetitions(reps, out_dir, settings.precision);
-      widen_time_intervals(combined, spread, calibration.source);
-      const OutputFolder samples(out_dir, (std::filesystem::path(out_dir) / "samples").string(),
-                                 &combined_written);
-      combined.set(columns::kFrameSamplesCsv, samples.write_text(samples_file_name(id, {}),
-                                                           combined_samples_csv(reps, out_dir)));
-      log << "    " << id << ": " << reps.size() << " repetitions, " << status_of(combined)
-          << timed_sums(combined) << "\n";
-      finish(std::move(combined));
-    } catch (const IoError& e) {
-      // Its repetitions stay journaled, with their samples: a resume combines them (unless
-      // the combined record stayed in the journal, which replaces them).
-      if (kept_in_journal) remove_repetition_samples(reps, out_dir);
-      stop_for_io(e, id, combined_written);
-    }
-    remove_repetition_samples(reps, out_dir);
-  };
-  // A run stopped (a full disk) after a configuration's last repetition was journaled but
-  // before their combined record was: every repetition is there, so combine them now.
-  for (const auto& [config, settings] : configurations) {
-    const std::string id = config.id();
-    if (finished.count(id) || (stepping && id != job.step)) continue;
-    const auto found = partial.find(id);
-    if (found != partial.end() && found->second.size() >= repetitions) combine(id, found->second, settings);
-  }
-
-  HarnessCost cost;
-  // Round robin: repetition 1 of every configuration, then repetition 2, ... Each round
-  // after the first runs in a fresh GL context, so that no repetition shares another's.
-  bool stepped = false;  // a step measures one repetition, then stops
-  for (size_t round = 0; round < repetitions && !interrupted_by && !stepped; ++round) {
-    bool context_used = round == 0 || stepping;  // a step's process is fresh already
-    for (size_t i = 0; i < configurations.size() && !interrupted_by; ++i) {
-      const Configuration& config = configurations[i].config;
-      const RunSettings& settings = configurations[i].settings;
-      const std::string id = config.id();
-      if (finished.count(id) || (stepping && id != job.step)) continue;
-      std::vector<Record>& reps = partial[id];
-      if (reps.size() > round) continue;  // this round's repetition is already journaled
-      if ((interrupted_by = stop_signal())) break;
-      if (!context_used) {
-        context.reset();  // the old context goes before the new one is made current
-        context = HeadlessContext::create(job.context);
-        context_used = true;
-      }
-      const Repetition repetition{reps.size(), repetitions};
-      stepped = stepping;
-      // With the bar on a terminal, the bar shows the configuration in flight and its line
-      // is printed whole when it ends; otherwise (logs, pipes) the line starts at once.
-      std::ostringstream prefix_text;
-      prefix_text << "[" << i + 1 << "/" << configurations.size() << "] " << id;
-      if (repetitions > 1) prefix_text << " (repetition " << repetition.index + 1 << "/" << repetitions << ")";
-      prefix_text << " ... ";
-      const std::string prefix = prefix_text.str();
-      if (progress.active())
-        progress.show(id);
-      else
-        log << prefix << std::flush;
-      auto begin_line = [&] {
-        if (!progress.active()) return;
-        progress.erase();
-        log << prefix;
-      };
-      Record record;
-      bool failed = false;
-      std::vector<std::string> written;  // every file this configuration writes
-      const MeasurementPaths config_paths{paths.out_dir, paths.images_dir, &written};
-      const auto started = std::chrono::steady_clock::now();
-      try {
-        record = measure_configuration(job.scenes->at(config.scene), config, settings, device,
-                                       config_paths, repetition);
-        if (repetitions == 1) widen_time_intervals(record, spread, calibration.source);
-      } catch (const Interrupted& e) {
-        // Abandoned cleanly: no record, no images; a rerun of the same command measures it.
-        remove_files(written);
-        if (repetition.index == 0) remove_configuration_images(paths.images_dir, id + "-" + config.pass);
-        begin_line();
-        log << "abandoned (" << e.what() << ")\n";
-        interrupted_by = e.signal();
-        break;
-      } catch (const IoError& e) {
-        begin_line();
-        log << "abandoned (I/O error)\n";
-        stop_for_io(e, id, written);
-      } catch (const std::exception& e) {
-        // A failed configuration keeps no file: its record says why, and names none (the
-        // images of its first repetition neither, when a later one fails).
-        remove_files(written);
-        remove_configuration_images(paths.images_dir, id + "-" + config.pass);
-        record = measurement_record();
-        describe_configuration(record, config, settings, device);
-        record.set(columns::kStatus, "failed");
-        std::ostringstream why;
-        if (repetitions > 1) why << "repetition " << repetition.index + 1 << ": ";
-        why << e.what();
-        record.set(columns::kStatusDetail, why.str());
-        failed = true;
-      }
-      const double seconds =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-      record.set(columns::kWallSeconds, seconds);
-      cost.add(record);
-      const std::string status = status_of(record);
-      begin_line();
-      log << status_cell(record) << timed_sums(record);
-      if (status != "ok") log << "  (" << std::get<std::string>(*record.get("status_detail")) << ")";
-      log << "\n" << std::flush;
-      progress.finished_one();
-      try {
-        if (repetitions == 1 || failed) {
-          finish(record);
-          if (failed) {
-            remove_repetition_samples(reps, out_dir);
-            progress.skip(repetitions - 1 - repetition.index);  // its later repetitions
-          }
-          continue;
-        }
-        append_repetition(record);
-      } catch (const IoError& e) {
-        // A failed record that counts replaces its repetitions: their samples go.
-        if (failed && kept_in_journal) remove_repetition_samples(reps, out_dir);
-        stop_for_io(e, id, written);
-      }
-      reps.push_back(std::move(record));
-      if (reps.size() < repetitions) continue;
-      combine(id, reps, settings);  // the last repetition
-    }
-  }
-  progress.erase();
+// One record of all of a configuration's repetitions, their frames in one samples file.
+void ConfigurationLoop::combine(const std::string& id, const std::vector<Record>& reps, const RunSettings& settings) {
+  std::vector<std::string> combined_written;
   try {
-    if (records.empty()) write_records(csv_path, json_path, records, run);
+    Record combined = combine_repetitions(reps, out_dir_, settings.precision);
+    widen_time_intervals(combined, spread_, calibration_.source);
+    const OutputFolder samples(out_dir_, (std::filesystem::path(out_dir_) / "samples").string(), &combined_written);
+    combined.set(columns::kFrameSamplesCsv,
+                 samples.write_text(samples_file_name(id, {}), combined_samples_csv(reps, out_dir_)));
+    log_ << "    " << id << ": " << reps.size() << " repetitions, " << status_of(combined) << timed_sums(combined)
+         << "\n";
+    writer_->finish(std::move(combined));
   } catch (const IoError& e) {
-    drop_tables();
+    // Its repetitions stay journaled, with their samples: a resume combines them (unless
+    // the combined record stayed in the journal, which replaces them).
+    if (writer_->kept_in_journal()) remove_repetition_samples(reps, out_dir_);
+    stop_for_io(e, id, combined_written);
+  }
+  remove_repetition_samples(reps, out_dir_);
+}
+
+// A run stopped (a full disk) after a configuration's last repetition was journaled but
+// before their combined record was: every repetition is there, so combine them now.
+void ConfigurationLoop::combine_journaled_repetitions() {
+  for (const auto& [config, settings] : job_.configurations) {
+    const std::string id = config.id();
+    if (skipped(id)) continue;
+    const auto found = state_.partial.find(id);
+    if (found != state_.partial.end() && found->second.size() >= repetitions_) combine(id, found->second, settings);
+  }
+}
+
+std::optional<ConfigurationLoop::Outcome> ConfigurationLoop::measure(const PlannedConfiguration& planned,
+                                                                     const Repetition& repetition,
+                                                                     const std::function<void()>& begin_line) {
+  const Configuration& config = planned.config;
+  const std::string id = config.id();
+  Outcome outcome;
+  const MeasurementPaths config_paths{paths_.out_dir, paths_.images_dir, &outcome.written};
+  const auto started = std::chrono::steady_clock::now();
+  try {
+    outcome.record = measure_configuration(job_.scenes->at(config.scene), config, planned.settings, device_,
+                                           config_paths, repetition);
+    if (repetitions_ == 1) widen_time_intervals(outcome.record, spread_, calibration_.source);
+  } catch (const Interrupted& e) {
+    // Abandoned cleanly: no record, no images; a rerun of the same command measures it.
+    remove_files(outcome.written);
+    if (repetition.index == 0) remove_configuration_images(paths_.images_dir, id + "-" + config.pass);
+    begin_line();
+    log_ << "abandoned (" << e.what() << ")\n";
+    interrupted_by_ = e.signal();
+    return std::nullopt;
+  } catch (const IoError& e) {
+    begin_line();
+    log_ << "abandoned (I/O error)\n";
+    stop_for_io(e, id, outcome.written);
+  } catch (const std::exception& e) {
+    remove_files(outcome.written);
+    remove_configuration_images(paths_.images_dir, id + "-" + config.pass);
+    outcome.record = failed_record(planned, device_, repetition, e);
+    outcome.failed = true;
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  outcome.record.set(columns::kWallSeconds, seconds);
+  return outcome;
+}
+
+// Journals a measured repetition: the configuration's record when it has one repetition or
+// failed, else a repetition, combined with the others after the last.
+void ConfigurationLoop::record_outcome(const PlannedConfiguration& planned, const Repetition& repetition,
+                                       Outcome outcome) {
+  const std::string id = planned.config.id();
+  std::vector<Record>& reps = state_.partial[id];
+  try {
+    if (repetitions_ == 1 || outcome.failed) {
+      writer_->finish(outcome.record);
+      if (outcome.failed) {
+        remove_repetition_samples(reps, out_dir_);
+        progress_->skip(repetitions_ - 1 - repetition.index);  // its later repetitions
+      }
+      return;
+    }
+    writer_->append_repetition(outcome.record);
+  } catch (const IoError& e) {
+    // A failed record that counts replaces its repetitions: their samples go.
+    if (outcome.failed && writer_->kept_in_journal()) remove_repetition_samples(reps, out_dir_);
+    stop_for_io(e, id, outcome.written);
+  }
+  reps.push_back(std::move(outcome.record));
+  if (reps.size() < repetitions_) return;
+  combine(id, reps, planned.settings);  // the last repetition
+}
+
+bool ConfigurationLoop::measure_one(size_t i, size_t round, bool& context_used) {
+  const PlannedConfiguration& planned = job_.configurations[i];
+  const std::string id = planned.config.id();
+  if (skipped(id)) return true;
+  const std::vector<Record>& reps = state_.partial[id];
+  if (reps.size() > round) return true;  // this round's repetition is already journaled
+  if ((interrupted_by_ = stop_signal())) return false;
+  if (!context_used) {
+    context_.reset();  // the old context goes before the new one is made current
+    context_ = HeadlessContext::create(job_.context);
+    context_used = true;
+  }
+  const Repetition repetition{reps.size(), repetitions_};
+  stepped_ = stepping_;
+  // With the bar on a terminal, the bar shows the configuration in flight and its line
+  // is printed whole when it ends; otherwise (logs, pipes) the line starts at once.
+  const std::string prefix = progress_prefix(i, job_.configurations.size(), id, repetition);
+  if (progress_->active())
+    progress_->show(id);
+  else
+    log_ << prefix << std::flush;
+  auto begin_line = [&] {
+    if (!progress_->active()) return;
+    progress_->erase();
+    log_ << prefix;
+  };
+  std::optional<Outcome> outcome = measure(planned, repetition, begin_line);
+  if (!outcome) return false;
+  cost_.add(outcome->record);
+  const std::string status = status_of(outcome->record);
+  begin_line();
+  log_ << status_cell(outcome->record) << timed_sums(outcome->record);
+  if (status != "ok") log_ << "  (" << std::get<std::string>(*outcome->record.get("status_detail")) << ")";
+  log_ << "\n" << std::flush;
+  progress_->finished_one();
+  record_outcome(planned, repetition, std::move(*outcome));
+  return true;
+}
+
+// Round robin: repetition 1 of every configuration, then repetition 2, ... Each round
+// after the first runs in a fresh GL context, so that no repetition shares another's.
+void ConfigurationLoop::measure_round(size_t round) {
+  bool context_used = round == 0 || stepping_;  // a step's process is fresh already
+  for (size_t i = 0; i < job_.configurations.size() && !interrupted_by_; ++i)
+    if (!measure_one(i, round, context_used)) break;
+}
+
+int ConfigurationLoop::run(const std::string& command_line) {
+  const RunFolderPlan plan = plan_run_folder(out_dir_, job_.sweep_key, job_.overwrite);
+  if (stepping_ && std::none_of(job_.configurations.begin(), job_.configurations.end(),
+                                [&](const PlannedConfiguration& p) { return p.config.id() == job_.step; }))
+    throw UserError("--step " + job_.step + ": no such configuration in this sweep");
+  open_context_and_calibration();
+  start_records(plan, command_line);
+  progress_.emplace(repetitions_to_measure(), SweepProgress::stderr_if_terminal());
+  combine_journaled_repetitions();
+  for (size_t round = 0; round < repetitions_ && !interrupted_by_ && !stepped_; ++round) measure_round(round);
+  progress_->erase();
+  try {
+    writer_->write_tables_if_empty();
+  } catch (const IoError& e) {
     stop_for_io(e, "", {});
   }
-  if (stepping) return interrupted_by ? kExitInterruptedBase + interrupted_by : kExitOk;
-  return finish_run(records, configurations.size(), interrupted_by, out_dir, job.report_hint, log, cost);
+  if (stepping_) return interrupted_by_ ? kExitInterruptedBase + interrupted_by_ : kExitOk;
+  return finish_run(writer_->records(), job_.configurations.size(), interrupted_by_, out_dir_, job_.report_hint,
+                    log_, cost_);
+}
+
+}  // namespace
+
+int run_configurations(const ConfigurationRun& job, const std::string& command_line, std::ostream& log) {
+  const std::string out_dir = default_out_dir(job.out_dir);
+  check_distinct_ids(job.configurations);
+  // One writer per folder, from before it is read to the end (records/run_lock.h).
+  const RunFolderLock lock(out_dir, command_line, log);
+  if (job.isolation == RepetitionIsolation::Process && job.step.empty())
+    return drive_repetition_processes(job, command_line, out_dir, log);
+  ConfigurationLoop loop(job, out_dir, log);
+  return loop.run(command_line);
 }
 
 }  // namespace ldm

@@ -22,7 +22,7 @@ void reject_empty_list_items(int argc, const char* const* argv);
 void reject_empty_paths(int argc, const char* const* argv);
 Runner add_sweep_command(CLI::App& app, const std::string& command_line,
                          const std::vector<std::string>& arguments);  // ldmbench sweep FILE
-// ldmbench interleave: two builds alternately on one sweep (harness/app/interleaved_session.h)
+// ldmbench interleave: two builds alternately on one sweep (harness/compare/interleaved_session.h)
 Runner add_interleave_command(CLI::App& app);
 // ldmbench calibrate: this machine's run-to-run spread (harness/app/calibration.h)
 Runner add_calibrate_command(CLI::App& app);

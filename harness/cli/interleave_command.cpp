@@ -1,10 +1,10 @@
 // `ldmbench interleave A B -- COMMAND...`: two builds measured alternately on one sweep
-// (harness/app/interleaved_session.h), then compared with paired tests.
+// (harness/compare/interleaved_session.h), then compared with paired tests.
 #include <iostream>
 #include <memory>
 #include <sstream>
 
-#include "harness/app/interleaved_session.h"
+#include "harness/compare/interleaved_session.h"
 #include "harness/cli/commands.h"
 
 namespace ldm::cli {

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "harness/app/exit_codes.h"
+#include "harness/app/record_schema.h"
 #include "harness/cli/commands.h"
 #include "harness/records/run_merge.h"
 
@@ -22,6 +23,8 @@ Runner add_merge_command(CLI::App& app, const std::string& command_line) {
   merge->add_flag("--overwrite", options->overwrite, "Replace the records and images in OUT");
   return [out, runs, options, command_line]() {
     options->command = command_line;
+    options->columns = record_columns();
+    options->always_written = always_written_columns();
     const MergeResult result = merge_runs(*out, *runs, *options);
     for (const auto& warning : result.warnings) std::cerr << "ldmbench: warning: " << warning << "\n";
     std::cout << "merged " << result.records << " records of " << runs->size() << " runs into " << *out

@@ -15,7 +15,7 @@
 #include <boost/math/distributions/normal.hpp>
 #include <boost/math/distributions/students_t.hpp>
 
-#include "harness/compare/samples.h"
+#include "harness/measure/frame_samples.h"
 #include "harness/gl/device_selection.h"
 #include "harness/app/record_schema.h"
 #include "harness/records/harness_columns.h"

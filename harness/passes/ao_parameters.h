@@ -9,16 +9,10 @@
 #include <vector>
 
 #include "harness/axes/axis.h"
+#include "harness/scene/ao_axes.h"
 #include "harness/records/columns.h"
 
 namespace ldm {
-
-enum class AoAxis { DMax, Visibility, NormalOffset, Trace, Estimator };
-
-// The harness axis (key as in sweep files, command-line flags, record column).
-AxisSpec ao_axis(AoAxis which);
-// The same declaration as the pass reads it (key = the pass parameter's name).
-AxisSpec ao_pass_parameter(AoAxis which);
 
 // The record columns of the effective AO settings a pass writes in describe() (visibility,
 // d_max, falloff_exponent; with `ldm` the LDM trace's too: normal offset, trace, estimator),

@@ -8,7 +8,6 @@
 #include <sstream>
 
 #include "harness/records/journal.h"
-#include "harness/app/record_schema.h"
 #include "harness/records/record_validation.h"
 #include "harness/records/run_folder.h"
 #include "harness/records/run_lock.h"
@@ -42,7 +41,7 @@ std::pair<size_t, size_t> shard_of(const std::string& shard, const std::string& 
   return {index, count};
 }
 
-Slice read_slice(const std::string& dir) {
+Slice read_slice(const std::string& dir, const MergeOptions& options) {
   const fs::path journal = fs::path(dir) / kJournalFile;
   std::error_code error;
   if (!fs::is_regular_file(journal, error))
@@ -55,7 +54,7 @@ Slice read_slice(const std::string& dir) {
   // Records merged are records trusted: every column one of the schema's of the build that
   // wrote it (a renamed key would grow a column of its own in the merged tables), and none
   // it always writes missing; each refusal names the journal's line.
-  check_journal_records(contents, record_columns(), always_written_columns(), "merge: " + journal.string());
+  check_journal_records(contents, options.columns, options.always_written, "merge: " + journal.string());
   slice.records = latest_per_configuration(contents.records);
   const std::string shard = text(slice.run, "shard");
   if (!shard.empty()) slice.shard_index = shard_of(shard, journal.string()).first;
@@ -95,7 +94,7 @@ MergeResult merge_runs(const std::string& out_dir, const std::vector<std::string
   for (const auto& dir : run_dirs) {
     if (fs::exists(out_dir) && fs::exists(dir) && fs::equivalent(out_dir, dir))
       throw UserError("merge: OUT '" + out_dir + "' is one of the runs");
-    slices.push_back(read_slice(dir));
+    slices.push_back(read_slice(dir, options));
   }
 
   // One build, one device, one sweep.

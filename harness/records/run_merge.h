@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "harness/records/columns.h"
 #include "harness/records/record.h"
 
 namespace ldm {
@@ -24,6 +25,11 @@ struct MergeOptions {
   bool allow_mismatch = false;
   bool overwrite = false;
   std::string command;  // stored in the merged run entry
+  // The schema of this build that every merged record is checked against (the caller's:
+  // record_columns() and always_written_columns() of harness/app/record_schema.h, which
+  // stands above the records).
+  std::vector<ColumnSpec> columns;
+  std::vector<std::string> always_written;
 };
 
 struct MergeResult {

@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "harness/axes/axis.h"
-#include "harness/passes/ao_parameters.h"
+#include "harness/scene/ao_axes.h"
 #include "harness/scene/generators.h"
 #include "harness/scene/mesh_import.h"
 #include "harness/scene/scene_defaults.h"
@@ -145,7 +145,7 @@ void read_light(const Fields& f, SpotLight& light, glm::dvec3 origin_offset) {
 void read_ao(const Fields& f, AoSettings& ao) {
   f.only({"attenuated", "d_max", "falloff_exponent", "normal_offset"});
   ao.attenuated = f.boolean("attenuated", ao.attenuated);
-  // Checked by the axes' own declarations (harness/passes/ao_parameters.cpp), as --d-max and
+  // Checked by the axes' own declarations (harness/scene/ao_axes.cpp), as --d-max and
   // --normal-offset are: a value the command line refuses is refused from a file too.
   ao.d_max = f.number("d_max", ao.d_max);
   if (const std::string problem = axis_real_problem(ao_axis(AoAxis::DMax), ao.d_max); !problem.empty())

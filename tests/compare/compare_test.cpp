@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "harness/compare/run_comparison.h"
-#include "harness/compare/samples.h"
+#include "harness/measure/frame_samples.h"
 #include "harness/util/error.h"
 #include "support/test_support.h"
 

@@ -12,7 +12,7 @@
 #include <sstream>
 
 #include "harness/compare/run_comparison.h"
-#include "harness/compare/samples.h"
+#include "harness/measure/frame_samples.h"
 #include "support/test_support.h"
 
 namespace ldm {

@@ -1,4 +1,4 @@
-#include "harness/app/interleaved_session.h"
+#include "harness/compare/interleaved_session.h"
 
 #include <unistd.h>
 

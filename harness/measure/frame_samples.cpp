@@ -1,4 +1,4 @@
-#include "harness/compare/samples.h"
+#include "harness/measure/frame_samples.h"
 
 #include <cmath>
 #include <cstdlib>
