@@ -163,6 +163,31 @@ class LdmStructure {
   uint64_t storage_generation_ = 0;
 };
 
+// What every structure declares, written once: its static declarations (registered in
+// ldm_structure.cpp's table) and the overrides of LdmStructure's pure virtual functions,
+// which all six structures implement alike. Optional overrides (counts_own_fragments,
+// settle_after_first_build, depth_quantum) follow the macro in the structures that have them.
+#define LDM_STRUCTURE_DECLARATIONS(NAME)                                              \
+  /* The parameters --param NAME:KEY=VALUE sets, declared (harness/axes/axis.h). */   \
+  static std::vector<AxisSpec> parameters();                                          \
+  /* What its build counts in the counting replay (harness/measure/work_counters.h). */ \
+  static std::vector<WorkCounter> work_counters();                                    \
+  /* What its query code counts in a pass's sub-pass (filled in by the caller). */    \
+  static std::vector<WorkCounter> query_work_counters();                              \
+                                                                                      \
+  std::string name() const override { return NAME; }                                 \
+  void prepare(const BuildInputs& in) override;                                       \
+  void build(const BuildInputs& in, GpuTimer* timer) override;                        \
+  BuildStats stats() const override;                                                  \
+  SizingNeeds needed() override;                                                      \
+  bool fits(const SizingNeeds& needs) const override;                                 \
+  void resize(const SizingNeeds& needs) override;                                     \
+  std::vector<std::string> query_sources() const override;                            \
+  ShaderDefines query_defines() const override;                                       \
+  void bind_for_query() const override;                                               \
+  std::vector<BufferMemory> memory() const override;                                  \
+  std::vector<std::pair<std::string, std::string>> sizing() const override
+
 std::vector<std::string> structure_names();
 // The parameters a structure declares (its --param STRUCTURE:KEY=VALUE), owner set; throws
 // UserError for an unknown name.

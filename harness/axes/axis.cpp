@@ -7,15 +7,10 @@
 #include <cstdlib>
 
 #include "harness/util/error.h"
+#include "harness/util/text.h"
 
 namespace ldm {
 namespace {
-
-std::string joined(const std::vector<std::string>& names) {
-  std::string out;
-  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
-  return out;
-}
 
 [[noreturn]] void refuse(const std::string& where, const std::string& what) {
   throw UserError(where + ": " + what);

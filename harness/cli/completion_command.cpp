@@ -10,16 +10,11 @@
 
 #include "harness/cli/cli_model.h"
 #include "harness/cli/commands.h"
+#include "harness/util/text.h"
 #include "harness/util/version.h"
 
 namespace ldm::cli {
 namespace {
-
-std::string joined(const std::vector<std::string>& items) {
-  std::string out;
-  for (const auto& item : items) out += (out.empty() ? "" : " ") + item;
-  return out;
-}
 
 // A bash word in double quotes: names and values never hold quotes, '$' or '`', but a
 // generated script must stay valid whatever they hold.
@@ -50,7 +45,7 @@ std::string subcommand_arm(const CommandModel& command) {
     }
     if (o.list) arm << " list=1";
     if (o.files) arm << " files=1";
-    if (!o.values.empty()) arm << " candidates=" << quoted(joined(o.values));
+    if (!o.values.empty()) arm << " candidates=" << quoted(joined(o.values, " "));
     arm << " ;;\n";
   }
   arm << "      esac\n";
@@ -60,10 +55,10 @@ std::string subcommand_arm(const CommandModel& command) {
     positional_values.insert(positional_values.end(), p.values.begin(), p.values.end());
     positional_files = positional_files || p.files;
   }
-  arm << "      options=" << quoted(joined(names)) << "\n";
+  arm << "      options=" << quoted(joined(names, " ")) << "\n";
   if (!command.positionals.empty()) {
     arm << "      positional=1";
-    if (!positional_values.empty()) arm << " positional_values=" << quoted(joined(positional_values));
+    if (!positional_values.empty()) arm << " positional_values=" << quoted(joined(positional_values, " "));
     if (positional_files) arm << " positional_files=1";
     arm << "\n";
   }
@@ -74,14 +69,14 @@ std::string subcommand_arm(const CommandModel& command) {
 std::string parameter_arms() {
   std::ostringstream arms;
   for (const ParameterModel& p : parameter_models())
-    if (!p.values.empty()) arms << "    " << p.qualified << ") candidates=" << quoted(joined(p.values)) << " ;;\n";
+    if (!p.values.empty()) arms << "    " << p.qualified << ") candidates=" << quoted(joined(p.values, " ")) << " ;;\n";
   return arms.str();
 }
 
 std::string parameter_keys() {
   std::vector<std::string> keys;
   for (const ParameterModel& p : parameter_models()) keys.push_back(p.qualified + "=");
-  return joined(keys);
+  return joined(keys, " ");
 }
 
 std::string bash_completion_script(const CLI::App& app) {
@@ -126,7 +121,7 @@ std::string bash_completion_script(const CLI::App& app) {
        "  local candidates=\"\" options=\"\" positional_values=\"\"\n"
        "  local expects=0 list=0 files=0 param=0 positional=0 positional_files=0\n"
        "  if [[ -z $sub ]]; then\n"
-       "    candidates=" << quoted(joined(subcommands) + " " + joined(top_options)) << "\n"
+       "    candidates=" << quoted(joined(subcommands, " ") + " " + joined(top_options, " ")) << "\n"
        "  else\n"
        "    case \"$sub\" in\n" << arms <<
        "    *) return 0 ;;\n"

@@ -14,6 +14,7 @@
 #include "harness/cli/run_options.h"
 #include "harness/util/error.h"
 #include "harness/passes/pass.h"
+#include "harness/util/text.h"
 #include "ldm_impls/ldm_structure.h"
 
 namespace ldm::cli {
@@ -35,12 +36,6 @@ void parse_structure_param(const std::string& text, RunSettings& settings) {
                     text.substr(equals + 1) + "); give several values as one comma list, " + owner +
                     ":" + key + "=" + params[key] + "," + text.substr(equals + 1));
   params[key] = text.substr(equals + 1);
-}
-
-std::string joined(const std::vector<std::string>& names) {
-  std::string out;
-  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
-  return out;
 }
 
 // "psppsll: capacity, atomic_reads; ppfla: k; ..." of every declared parameter.

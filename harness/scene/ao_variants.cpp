@@ -1,17 +1,9 @@
 #include "harness/scene/ao_variants.h"
 
 #include "harness/util/error.h"
+#include "harness/util/text.h"
 
 namespace ldm {
-namespace {
-
-std::string joined(const std::vector<std::string>& names) {
-  std::string out;
-  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
-  return out;
-}
-
-}  // namespace
 
 std::string ao_trace_name(AoTrace t) {
   switch (t) {

@@ -25,25 +25,7 @@ std::optional<std::string> psppsll_driver_refusal(const DriverConformance& drive
 class Psppsll final : public LdmStructure {
  public:
   explicit Psppsll(StructureParams& params);
-  // The parameters --param psppsll:KEY=VALUE sets, declared (harness/axes/axis.h).
-  static std::vector<AxisSpec> parameters();
-  // What its build counts in the counting replay (harness/measure/work_counters.h).
-  static std::vector<WorkCounter> work_counters();
-  // What its query code counts in a pass's sub-pass (filled in by the caller).
-  static std::vector<WorkCounter> query_work_counters();
-
-  std::string name() const override { return "psppsll"; }
-  void prepare(const BuildInputs& in) override;
-  void build(const BuildInputs& in, GpuTimer* timer) override;
-  BuildStats stats() const override;
-  SizingNeeds needed() override;
-  bool fits(const SizingNeeds& needs) const override;
-  void resize(const SizingNeeds& needs) override;
-  std::vector<std::string> query_sources() const override;
-  ShaderDefines query_defines() const override;
-  void bind_for_query() const override;
-  std::vector<BufferMemory> memory() const override;
-  std::vector<std::pair<std::string, std::string>> sizing() const override;
+  LDM_STRUCTURE_DECLARATIONS("psppsll");
 
  private:
   ListNodePool pool_;
