@@ -303,8 +303,14 @@ TEST(ListStructuresWork, InPlaceSortsCountDeterministicBytesWhateverTheArrivalOr
         EXPECT_EQ(value, b.work.at(column)) << structure << " " << column;
       }
     EXPECT_GE(compared, 8u) << structure;
-    // The arrival-dependent ones did change (else the test would show nothing).
-    EXPECT_NE(a.work.at("work_sort_comparisons"), b.work.at("work_sort_comparisons")) << structure;
+    // The arrival-dependent ones do change with the order (else the test would show
+    // nothing). Where the driver races (zink), two orders can count the same comparisons
+    // by chance (seen once in five runs): another order is tried before it fails.
+    bool changed = a.work.at("work_sort_comparisons") != b.work.at("work_sort_comparisons");
+    for (int seed = 13; seed < 18 && !changed; ++seed)
+      changed = build_contended(structure, {{"local", "8"}}, seed).work.at("work_sort_comparisons") !=
+                a.work.at("work_sort_comparisons");
+    EXPECT_TRUE(changed) << structure << ": every order counted the same comparisons";
   }
   const ContendedBuild ppsll = build_contended("ppsll", {{"local", "8"}}, 11);
   EXPECT_GT(ppsll.work.at("work_sort_bytes_loaded_nodes_compared"), 0);
