@@ -22,10 +22,14 @@ layout(std430, binding = WORK_COUNTERS_BINDING) restrict buffer WorkCounters {
 };
 
 // A 64-bit total as two words: the carry goes to the high word when the low one wraps.
+void work_add_words(uint slot, uint lo, uint hi) {
+  const uint before = atomicAdd(work_words[slot], lo);
+  const uint carry = before > 0xFFFFFFFFu - lo ? 1u : 0u;
+  if (hi + carry != 0u) atomicAdd(work_words[slot + 1u], hi + carry);
+}
 void work_add_at(uint slot, uint n) {
   if (n == 0u) return;
-  const uint before = atomicAdd(work_words[slot], n);
-  if (before > 0xFFFFFFFFu - n) atomicAdd(work_words[slot + 1u], 1u);
+  work_add_words(slot, n, 0u);
 }
 
 uint work_bin(uint value) {
@@ -97,9 +101,7 @@ void work_sample_flush_at(uint slot, WorkSampleTally tally) {
   if (tally.small.z != 0u) atomicAdd(work_words[bins + 2u], tally.small.z);
   if (tally.small.w != 0u) atomicAdd(work_words[bins + 3u], tally.small.w);
   if (tally.large_max != 0u) {  // the header: the large values' sum (2 words) and max
-    const uint before = atomicAdd(work_words[slot], tally.sum_lo);
-    const uint carry = before > 0xFFFFFFFFu - tally.sum_lo ? 1u : 0u;
-    if (tally.sum_hi + carry != 0u) atomicAdd(work_words[slot + 1u], tally.sum_hi + carry);
+    work_add_words(slot, tally.sum_lo, tally.sum_hi);
     atomicMax(work_words[slot + 2u], tally.large_max);
   }
 }
