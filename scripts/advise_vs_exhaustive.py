@@ -90,13 +90,10 @@ def advise(a, scene, budget, folder):
 
 
 def compare(rows, result, goal):
-    ms = {k: measurement_of(r, "mse") for k, r in rows.items()}
     # the front among the configurations within the memory budget (exact: a hard filter)
-    ok = {k: m for k, m in ms.items() if m.status == "ok" and goal.memory_fits(m)}
+    best, ok = best_within(rows, goal)
     front = pareto_front(goal, ok)
     rec = result.get("recommended")
-    within = [k for k, m in ok.items() if goal.verdict(m) == YES]
-    best = choose_best(goal, within, lambda k: ok[k]) if within else None
     out = {"front": front, "exhaustive_best": best, "recommended": rec}
     if rec is None:
         out.update(on_front=False, same_answer=best is None)
