@@ -159,10 +159,12 @@ else
   image="1280x720"; reps=3; frames=5; warmup=2; n_scenes=""; r_scenes=""
   ao_base_n=32; ao_ns='[16, 64, 128]'; ao_base_r=256; ao_rs='[200, 512]'; ao_spp=1024
   ind_base_n=32; ind_ns='[16, 64]'; ind_base_r=256; ind_rs='[512]'; ind_light=256; ind_spp=128
-  # Guesses until a GPU run calibrates them (its steps.tsv): 0.8 s per configuration and
-  # repetition (GL context, census, 7 frames, metrics and images of a 1280x720 frame), and
-  # the references (one per scene and pass) on the node's CPU cores.
-  est_tests=40; run_ms=800; ao_reference_s=20; indirect_reference_s=30
+  # Measured on an NVIDIA H200 with 16 CPU cores (docs/measured/gpu-suite.md): the tests
+  # 10 s; 1.23 s per configuration and repetition (GL context, census, 7 frames, counting
+  # replay, metrics and images of a 1280x720 frame); the AO references within that; the
+  # indirect references (2 x up to 128 spp path-traced at 1280x720) about 130 s per scene
+  # on the node's CPU cores, before the step's first frame.
+  est_tests=15; run_ms=1250; ao_reference_s=20; indirect_reference_s=260
 fi
 
 
