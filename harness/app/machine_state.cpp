@@ -1,5 +1,6 @@
 #include "harness/app/machine_state.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -70,8 +71,10 @@ std::optional<double> current_load_average() {
 
 std::optional<GpuClockState> parse_nvidia_smi_clocks(const std::string& line) {
   std::stringstream in(line);
-  std::string clock, power, reasons;
-  if (!std::getline(in, clock, ',') || !std::getline(in, power, ',') || !std::getline(in, reasons)) return std::nullopt;
+  std::string clock, power, reasons, max_clock;
+  if (!std::getline(in, clock, ',') || !std::getline(in, power, ',') || !std::getline(in, reasons, ','))
+    return std::nullopt;
+  std::getline(in, max_clock);  // clocks.max.sm: absent from older queries
   char* end = nullptr;
   GpuClockState out;
   clock = trimmed(clock);
@@ -81,7 +84,26 @@ std::optional<GpuClockState> parse_nvidia_smi_clocks(const std::string& line) {
   out.power_w = std::strtod(power.c_str(), &end);
   if (power.empty() || *end) out.power_w = std::nan("");  // "[N/A]" on some boards
   out.throttle_reasons = trimmed(reasons);
+  max_clock = trimmed(max_clock);
+  out.max_sm_clock_mhz = std::strtod(max_clock.c_str(), &end);
+  if (max_clock.empty() || *end || !(out.max_sm_clock_mhz > 0)) out.max_sm_clock_mhz = 0;
   return out;
+}
+
+static std::optional<GpuClockState> query_gpu_clocks(const GpuStateQuery& gpu) {
+  if (!gpu.nvidia || !nvidia_smi_on_path()) return std::nullopt;
+  const ProcessResult r =
+      run_process({"nvidia-smi", "--query-gpu=clocks.sm,power.draw,clocks_throttle_reasons.active,clocks.max.sm",
+                   "--format=csv,noheader,nounits", "-i", std::to_string(gpu.index)},
+                  true);
+  if (!r.started || r.status != 0) return std::nullopt;
+  return parse_nvidia_smi_clocks(r.output.substr(0, r.output.find('\n')));
+}
+
+std::optional<GpuClockReading> read_gpu_clock(const GpuStateQuery& gpu) {
+  const std::optional<GpuClockState> state = query_gpu_clocks(gpu);
+  if (!state) return std::nullopt;
+  return GpuClockReading{state->sm_clock_mhz, state->max_sm_clock_mhz};
 }
 
 MachineState sample_machine_state(const GpuStateQuery& gpu) {
@@ -89,12 +111,7 @@ MachineState sample_machine_state(const GpuStateQuery& gpu) {
   s.load_average = current_load_average();
   s.cpu_governor = first_line_of("/sys/devices/system/cpu/cpu0/cpufreq/scaling_governor");
   s.cpu_mhz = mean_cpu_mhz();
-  if (gpu.nvidia && nvidia_smi_on_path()) {
-    const ProcessResult r = run_process({"nvidia-smi", "--query-gpu=clocks.sm,power.draw,clocks_throttle_reasons.active",
-                                         "--format=csv,noheader,nounits", "-i", std::to_string(gpu.index)},
-                                        true);
-    if (r.started && r.status == 0) s.gpu = parse_nvidia_smi_clocks(r.output.substr(0, r.output.find('\n')));
-  }
+  s.gpu = query_gpu_clocks(gpu);
   return s;
 }
 
@@ -117,6 +134,7 @@ void set_machine_state_columns(Record& r, const MachineState& start, const Machi
     }
     r.set("gpu_throttle_reasons_start", start.gpu->throttle_reasons);
     r.set("gpu_throttle_reasons_end", end.gpu->throttle_reasons);
+    if (start.gpu->max_sm_clock_mhz > 0) r.set(columns::kGpuSmClockMaxMhz, start.gpu->max_sm_clock_mhz);
   }
 }
 
@@ -131,6 +149,16 @@ std::string clock_change_warning(const MachineState& start, const MachineState& 
     const double a = start.gpu->sm_clock_mhz, b = end.gpu->sm_clock_mhz;
     if (a > 0 && std::fabs(b - a) > 0.05 * a) {
       std::snprintf(text, sizeof text, "GPU SM clock changed during the repetition (%.0f to %.0f MHz)", a, b);
+      return text;
+    }
+    // Steady but low: a GPU that never left its idle clock (345 MHz against 1980 on an H200)
+    // measures up to 5 times slower without any change to warn about.
+    const double max = start.gpu->max_sm_clock_mhz;
+    if (max > 0 && std::min(a, b) < kWorkingClockFraction * max) {
+      std::snprintf(text, sizeof text,
+                    "GPU SM clock below %.0f %% of its %.0f MHz maximum during the repetition (%.0f MHz at the start, "
+                    "%.0f at the end)",
+                    100 * kWorkingClockFraction, max, a, b);
       return text;
     }
   }

@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 
+#include "harness/measure/clock_warmup.h"
 #include "harness/records/record.h"
 
 namespace ldm {
@@ -17,6 +18,7 @@ struct GpuClockState {
   double sm_clock_mhz = 0;
   double power_w = 0;
   std::string throttle_reasons;  // nvidia-smi's active bit mask, "0x0000000000000000" = none
+  double max_sm_clock_mhz = 0;   // clocks.max.sm; 0 where not read
 };
 
 struct MachineState {
@@ -38,7 +40,11 @@ std::optional<double> current_load_average();
 
 MachineState sample_machine_state(const GpuStateQuery& gpu);
 
-// nvidia-smi --query-gpu=clocks.sm,power.draw,clocks_throttle_reasons.active
+// The GPU's SM clock and its maximum now (nvidia-smi), for the clock warm-up; nullopt where
+// it cannot be read.
+std::optional<GpuClockReading> read_gpu_clock(const GpuStateQuery& gpu);
+
+// nvidia-smi --query-gpu=clocks.sm,power.draw,clocks_throttle_reasons.active[,clocks.max.sm]
 // --format=csv,noheader,nounits output, one line; nullopt when it does not parse.
 std::optional<GpuClockState> parse_nvidia_smi_clocks(const std::string& line);
 
@@ -46,7 +52,8 @@ std::optional<GpuClockState> parse_nvidia_smi_clocks(const std::string& line);
 void set_machine_state_columns(Record& record, const MachineState& start, const MachineState& end);
 
 // The status_detail warning when the CPU clock moved by more than 10 %, the GPU's SM clock
-// by more than 5 %, or the GPU reported a throttle reason at either end; "" otherwise.
+// by more than 5 % or sat below 90 % of its maximum at either end, or the GPU reported a
+// throttle reason at either end; "" otherwise.
 std::string clock_change_warning(const MachineState& start, const MachineState& end);
 
 }  // namespace ldm

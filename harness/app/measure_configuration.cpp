@@ -152,11 +152,20 @@ Record measure_configuration(const Scene& scene, const Configuration& config,
   Record r = measurement_record();
   describe_configuration(r, config, settings, device);
   const GpuStateQuery gpu{device.gl_vendor.find("NVIDIA") != std::string::npos, 0};
-  const MachineState before = sample_machine_state(gpu);
-  const Measurement m = measure(scene, measurement_request(config, settings, device));
-  const MachineState after = sample_machine_state(gpu);
+  // The machine's state around the measured frames, after the warm-up (clock_warmup.h).
+  MachineState before, after;
+  MeasurementRequest request = measurement_request(config, settings, device);
+  if (gpu.nvidia) request.read_gpu_clock = [gpu] { return read_gpu_clock(gpu); };
+  request.before_measured_frames = [&] { before = sample_machine_state(gpu); };
+  request.after_measured_frames = [&] { after = sample_machine_state(gpu); };
+  const Measurement m = measure(scene, request);
   add_measurement(r, m, settings.precision);
   set_machine_state_columns(r, before, after);
+  if (m.clock_warmup.checked) {
+    r.set(kClockWarmupFrames, m.clock_warmup.frames);
+    r.set(kClockWarmupSeconds, m.clock_warmup.seconds);
+  }
+  append_status_detail(r, clock_warmup_warning(m.clock_warmup));
   append_status_detail(r, clock_change_warning(before, after));
   add_scene_profile(r, scene, config, m);
   if (repetition.count > 1) r.set(kRepetition, repetition.index);

@@ -1,6 +1,7 @@
 #include "harness/app/measurement.h"
 
 #include <algorithm>
+#include <chrono>
 #include <fstream>
 #include <thread>
 
@@ -104,15 +105,28 @@ Measurement measure(const Scene& scene, const MeasurementRequest& request) {
     if (request.keep_running) return request.keep_running();
     return stop_rule.want_another(measured);
   };
-  while (session.in_warmup() || keep_running()) {
-    const bool warmup = session.in_warmup();
+  while (session.in_warmup()) session.run_frame();
+  const ClockWarmup clock{request.read_gpu_clock, request.precision.clock_warmup_seconds};
+  const auto seconds_now = [] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+  };
+  const ClockWarmupResult warmed = warm_until_working_clock(
+      clock,
+      [&] {
+        session.add_warmup_frame();
+        session.run_frame();
+      },
+      seconds_now);
+  if (request.before_measured_frames) request.before_measured_frames();
+  while (keep_running()) {
     const FrameTimes times = session.run_frame();
-    if (warmup) continue;
     measured.add_frame(times);
     if (request.on_frame) request.on_frame(times);
   }
+  if (request.after_measured_frames) request.after_measured_frames();
   if (request.count_work) session.count_work();
   Measurement m = session.result();
+  m.clock_warmup = warmed;
   if (!request.keep_running) {
     m.time_target_met = stop_rule.target_met(measured);
     m.time_half_width = FrameStopRule::worst_half_width(measured);

@@ -11,10 +11,12 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "harness/measure/clock_warmup.h"
 #include "harness/measure/frame_stop_rule.h"
 #include "harness/measure/gpu_timer.h"
 #include "harness/measure/timing_stats.h"
@@ -50,6 +52,13 @@ struct MeasurementRequest {
   std::function<bool()> keep_running;
   // Called with every measured frame's times (sub-passes plus "build" and "frame").
   std::function<void(const FrameTimes&)> on_frame;
+  // Where the GPU's clock can be read (NVIDIA), warm-up frames after the fixed ones until it
+  // reaches its working clock, for at most precision.clock_warmup_seconds
+  // (harness/measure/clock_warmup.h); unset: the fixed warm-up alone.
+  std::function<std::optional<GpuClockReading>()> read_gpu_clock;
+  // Called right before the first and right after the last measured frame: the record's
+  // machine state (harness/app/machine_state.h) is sampled there, around what is timed.
+  std::function<void()> before_measured_frames, after_measured_frames;
   // After the measured frames, the untimed counting replay (MeasurementSession::
   // count_work): the record's work_* columns. Off only where nothing reads them.
   bool count_work = true;
@@ -103,6 +112,8 @@ struct Measurement {
   // largest relative half-width of the watched sub-passes' intervals they did reach.
   bool time_target_met = true;
   double time_half_width = 0;
+  // The warm-up frames added until the GPU's clock reached its working level.
+  ClockWarmupResult clock_warmup;
   // Fragments the last raster_touch pass shaded (harness/passes/raster_baseline.h): the
   // census total when the touch baseline really touched every fragment.
   uint64_t raster_touch_fragments = 0;

@@ -305,6 +305,11 @@ void MeasurementSession::count_work() {
 int MeasurementSession::frames_run() const { return state_->frames_run; }
 bool MeasurementSession::in_warmup() const { return state_->frames_run < state_->request.warmup; }
 
+void MeasurementSession::add_warmup_frame() {
+  State& s = *state_;
+  s.request.warmup = std::max(s.request.warmup, s.frames_run) + 1;
+}
+
 Measurement MeasurementSession::result() const {
   const State& s = *state_;
   Measurement m = s.m;

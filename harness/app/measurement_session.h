@@ -32,6 +32,8 @@ class MeasurementSession {
   FrameTimes run_frame();
   int frames_run() const;
   bool in_warmup() const;
+  // Makes the next frame one more warm-up frame (the clock warm-up's, clock_warmup.h).
+  void add_warmup_frame();
 
   // The untimed counting replay, after the measured frames: the structure and the pass
   // prepared again inside a WorkCountingScope (their counting variants,

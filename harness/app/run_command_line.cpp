@@ -91,6 +91,7 @@ std::string run_command_line(const RunSettings& s, const std::string& program,
   add("--isolation", repetition_isolation_name(s.isolation));
   add("--time-target", shortest(s.precision.target));
   add("--time-cap", shortest(s.precision.cap_seconds));
+  add("--clock-warmup", shortest(s.precision.clock_warmup_seconds));
   add("--max-frames", std::to_string(s.precision.max_frames));
   add("--timer", s.timer);
   add("--verify", s.verify);
@@ -142,6 +143,7 @@ std::string sweep_file_json(const RunSettings& s, const std::string& description
                        {"isolation", repetition_isolation_name(s.isolation)},
                        {"target", s.precision.target},
                        {"cap_s", s.precision.cap_seconds},
+                       {"clock_warmup_s", s.precision.clock_warmup_seconds},
                        {"max_frames", s.precision.max_frames}};
   file["settings"] = {{"reference", reference}, {"images", s.write_images}, {"work", s.count_work}, {"timer", s.timer},
                       {"verify", s.verify}, {"timing", timing}};

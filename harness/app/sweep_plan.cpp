@@ -76,6 +76,7 @@ void apply_settings(const json& settings, RunSettings& s) {
     if (t.contains("isolation")) s.isolation = parse_repetition_isolation(t["isolation"].get<std::string>());
     if (t.contains("target")) s.precision.target = t["target"].get<double>();
     if (t.contains("cap_s")) s.precision.cap_seconds = t["cap_s"].get<double>();
+    if (t.contains("clock_warmup_s")) s.precision.clock_warmup_seconds = t["clock_warmup_s"].get<double>();
     if (t.contains("max_frames")) s.precision.max_frames = int(t["max_frames"].get<uint32_t>());
   }
   if (settings.contains("reference")) {

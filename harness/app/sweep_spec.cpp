@@ -237,8 +237,8 @@ void check_settings(const json& settings, const std::string& name) {
           const double max = tkey == "repetitions" ? 1000 : 1000000;
           if (!tvalue.is_number_unsigned() || tvalue.get<uint64_t>() < 1 || double(tvalue.get<uint64_t>()) > max)
             fail(name, tpath, "expected an integer in [1, " + number_text(max) + "], got " + tvalue.dump());
-        } else if (tkey == "target" || tkey == "cap_s") {
-          const double max = tkey == "target" ? 1 : 86400;
+        } else if (tkey == "target" || tkey == "cap_s" || tkey == "clock_warmup_s") {
+          const double max = tkey == "target" ? 1 : tkey == "cap_s" ? 86400 : 600;
           const double v = tvalue.is_number() ? tvalue.get<double>() : -1;
           if (!tvalue.is_number() || !(v >= 0) || v > max)
             fail(name, tpath, "expected a number in [0, " + number_text(max) + "], got " + tvalue.dump());
@@ -246,7 +246,7 @@ void check_settings(const json& settings, const std::string& name) {
           if (!tvalue.is_string() || (tvalue != "context" && tvalue != "process"))
             fail(name, tpath, "expected \"context\" or \"process\", got " + tvalue.dump());
         } else {
-          fail(name, tpath, "unknown key (known: repetitions, isolation, target, cap_s, max_frames)");
+          fail(name, tpath, "unknown key (known: repetitions, isolation, target, cap_s, clock_warmup_s, max_frames)");
         }
       }
     } else {

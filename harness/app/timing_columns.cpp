@@ -38,6 +38,7 @@ void add_timing_columns(Record& r, const TimingOutcome& t) {
   r.set(columns::kFramesPerRepetition, joined_counts(t.frames_per_repetition));
   r.set(columns::kTimeTarget, t.precision.target);
   r.set(columns::kTimeCapS, t.precision.cap_seconds);
+  r.set(columns::kTimeClockWarmupS, t.precision.clock_warmup_seconds);
   r.set(columns::kTimeTargetMet, t.target_met);
   r.set(columns::kTimeInterval, repetitions > 1 ? kRepetitionInterval : kFrameInterval);
   for (const auto& s : t.summaries) {

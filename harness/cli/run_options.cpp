@@ -134,6 +134,12 @@ void add_run_options(CLI::App* run, RunOptions* o) {
                   "met or not (a miss is a warning in status_detail)")
       ->check(CLI::Range(0.0, 86400.0))
       ->capture_default_str();
+  run->add_option("--clock-warmup", s.precision.clock_warmup_seconds,
+                  "NVIDIA: after the warm-up frames, more until the GPU's SM clock reaches its "
+                  "working level (90% of its maximum, or steady at 75%), for at most this many "
+                  "seconds (nvidia-smi; elsewhere nothing is added); 0: off")
+      ->check(CLI::Range(0.0, 600.0))
+      ->capture_default_str();
   run->add_option("--max-frames", s.precision.max_frames, "Measured frames per repetition, at most")
       ->check(CLI::Range(1, 1000000))
       ->capture_default_str();

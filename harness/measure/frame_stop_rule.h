@@ -22,6 +22,9 @@ struct TimePrecision {
   double target = 0.03;
   double cap_seconds = 2.0;  // wall time of one repetition's measured frames
   int max_frames = 1000;
+  // Where the GPU's clock can be read (NVIDIA): warm-up frames after the fixed ones until it
+  // reaches its working clock, for at most this long (harness/measure/clock_warmup.h; 0: off).
+  double clock_warmup_seconds = 3.0;
 };
 
 class FrameStopRule {

@@ -280,7 +280,19 @@ inline const Column kCpuMhzEndPattern{"time", "cpu_mhz_<end>", "MHz",
     "mean CPU clock over cores (/proc/cpuinfo) at the start and end of the repetition",
     ColumnKind::Number, VariesBetweenRuns::Yes, Better::Neither};
 inline const Column kGpuSmClockMhzEndPattern{"time", "gpu_sm_clock_mhz_<end>", "MHz",
-    "NVIDIA: the GPU's SM clock at the start and end of the repetition (nvidia-smi), where available",
+    "NVIDIA: the GPU's SM clock at the first and after the last measured frame of the repetition (nvidia-smi), where available",
+    ColumnKind::Number, VariesBetweenRuns::Yes, Better::Neither};
+inline const Column kGpuSmClockMaxMhz{"time", "gpu_sm_clock_max_mhz", "MHz",
+    "NVIDIA: the most the GPU's SM clock can reach (nvidia-smi clocks.max.sm); a repetition that starts or ends below 90 % of it is a warning in status_detail",
+    ColumnKind::Number, VariesBetweenRuns::No, Better::Neither};
+inline const Column kTimeClockWarmupS{"time", "time_clock_warmup_s", "s",
+    "NVIDIA: the longest the warm-up may run on, after its fixed frames, until the GPU's SM clock reaches its working level (--clock-warmup; 0: off)",
+    ColumnKind::Number, VariesBetweenRuns::No, Better::Neither};
+inline const Column kClockWarmupFrames{"time", "clock_warmup_frames", "frames",
+    "NVIDIA: warm-up frames added until the GPU's SM clock reached its working level (90 % of its maximum, or steady at 75 %), the last repetition's; not timed",
+    ColumnKind::Number, VariesBetweenRuns::Yes, Better::Neither};
+inline const Column kClockWarmupSeconds{"time", "clock_warmup_seconds", "s",
+    "NVIDIA: the wall time of those added warm-up frames, the last repetition's",
     ColumnKind::Number, VariesBetweenRuns::Yes, Better::Neither};
 inline const Column kGpuPowerWEndPattern{"time", "gpu_power_w_<end>", "W",
     "NVIDIA: the GPU's power draw at the start and end of the repetition",

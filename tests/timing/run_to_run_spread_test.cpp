@@ -160,6 +160,11 @@ TEST(MachineState, ReadsNvidiaSmiClocksAndWarnsAboutThrottlingAndClockChanges) {
   const auto no_power = parse_nvidia_smi_clocks("1410, [N/A], 0x0000000000000001");
   ASSERT_TRUE(no_power);
   EXPECT_TRUE(std::isnan(no_power->power_w));
+  EXPECT_EQ(gpu->max_sm_clock_mhz, 0);  // not asked for
+  const auto with_max = parse_nvidia_smi_clocks("345, 80.72, 0x0000000000000001, 1980");
+  ASSERT_TRUE(with_max);
+  EXPECT_EQ(with_max->max_sm_clock_mhz, 1980);
+  EXPECT_EQ(with_max->throttle_reasons, "0x0000000000000001");
   EXPECT_FALSE(parse_nvidia_smi_clocks("garbage"));
   EXPECT_FALSE(parse_nvidia_smi_clocks("N/A, 1, 0x0"));
 
@@ -174,6 +179,16 @@ TEST(MachineState, ReadsNvidiaSmiClocksAndWarnsAboutThrottlingAndClockChanges) {
   EXPECT_EQ(clock_change_warning(start, end), "");
   end.gpu->throttle_reasons = "0x0000000000000020";  // software slowdown
   EXPECT_NE(clock_change_warning(start, end).find("throttled"), std::string::npos);
+  // Steady but far below the maximum (an H200 left at its idle clock): a warning too.
+  start.gpu = *with_max;
+  end.gpu = *with_max;
+  EXPECT_NE(clock_change_warning(start, end).find("below 90 % of its 1980 MHz maximum"), std::string::npos)
+      << clock_change_warning(start, end);
+  start.gpu->sm_clock_mhz = end.gpu->sm_clock_mhz = 1900;
+  EXPECT_EQ(clock_change_warning(start, end), "");
+  Record with_max_column;
+  set_machine_state_columns(with_max_column, start, end);
+  EXPECT_EQ(std::get<double>(*with_max_column.get("gpu_sm_clock_max_mhz")), 1980);
   MachineState cpu_a, cpu_b;
   cpu_a.cpu_mhz = 3000;
   cpu_b.cpu_mhz = 2000;
