@@ -140,6 +140,49 @@ def utilisation(smi_csv):
           f"({100 * idle / len(busy):.0f} %); the median sample {statistics.median(busy):.0f} %.")
 
 
+def deterministic_work_columns():
+    """The work_* columns the schema declares deterministic (`ldmbench columns --json`),
+    the driver's own pipeline statistics (work_*_gl_*) left out."""
+    import subprocess
+    out = subprocess.run([ldmrecords.default_ldmbench(), "columns", "--json"], check=True,
+                         capture_output=True, text=True).stdout
+    return {c["name"] for c in json.loads(out)["columns"]
+            if c["name"].startswith("work_") and c.get("deterministic") and "_gl_" not in c["name"]}
+
+
+def across_devices(other_csv, device_rows):
+    """The deterministic counters of the same configurations counted on another device
+    (llvmpipe): per sub-pass, how many values are equal and the largest relative difference."""
+    deterministic = deterministic_work_columns()
+    here = {r["config_id"]: r for r in device_rows}
+    equal, differ, largest = defaultdict(int), defaultdict(int), defaultdict(float)
+    configs = 0
+    for other in ldmrecords.read(other_csv):
+        mine = here.get(other["config_id"])
+        if mine is None or other["status"] != "ok" and not other["status"].startswith("ok"):
+            continue
+        configs += 1
+        for column in deterministic:
+            a, b = other.get(column, ""), mine.get(column, "")
+            if a in ("", None) and b in ("", None):
+                continue
+            subpass = next(p for p in ("prefix_sum", "construct", "gbuffer", "count", "sort", "ao")
+                           if column.startswith(f"work_{p}_"))
+            x, y = float(a), float(b)
+            if x == y:
+                equal[subpass] += 1
+            else:
+                differ[subpass] += 1
+                largest[subpass] = max(largest[subpass], abs(x - y) / max(abs(x), abs(y)))
+    print(f"{configs} configurations counted on both devices.\n")
+    print("| sub-pass | deterministic values equal | differing | largest relative difference |")
+    print("| --- | ---: | ---: | ---: |")
+    for subpass in ("count", "prefix_sum", "construct", "sort", "gbuffer", "ao"):
+        if equal[subpass] or differ[subpass]:
+            gap = f"{largest[subpass]:.1e}" if differ[subpass] else "0"
+            print(f"| {subpass} | {equal[subpass]} | {differ[subpass]} | {gap} |")
+
+
 def main():
     if len(sys.argv) != 2:
         sys.exit(__doc__)
@@ -161,6 +204,10 @@ def main():
     if (device / "run-2" / "ao" / "records.jsonl").exists():
         print("\n### Run 1's intervals against run 2's medians\n")
         coverage(rows, repetitions(device / "run-2" / "ao" / "records.jsonl"))
+    other = device.parent / "llvmpipe-same-configurations" / "records.csv"
+    if other.exists():
+        print("\n### The same configurations counted on llvmpipe\n")
+        across_devices(other, rows)
     if (run1 / "indirect" / "records.jsonl").exists():
         print("\n### Indirect light: the repetitions that ran\n")
         indirect(repetitions(run1 / "indirect" / "records.jsonl"))

@@ -212,6 +212,24 @@ TEST(Docs, ReadmeMainTableIsItsRecords) {
   EXPECT_GE(rows, 10) << o.output;
 }
 
+// The GPU suite's measured page holds what scripts/gpu_suite_tables.py prints from the
+// committed records of that run (docs/measured/gpu-suite/), line by line.
+TEST(Docs, GpuSuitePageTablesAreItsRecords) {
+  const std::string page = test::read_text((kRoot / "docs" / "measured" / "gpu-suite.md").string());
+  const auto o = test::run_shell("LDMBENCH=" + std::string(LDM_BINARY_PATH) + " " + std::string(LDM_PYTHON) + " " +
+                                 (kRoot / "scripts" / "gpu_suite_tables.py").string() + " " +
+                                 (kRoot / "docs" / "measured" / "gpu-suite" / "nvidia-h200-pcie-sse2").string());
+  ASSERT_EQ(o.status, 0) << o.output;
+  std::istringstream lines(o.output);
+  int rows = 0;
+  for (std::string line; std::getline(lines, line);) {
+    if (line.empty()) continue;
+    EXPECT_NE(page.find(line + "\n"), std::string::npos) << "not in gpu-suite.md: " << line;
+    rows += line.rfind("| ", 0) == 0;
+  }
+  EXPECT_GE(rows, 50) << o.output;
+}
+
 TEST(Docs, ReadmeIsShort) {
   const std::string readme = test::read_text((kRoot / "README.md").string());
   ASSERT_FALSE(readme.empty());
