@@ -43,7 +43,7 @@ struct BuildInputs {
   const GpuScene& scene;
   const GpuViewSet& views;
   // Everything a structure may size from. The untimed census is verification only and is
-  // deliberately not reachable from here (harness/app/ldm_setup.h keeps it).
+  // deliberately not reachable from here (harness/measuring/ldm_setup.h keeps it).
   const SizingPlan& sizing;
   FragmentPayload payload;
   // Compiles and runs the geometry-pass fragment shaders: the scene rasterised into the views
@@ -134,7 +134,7 @@ class LdmStructure {
   // What a second build does to the storage before building, after a first build whose
   // sizing held (the HA-buffer leaves previous_frame's guess and frees its third counter
   // word). Only the memory plan calls it, for a run of more than one build, so that the plan
-  // is the storage such a run records (harness/app/memory_plan.h); builds do it themselves.
+  // is the storage such a run records (harness/run/memory_plan.h); builds do it themselves.
   virtual void settle_after_first_build() {}
   // Changes whenever resize() changed query_defines(): passes recompile their programs.
   uint64_t storage_generation() const { return storage_generation_; }

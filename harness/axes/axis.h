@@ -1,12 +1,12 @@
 #pragma once
 // One axis of a sweep, declared once by its owner (in the manner of nvbench's axes): the
 // harness declares the axes every configuration has (scene, N, R_LDM, image size, sizing
-// policy...: harness/app/harness_axes.cpp), a structure or a pass declares its own
+// policy...: harness/settings/harness_axes.cpp), a structure or a pass declares its own
 // parameters beside the code that reads them (ldm_impls/*, harness/passes/*). Everything
 // that names, parses, checks, lists or serialises an axis is derived from its AxisSpec:
 // the command line's options, sweep-file validation, ldmbench_gbench's flags, the viewer's
 // controls, configuration ids, the re-serialised command line, the records' identity
-// columns and `ldmbench axes` (harness/app/axis_registry.h).
+// columns and `ldmbench axes` (harness/settings/axis_registry.h).
 //
 // Values travel as canonical text: what `--param ppfla:k=4` or `-N 32` carries, checked and
 // normalised by canonical_axis_value() (an integer without leading zeros, a real as the

@@ -1,7 +1,7 @@
 // Google Benchmark front end: one benchmark per (pass, scene, structure, N, R_LDM), named
 // "<pass>/<scene>/<structure>/N:<n>/R:<r>" (unique per pass, so compare.py never pools two
 // passes), each running the frames of `ldmbench run` through the same measure()
-// (harness/app/measurement.h): --ldm_warmup frames judged and discarded, then exactly
+// (harness/measuring/measurement.h): --ldm_warmup frames judged and discarded, then exactly
 // --ldm_frames measured frames, one per iteration (fixed iterations). Sizing, trace, d_max and
 // every other axis of `ldmbench run` are flags here too, from the same declarations.
 //
@@ -13,7 +13,7 @@
 // (--benchmark_repetitions=K with its mean/median/stddev/cv aggregates and compare.py's U
 // test over them); each repetition measures in a fresh GL context, as `ldmbench run
 // --repetitions` does. Axes come from flags --ldm_<axis>=LIST, one per harness axis
-// (harness/app/harness_axes.h), given before or among Google Benchmark's own:
+// (harness/settings/harness_axes.h), given before or among Google Benchmark's own:
 //   --ldm_scenes=cornell,atrium  --ldm_structures=all  --ldm_passes=all  --ldm_views=32
 //   --ldm_r_ldm=128  --ldm_image_size=256x256  --ldm_sizing=oracle  --ldm_frames=10 ...
 //   --ldm_param=OWNER:KEY=VALUE (repeatable, as `ldmbench run --param`)
@@ -39,10 +39,10 @@
 #include <set>
 #include <sstream>
 
-#include "harness/app/harness_axes.h"
-#include "harness/app/measure_configuration.h"
-#include "harness/app/measurement.h"
-#include "harness/app/run_command.h"
+#include "harness/settings/harness_axes.h"
+#include "harness/measuring/measure_configuration.h"
+#include "harness/measuring/measurement.h"
+#include "harness/run/run_command.h"
 #include "harness/gl/egl_context.h"
 #include "harness/passes/pass.h"
 #include "harness/scene/scene_loader.h"

@@ -16,8 +16,8 @@
 #include <optional>
 #include <sstream>
 
-#include "harness/app/axis_registry.h"
-#include "harness/app/exit_codes.h"
+#include "harness/settings/axis_registry.h"
+#include "harness/run/exit_codes.h"
 #include "harness/cli/commands.h"
 #include "harness/cli/python_tool.h"
 #include "harness/util/error.h"

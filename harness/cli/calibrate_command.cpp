@@ -1,4 +1,4 @@
-// `ldmbench calibrate`: measures this machine's run-to-run spread (harness/app/calibration.h)
+// `ldmbench calibrate`: measures this machine's run-to-run spread (harness/measuring/calibration.h)
 // and caches it, or writes it to a file that `--calibration FILE` reads.
 #include <cmath>
 #include <cstdio>
@@ -7,8 +7,8 @@
 #include <iostream>
 #include <memory>
 
-#include "harness/app/calibration.h"
-#include "harness/app/machine_state.h"
+#include "harness/measuring/calibration.h"
+#include "harness/measuring/machine_state.h"
 #include "harness/cli/commands.h"
 #include "harness/compare/run_comparison.h"
 #include "harness/gl/egl_context.h"

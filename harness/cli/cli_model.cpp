@@ -2,8 +2,8 @@
 
 #include <algorithm>
 
-#include "harness/app/axis_registry.h"
-#include "harness/app/harness_axes.h"
+#include "harness/settings/axis_registry.h"
+#include "harness/settings/harness_axes.h"
 #include "harness/scene/generators.h"
 
 namespace ldm::cli {

@@ -24,7 +24,7 @@ Runner add_sweep_command(CLI::App& app, const std::string& command_line,
                          const std::vector<std::string>& arguments);  // ldmbench sweep FILE
 // ldmbench interleave: two builds alternately on one sweep (harness/compare/interleaved_session.h)
 Runner add_interleave_command(CLI::App& app);
-// ldmbench calibrate: this machine's run-to-run spread (harness/app/calibration.h)
+// ldmbench calibrate: this machine's run-to-run spread (harness/measuring/calibration.h)
 Runner add_calibrate_command(CLI::App& app);
 Runner add_merge_command(CLI::App& app, const std::string& command_line);  // ldmbench merge OUT RUN...
 Runner add_reference_command(CLI::App& app);

@@ -4,7 +4,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "harness/app/exit_codes.h"
+#include "harness/run/exit_codes.h"
 #include "harness/cli/commands.h"
 #include "harness/metrics/heat_map.h"
 #include "harness/metrics/image_metrics.h"

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <sstream>
 
-#include "harness/app/exit_codes.h"
+#include "harness/run/exit_codes.h"
 #include "harness/cli/commands.h"
 #include "harness/compare/run_comparison.h"
 #include "harness/util/error.h"

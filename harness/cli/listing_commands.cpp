@@ -2,13 +2,13 @@
 #include <iostream>
 #include <memory>
 
-#include "harness/app/axis_registry.h"
-#include "harness/app/exit_codes.h"
+#include "harness/settings/axis_registry.h"
+#include "harness/run/exit_codes.h"
 #include "harness/cli/commands.h"
 #include "harness/gl/driver_probe.h"
 #include "harness/gl/egl_context.h"
 #include "harness/passes/pass.h"
-#include "harness/app/record_schema.h"
+#include "harness/settings/record_schema.h"
 #include "harness/scene/generators.h"
 #include "ldm_impls/ldm_structure.h"
 

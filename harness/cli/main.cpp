@@ -20,7 +20,7 @@
 #include <map>
 #include <new>
 
-#include "harness/app/exit_codes.h"
+#include "harness/run/exit_codes.h"
 #include "harness/cli/cli_model.h"
 #include "harness/cli/commands.h"
 #include "harness/records/run_lock.h"
@@ -92,7 +92,7 @@ int main(int argc, char** argv) {
     std::cerr << "ldmbench: error: " << e.what() << "\n";
     return ldm::kExitUsage;
   }
-  // Exit statuses: docs/guide/reliability.md (harness/app/exit_codes.h kExit*).
+  // Exit statuses: docs/guide/reliability.md (harness/run/exit_codes.h kExit*).
   try {
     const std::string name = app.get_subcommands().front()->get_name();
     auto runner = runners.find(name);

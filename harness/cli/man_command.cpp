@@ -7,7 +7,7 @@
 #include <iostream>
 #include <sstream>
 
-#include "harness/app/exit_codes.h"
+#include "harness/run/exit_codes.h"
 #include "harness/cli/cli_model.h"
 #include "harness/cli/commands.h"
 #include "harness/gl/shader_dump.h"

@@ -3,8 +3,8 @@
 #include <iostream>
 #include <memory>
 
-#include "harness/app/exit_codes.h"
-#include "harness/app/record_schema.h"
+#include "harness/run/exit_codes.h"
+#include "harness/settings/record_schema.h"
 #include "harness/cli/commands.h"
 #include "harness/records/run_merge.h"
 

@@ -11,7 +11,7 @@
 #include <fstream>
 #include <memory>
 
-#include "harness/app/record_schema.h"
+#include "harness/settings/record_schema.h"
 #include "harness/cli/commands.h"
 #include "harness/cli/python_tool.h"
 #include "harness/util/error.h"

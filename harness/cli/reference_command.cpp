@@ -7,7 +7,7 @@
 #include <iostream>
 #include <memory>
 
-#include "harness/app/exit_codes.h"
+#include "harness/run/exit_codes.h"
 #include "harness/cli/commands.h"
 #include "harness/metrics/image_metrics.h"
 #include "harness/passes/pass.h"

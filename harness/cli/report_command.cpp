@@ -13,14 +13,14 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "harness/app/axis_registry.h"
-#include "harness/app/exit_codes.h"
+#include "harness/settings/axis_registry.h"
+#include "harness/run/exit_codes.h"
 #include "harness/cli/commands.h"
 #include "harness/cli/python_tool.h"
 #include "harness/compare/run_comparison.h"
 #include "harness/records/columns.h"
 #include "harness/records/journal.h"
-#include "harness/app/record_schema.h"
+#include "harness/settings/record_schema.h"
 #include "harness/records/record_validation.h"
 #include "harness/records/run_folder.h"
 #include "harness/util/error.h"

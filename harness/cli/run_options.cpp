@@ -7,9 +7,9 @@
 #include <iostream>
 #include <memory>
 
-#include "harness/app/axis_options.h"
-#include "harness/app/harness_axes.h"
-#include "harness/app/run_command.h"
+#include "harness/settings/axis_options.h"
+#include "harness/settings/harness_axes.h"
+#include "harness/run/run_command.h"
 #include "harness/cli/commands.h"
 #include "harness/cli/run_options.h"
 #include "harness/util/error.h"
@@ -117,7 +117,7 @@ void reject_empty_paths(int argc, const char* const* argv) {
 
 void add_run_options(CLI::App* run, RunOptions* o) {
   RunSettings& s = o->settings;
-  // Every harness axis's option, from its declaration (harness/app/harness_axes.cpp).
+  // Every harness axis's option, from its declaration (harness/settings/harness_axes.cpp).
   add_axis_options(run, o->axes);
   run->add_option("--width", o->width, "Output image width in pixels (with --height: --image-size)")
       ->check(CLI::Range(16, 16384));

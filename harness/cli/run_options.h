@@ -7,15 +7,15 @@
 #include <string>
 #include <vector>
 
-#include "harness/app/axis_options.h"
-#include "harness/app/run_settings.h"
+#include "harness/settings/axis_options.h"
+#include "harness/settings/run_settings.h"
 #include "harness/cli/commands.h"
 
 namespace ldm::cli {
 
 struct RunOptions {
   RunSettings settings;
-  AxisOptions axes;  // every harness axis's option (harness/app/axis_options.h)
+  AxisOptions axes;  // every harness axis's option (harness/settings/axis_options.h)
   std::vector<std::string> params;
   int width = 0, height = 0;  // --width/--height: the image size's two sides
   std::string platform = "auto";

@@ -1,12 +1,12 @@
-// `ldmbench sweep FILE`: the configurations of a sweep file (harness/app/sweep_plan.h),
+// `ldmbench sweep FILE`: the configurations of a sweep file (harness/run/sweep_plan.h),
 // measured by the same run_configurations() as `ldmbench run`, resumable, sharded; or, with
-// --memory-plan, only their memory, from the census (harness/app/memory_plan.h).
+// --memory-plan, only their memory, from the census (harness/run/memory_plan.h).
 #include <filesystem>
 #include <iostream>
 #include <memory>
 
-#include "harness/app/memory_plan.h"
-#include "harness/app/sweep_plan.h"
+#include "harness/run/memory_plan.h"
+#include "harness/run/sweep_plan.h"
 #include "harness/cli/commands.h"
 #include "harness/gl/egl_context.h"
 #include "harness/util/error.h"

@@ -4,7 +4,7 @@
 #include <iostream>
 #include <memory>
 
-#include "harness/app/run_command.h"
+#include "harness/run/run_command.h"
 #include "harness/cli/commands.h"
 #include "harness/cli/run_options.h"
 #include "harness/scene/scene_loader.h"

@@ -13,7 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "harness/app/run_command.h"
+#include "harness/run/run_command.h"
 #include "harness/compare/run_comparison.h"
 #include "harness/util/error.h"
 #include "harness/util/files.h"

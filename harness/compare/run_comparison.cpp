@@ -16,8 +16,9 @@
 #include <boost/math/distributions/students_t.hpp>
 
 #include "harness/measure/frame_samples.h"
+#include "harness/measure/run_to_run_spread.h"
 #include "harness/gl/device_selection.h"
-#include "harness/app/record_schema.h"
+#include "harness/settings/record_schema.h"
 #include "harness/records/harness_columns.h"
 #include "harness/records/record_validation.h"
 #include "harness/stats/intervals.h"
@@ -398,6 +399,32 @@ void add_device_warnings(const RunRecords& base, const RunRecords& next, size_t 
                            "model is not in their intervals");
 }
 
+// The median 1-minute load average over a run's records at their repetitions' start; -1
+// where no record has it (runs from before the machine state was recorded).
+double median_load(const RunRecords& run) {
+  std::vector<double> loads;
+  for (const json& r : run.records)
+    if (const double load = number(r, "load_average_start"); load >= 0) loads.push_back(load);
+  if (loads.empty()) return -1;
+  std::nth_element(loads.begin(), loads.begin() + long(loads.size() / 2), loads.end());
+  return loads[loads.size() / 2];
+}
+
+// Says when the two runs ran at different loads of their machine: a record's interval
+// holds another run's median at the load it was calibrated at (the run-to-run spread
+// depends on the load), not across a change of load. Measured on the 2-core machine: a
+// quiet run's intervals held a run at load 2-4 in 3 of 36 configurations (docs/timing.md).
+void add_load_warning(const RunRecords& base, const RunRecords& next, RunComparison& out) {
+  const double a = median_load(base), b = median_load(next);
+  if (a < 0 || b < 0 || std::fabs(a - b) <= kCalibrationMaxLoadChange) return;
+  char text[260];
+  std::snprintf(text, sizeof text,
+                "the runs were measured at different loads of their machine (median load average %.2f and %.2f): "
+                "time changes may be the load's, and each run's intervals hold only at its own load",
+                a, b);
+  out.warnings.push_back(text);
+}
+
 }  // namespace
 
 RunRecords load_run_records(const std::string& folder_or_file) {
@@ -532,6 +559,7 @@ RunComparison compare_runs(const RunRecords& base, const RunRecords& next, const
   if (!commit_a.empty() && commit_a == commit_b)
     out.warnings.push_back("both runs are of commit " + commit_a);
   add_device_warnings(base, next, other_gpus, out);
+  add_load_warning(base, next, out);
   return out;
 }
 

@@ -1,7 +1,7 @@
 #pragma once
 // The per-frame times of a configuration, as `ldmbench run` writes them next to its records
 // (samples/<config_id>-frames.csv, named by the record's frame_samples_csv column; see
-// frame_samples_csv() in harness/app/measurement.h): "repetition,frame,subpass,ms", one row
+// frame_samples_csv() in harness/measuring/measurement.h): "repetition,frame,subpass,ms", one row
 // per sub-pass of each measured frame of each repetition. Files of older runs,
 // "frame,subpass,ms", are one repetition. What `ldmbench compare` tests a time change on,
 // and what the repetitions of a configuration are combined from.

@@ -4,9 +4,9 @@
 // run-to-run spread. A run's own frames cannot show it (they share its process, its
 // caches, its minute of the machine's load), so a single run's interval of the median is
 // far too narrow to say "run it again and you get this" (docs/timing.md, "Run-to-run
-// spread"). The spread is measured by a probe (harness/app/calibration.h: A/A runs in
+// spread"). The spread is measured by a probe (harness/measuring/calibration.h: A/A runs in
 // separate processes), cached, and widens every record's interval
-// (harness/app/timing_columns.h).
+// (harness/measuring/timing_columns.h).
 //
 // The spread is the root mean square of log(median_a / median_b) over pairs of processes
 // measuring the same configuration and sub-pass: the standard deviation of the difference

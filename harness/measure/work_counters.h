@@ -1,6 +1,6 @@
 #pragma once
 // Device-independent work: what a frame's sub-passes did, counted by the shaders themselves
-// in an untimed counting replay (harness/app/measurement_session.h), never inside a measured
+// in an untimed counting replay (harness/measuring/measurement_session.h), never inside a measured
 // frame.
 //
 // Each structure and pass declares its counters (WorkCounter: the sub-pass that counts, a

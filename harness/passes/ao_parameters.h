@@ -2,7 +2,7 @@
 // The ambient-occlusion settings several passes read (d_max, visibility, the normal offset,
 // the LDM trace variant and the AO estimator), declared once here. The harness offers each
 // as an axis of every configuration (--d-max, --visibility, --normal-offset, --trace,
-// --ao-estimator: harness/app/harness_axes.cpp) and hands its value to the pass as the
+// --ao-estimator: harness/settings/harness_axes.cpp) and hands its value to the pass as the
 // parameter named in `pass_parameter`; a pass that reads one lists ao_pass_parameter(...) of
 // it among its own parameters(). Neither is set as --param PASS:KEY: one name per setting.
 #include <string>

@@ -2,7 +2,7 @@
 // The cost floors of every structure's construction: the same fragments (the structure's
 // fragment source, the same instanced geometry pass) with fragment shaders that store
 // nothing of their own. Two sub-passes, both timed on the frames the measurement picks
-// (harness/app/measurement_session.cpp: every kBaselineFrameStride-th measured frame):
+// (harness/measuring/measurement_session.cpp: every kBaselineFrameStride-th measured frame):
 //   raster_baseline  ldm/raster_only.frag, an empty shader without attachments: a driver may
 //                    skip shading altogether, so this is the rasteriser's setup and coverage
 //                    cost at most

@@ -14,7 +14,7 @@ namespace {
 using namespace columns;
 
 // What a configuration was measured on and whether it measures anything (issue 22;
-// harness/app/scene_profile.h, the trace step counts of the LDM passes): kept apart so that
+// harness/measuring/scene_profile.h, the trace step counts of the LDM passes): kept apart so that
 // the main list stays as it was.
 std::vector<ColumnSpec> scene_profile_columns() {
   return {

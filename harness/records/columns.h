@@ -2,7 +2,7 @@
 // The record schema's parts: every column has a unit and a one-line description, declared by
 // the code that writes it. The harness's own columns (identity, device, scene, census, build,
 // time, memory, accuracy, images, profile) are here; each pass declares the columns it writes
-// (Pass columns(), beside its describe() and results()); harness/app/record_schema.h puts them
+// (Pass columns(), beside its describe() and results()); harness/settings/record_schema.h puts them
 // together for `ldmbench columns`, the generated records table (docs/reference/records.md)
 // and the tests that check that every column of a real run is described.
 //

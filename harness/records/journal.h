@@ -5,7 +5,7 @@
 //   {"run": {...}}      the metadata of an invocation that writes to this folder
 //   {"record": {...}}   one finished configuration (its record, fields in order)
 //   {"repetition": {...}}  one finished repetition of a configuration measured K >= 2
-//                       times (harness/app/repetitions.h), before its record
+//                       times (harness/measuring/repetitions.h), before its record
 // A kill can at worst leave a torn last line; reading drops it (it was never complete) and
 // opening for append cuts it off, so every complete line survives any number of kills. An
 // append that fails (a full disk: write or fsync) takes its partial line back and throws

@@ -17,7 +17,7 @@ using RecordValue = std::variant<std::monostate, bool, int64_t, double, std::str
 
 // The columns a record of measurement may hold: a record made with a check refuses any other
 // (Record::set and put throw std::logic_error naming the column, at its first use). The
-// schema (harness/app/record_schema.h) gives the check; records read back, merged or of run
+// schema (harness/settings/record_schema.h) gives the check; records read back, merged or of run
 // metadata are made without one.
 using ColumnCheck = bool (*)(const std::string& column);
 

@@ -23,7 +23,7 @@ namespace ldm {
 // `other_build`: the record was written by another build of ldmbench (its git_commit or
 // ldmbench_version differs from this one's), whose schema may have had other columns: an
 // unknown column is then no problem (the types of known ones still are).
-// `columns`: the schema (harness/app/record_schema.h record_columns(): the harness's and
+// `columns`: the schema (harness/settings/record_schema.h record_columns(): the harness's and
 // every pass's columns).
 std::string schema_problem(const Record& record, const std::vector<ColumnSpec>& columns,
                            bool other_build = false);

@@ -26,7 +26,7 @@ struct MergeOptions {
   bool overwrite = false;
   std::string command;  // stored in the merged run entry
   // The schema of this build that every merged record is checked against (the caller's:
-  // record_columns() and always_written_columns() of harness/app/record_schema.h, which
+  // record_columns() and always_written_columns() of harness/settings/record_schema.h, which
   // stands above the records).
   std::vector<ColumnSpec> columns;
   std::vector<std::string> always_written;

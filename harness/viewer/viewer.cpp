@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "harness/app/exit_codes.h"
+#include "harness/run/exit_codes.h"
 #include "harness/gl/egl_context.h"
 #include "harness/util/error.h"
 #include "harness/viewer/key_script.h"

@@ -1,6 +1,6 @@
 #pragma once
 // `ldmbench view`: a GLFW window on the library code of `ldmbench run`. Each frame is a
-// frame of MeasurementSession (harness/app/measurement_session.h), the loop measure() runs,
+// frame of MeasurementSession (harness/measuring/measurement_session.h), the loop measure() runs,
 // and the figures on screen are its Measurement; the configuration is a RunSettings with one
 // value per axis, turned into the measurement request exactly as `ldmbench run` does, so
 // "Save as run" writes a command line that measures what is on screen.
@@ -9,7 +9,7 @@
 // ldm_viewer; the rest of ldmbench never opens a window system).
 #include <string>
 
-#include "harness/app/run_settings.h"
+#include "harness/settings/run_settings.h"
 
 namespace ldm::viewer {
 

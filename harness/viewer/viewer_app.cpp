@@ -22,11 +22,11 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "harness/app/ldm_setup.h"
-#include "harness/app/measure_configuration.h"
-#include "harness/app/measurement_session.h"
-#include "harness/app/exit_codes.h"
-#include "harness/app/run_command_line.h"
+#include "harness/measuring/ldm_setup.h"
+#include "harness/measuring/measure_configuration.h"
+#include "harness/measuring/measurement_session.h"
+#include "harness/run/exit_codes.h"
+#include "harness/settings/run_command_line.h"
 #include "harness/gl/bindings.h"
 #include "harness/gl/egl_context.h"
 #include "harness/gl/gl_objects.h"

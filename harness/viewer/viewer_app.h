@@ -7,8 +7,8 @@
 #include <memory>
 #include <string>
 
-#include "harness/app/measurement_session.h"
-#include "harness/app/run_settings.h"
+#include "harness/measuring/measurement_session.h"
+#include "harness/settings/run_settings.h"
 #include "harness/gl/bindings.h"
 #include "harness/gl/egl_context.h"
 #include "harness/gl/gl_objects.h"

@@ -10,8 +10,8 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
-#include "harness/app/harness_axes.h"
-#include "harness/app/timing_columns.h"
+#include "harness/settings/harness_axes.h"
+#include "harness/measuring/timing_columns.h"
 #include "harness/passes/pass.h"
 #include "harness/scene/generators.h"
 #include "ldm_impls/ldm_structure.h"
@@ -54,7 +54,7 @@ void Viewer::draw_panel() {
     scenes.push_back(settings_.scenes.front());
   if (ImGui::CollapsingHeader("Configuration", ImGuiTreeNodeFlags_DefaultOpen)) {
     combo("scene", settings_.scenes, scenes);
-    // Choices and ranges from the axes' declarations (harness/app/harness_axes.cpp).
+    // Choices and ranges from the axes' declarations (harness/settings/harness_axes.cpp).
     auto choices = [](const char* key) { return axis_choices(find_harness_axis(key)->spec); };
     auto clamped = [](const char* key, int v) {
       const AxisSpec& spec = find_harness_axis(key)->spec;

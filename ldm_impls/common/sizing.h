@@ -63,7 +63,7 @@ struct SizingSettings {
 // The plan for `settings` without the census (census, previous_frame, budget): the census
 // policy starts from nothing (its first frame's census sizes the storage), previous_frame
 // from `initial_per_pixel` fragments in every LDM pixel. The oracle's plan is made where
-// the census is (harness/app/ldm_setup.cpp), the one place a census reaches a plan.
+// the census is (harness/measuring/ldm_setup.cpp), the one place a census reaches a plan.
 SizingPlan plan_without_census(const SizingSettings& settings, uint64_t ldm_pixels);
 
 }  // namespace ldm

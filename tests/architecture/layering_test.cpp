@@ -128,12 +128,12 @@ TEST(Layering, NoIncludeRunsUpButTheDocumentedLeaks) {
 }
 
 TEST(Layering, TheCheckCatchesAnIncludeRunningUp) {
-  // The rule itself on a made-up include: util (0) including app (6) runs up.
+  // The rule itself on a made-up include: util (0) including run (8) runs up.
   const auto floor = floors();
-  EXPECT_LT(floor.at(folder_of("harness/util/files.cpp")), floor.at(folder_of("harness/app/run_command.h")));
+  EXPECT_LT(floor.at(folder_of("harness/util/files.cpp")), floor.at(folder_of("harness/run/run_command.h")));
   EXPECT_EQ(folder_of("ldm_impls/ldm_structure.h"), "ldm_impls");
   EXPECT_EQ(folder_of("ldm_impls/common/sizing.h"), "ldm_impls/common");
-  EXPECT_EQ(folder_of("harness/app/run_command.h"), "harness/app");
+  EXPECT_EQ(folder_of("harness/run/run_command.h"), "harness/run");
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-// The axis registry (harness/app/harness_axes.h, harness/app/axis_registry.h): every axis
+// The axis registry (harness/settings/harness_axes.h, harness/settings/axis_registry.h): every axis
 // declared once, by its owner, and everything else derived from the declaration. The proof
 // is an axis added here, in a test, touching nothing but its own declaration: a harness axis
 // and a pass with a parameter of its own reach the command line, sweep files, the product,
@@ -11,15 +11,15 @@
 #include <algorithm>
 #include <set>
 
-#include "harness/app/axis_options.h"
-#include "harness/app/axis_registry.h"
-#include "harness/app/harness_axes.h"
-#include "harness/app/measure_configuration.h"
-#include "harness/app/memory_plan.h"
-#include "harness/app/record_schema.h"
-#include "harness/app/run_command_line.h"
-#include "harness/app/sweep_plan.h"
-#include "harness/app/sweep_spec.h"
+#include "harness/settings/axis_options.h"
+#include "harness/settings/axis_registry.h"
+#include "harness/settings/harness_axes.h"
+#include "harness/measuring/measure_configuration.h"
+#include "harness/run/memory_plan.h"
+#include "harness/settings/record_schema.h"
+#include "harness/settings/run_command_line.h"
+#include "harness/run/sweep_plan.h"
+#include "harness/run/sweep_spec.h"
 #include "harness/passes/ambient_occlusion.h"
 #include "harness/passes/pass.h"
 #include "harness/util/error.h"

@@ -4,6 +4,8 @@
 // are checked against SciPy in tests/stats.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -349,6 +351,30 @@ TEST(CompareRuns, AnotherDeviceModelIsCrossDeviceAnotherGpuOfTheModelIsCompared)
   EXPECT_EQ(r.matched.front().times.size(), 1u);
   const std::string table = comparison_table(r);
   EXPECT_NE(table.find("1 configuration(s) ran on another GPU of the same model"), std::string::npos) << table;
+}
+
+// Two runs at different loads of their machine: compared, with a warning (the intervals are
+// calibrated at one load); at loads within the calibration's tolerance, none.
+TEST(CompareRuns, RunsAtDifferentLoadsAreComparedWithAWarning) {
+  std::mt19937 rng(6);
+  const auto at_load = [&](double load) {
+    json r = record("c", timed(rng, 10, 3, 0.01));
+    r["load_average_start"] = load;
+    return r;
+  };
+  CompareThresholds t;
+  t.time_subpasses = {"frame"};
+  const auto warned = [](const RunComparison& c) {
+    return std::any_of(c.warnings.begin(), c.warnings.end(),
+                       [](const std::string& w) { return w.find("different loads") != std::string::npos; });
+  };
+  const RunComparison quiet_against_loaded = compare_runs(run_of({at_load(0.4)}), run_of({at_load(2.1)}, "bbb"), t);
+  EXPECT_TRUE(warned(quiet_against_loaded));
+  EXPECT_NE(comparison_table(quiet_against_loaded).find("median load average 0.40 and 2.10"), std::string::npos)
+      << comparison_table(quiet_against_loaded);
+  EXPECT_EQ(quiet_against_loaded.matched.front().times.size(), 1u);  // still compared
+  EXPECT_FALSE(warned(compare_runs(run_of({at_load(0.4)}), run_of({at_load(0.8)}, "bbb"), t)));
+  EXPECT_FALSE(warned(compare_runs(run_of({record("c", timed(rng, 10, 3, 0.01))}), run_of({at_load(3.0)}, "bbb"), t)));
 }
 
 TEST(CompareRuns, MemoryIsExactUnlessToleranceAllows) {

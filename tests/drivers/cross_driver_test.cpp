@@ -12,7 +12,7 @@
 #include <regex>
 
 #include "cross_driver.h"
-#include "harness/app/record_schema.h"
+#include "harness/settings/record_schema.h"
 #include "harness/image/image.h"
 #include "harness/scene/scene_loader.h"
 #include "ldm_impls/common/ldm_inspector.h"

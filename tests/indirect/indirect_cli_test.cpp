@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "harness/app/record_schema.h"
+#include "harness/settings/record_schema.h"
 #include "support/test_support.h"
 
 namespace ldm {

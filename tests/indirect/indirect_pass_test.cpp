@@ -8,7 +8,7 @@
 #include <cstring>
 #include <tuple>
 
-#include "harness/app/measurement.h"
+#include "harness/measuring/measurement.h"
 #include "harness/reference/convex_single_bounce.h"
 #include "harness/scene/spot_light.h"
 #include "indirect/indirect_support.h"

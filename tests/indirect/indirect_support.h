@@ -5,7 +5,7 @@
 #include <memory>
 #include <string>
 
-#include "harness/app/ldm_setup.h"
+#include "harness/measuring/ldm_setup.h"
 #include "harness/passes/indirect_lighting.h"
 #include "harness/scene/scene_loader.h"
 #include "support/test_support.h"

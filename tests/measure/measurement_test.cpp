@@ -1,4 +1,4 @@
-// The one measurement path (harness/app/measurement.h) and the integrity policy every
+// The one measurement path (harness/measuring/measurement.h) and the integrity policy every
 // consumer shares (ldm_impls/common/build_health.h), and the pass registry.
 #include <gtest/gtest.h>
 
@@ -6,8 +6,8 @@
 #include <fstream>
 #include <map>
 
-#include "harness/app/measurement.h"
-#include "harness/app/measurement_session.h"
+#include "harness/measuring/measurement.h"
+#include "harness/measuring/measurement_session.h"
 #include "harness/passes/pass.h"
 #include "harness/records/output_folder.h"
 #include "harness/scene/gpu_scene.h"

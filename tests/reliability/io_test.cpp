@@ -8,7 +8,7 @@
 
 #include <regex>
 
-#include "harness/app/exit_codes.h"
+#include "harness/run/exit_codes.h"
 #include "reliability_support.h"
 
 namespace ldm::reliability {

@@ -12,7 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "harness/app/timing_columns.h"
+#include "harness/measuring/timing_columns.h"
 #include "harness/measure/frame_stop_rule.h"
 #include "harness/measure/timing_stats.h"
 #include "harness/stats/intervals.h"

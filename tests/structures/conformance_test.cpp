@@ -19,7 +19,7 @@
 #include <functional>
 #include <optional>
 
-#include "harness/app/measurement.h"
+#include "harness/measuring/measurement.h"
 #include "ldm_impls/common/build_health.h"
 #include "structures/structure_test_support.h"
 

@@ -3,7 +3,7 @@
 #include <memory>
 #include <string>
 
-#include "harness/app/ldm_setup.h"
+#include "harness/measuring/ldm_setup.h"
 #include "harness/scene/scene_loader.h"
 #include "ldm_impls/common/ldm_inspector.h"
 #include "support/test_support.h"

@@ -33,7 +33,7 @@ class GlEnvironment : public ::testing::Environment {
 };
 const auto* const registered = ::testing::AddGlobalTestEnvironment(new GlEnvironment);
 
-// Tests measure no machine: the run-to-run probe (harness/app/calibration.h, about 30 s) is
+// Tests measure no machine: the run-to-run probe (harness/measuring/calibration.h, about 30 s) is
 // skipped explicitly in every test process and the ldmbench it starts, and every record
 // says so in time_calibration. A test of the calibration passes --calibration itself, which
 // wins over the variable; one that sets the variable itself keeps it.

@@ -1,10 +1,10 @@
-// The end-of-run table (harness/app/run_summary.h) and the sweep's progress bar text.
+// The end-of-run table (harness/run/run_summary.h) and the sweep's progress bar text.
 #include <gtest/gtest.h>
 
 #include <sstream>
 
-#include "harness/app/run_summary.h"
-#include "harness/app/sweep_progress.h"
+#include "harness/run/run_summary.h"
+#include "harness/run/sweep_progress.h"
 
 namespace ldm {
 namespace {

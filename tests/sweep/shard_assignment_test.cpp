@@ -1,4 +1,4 @@
-// Shards of a sweep (harness/app/shard_assignment.h): a partition of the configurations,
+// Shards of a sweep (harness/run/shard_assignment.h): a partition of the configurations,
 // sizes within one of each other, every axis value spread over the shards within one, also
 // when the fastest axis has as many values as there are shards (where k mod n put all N=4 in
 // shard 0 and all N=8 in shard 1); deterministic.
@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "harness/app/shard_assignment.h"
-#include "harness/app/sweep_plan.h"
+#include "harness/run/shard_assignment.h"
+#include "harness/run/sweep_plan.h"
 
 namespace ldm {
 namespace {

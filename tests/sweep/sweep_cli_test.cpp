@@ -79,7 +79,7 @@ TEST(SweepCli, DryRunListsAndBadFilesWriteNothing) {
   const Folder f = folder();
   const std::string sweep = f.sweep("small.json", kSmall);
   EXPECT_EQ(dry_run_ids(sweep).size(), 6u);
-  // A shard mixes the axes' values (harness/app/shard_assignment.h), in sweep order.
+  // A shard mixes the axes' values (harness/run/shard_assignment.h), in sweep order.
   const std::vector<std::string> shard = dry_run_ids(sweep, "--shard 1/4");
   EXPECT_EQ(shard, (std::vector<std::string>{"cornell-psppsll-ao-n2-r32-plane-prevframe",
                                              "cornell-psppfla-ao-n4-r32-plane-prevframe"}));

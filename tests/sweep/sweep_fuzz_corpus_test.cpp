@@ -6,8 +6,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "harness/app/sweep_plan.h"
-#include "harness/app/sweep_spec.h"
+#include "harness/run/sweep_plan.h"
+#include "harness/run/sweep_spec.h"
 #include "harness/util/error.h"
 
 namespace ldm {

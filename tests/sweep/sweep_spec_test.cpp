@@ -1,4 +1,4 @@
-// The sweep file (harness/app/sweep_spec.h, sweep_plan.h): the product of the axes minus
+// The sweep file (harness/run/sweep_spec.h, sweep_plan.h): the product of the axes minus
 // exclude filters plus include blocks, in a fixed order; strict checking with the file and
 // JSON path in every message; combinations the same configuration collapsed; shards.
 #include <gtest/gtest.h>
@@ -7,16 +7,16 @@
 #include <fstream>
 #include <set>
 
-#include "harness/app/run_command_line.h"
-#include "harness/app/sweep_plan.h"
-#include "harness/app/sweep_spec.h"
+#include "harness/settings/run_command_line.h"
+#include "harness/run/sweep_plan.h"
+#include "harness/run/sweep_spec.h"
 #include "harness/util/error.h"
 #include "support/test_support.h"
 
 namespace ldm {
 namespace {
 
-// The registry's axes (harness/app/axis_registry.h) with fewer choices, so that the
+// The registry's axes (harness/settings/axis_registry.h) with fewer choices, so that the
 // messages listing them stay short.
 SweepVocabulary vocabulary() {
   SweepVocabulary v = current_sweep_vocabulary();

@@ -6,7 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "harness/app/calibration.h"
+#include "harness/measuring/calibration.h"
 #include "harness/measure/run_to_run_spread.h"
 #include "support/test_support.h"
 

@@ -7,7 +7,7 @@
 #include <map>
 #include <vector>
 
-#include "harness/app/measurement.h"
+#include "harness/measuring/measurement.h"
 #include "harness/measure/clock_warmup.h"
 #include "harness/scene/scene_loader.h"
 #include "support/test_support.h"

@@ -1,12 +1,12 @@
 // The run-to-run spread (harness/measure/run_to_run_spread.h), its cache rules and the
-// widening of a record's intervals (harness/app/timing_columns.h); the machine state beside
-// the times (harness/app/machine_state.h).
+// widening of a record's intervals (harness/measuring/timing_columns.h); the machine state beside
+// the times (harness/measuring/machine_state.h).
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "harness/app/machine_state.h"
-#include "harness/app/timing_columns.h"
+#include "harness/measuring/machine_state.h"
+#include "harness/measuring/timing_columns.h"
 #include "harness/measure/run_to_run_spread.h"
 #include "harness/stats/intervals.h"
 #include "harness/util/error.h"

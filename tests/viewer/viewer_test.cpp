@@ -17,7 +17,7 @@
 
 #include <unistd.h>
 
-#include "harness/app/run_command_line.h"
+#include "harness/settings/run_command_line.h"
 #include "harness/image/image.h"
 #include "harness/passes/pass.h"
 #include "ldm_impls/ldm_structure.h"
@@ -355,7 +355,7 @@ TEST(Viewer, SavedRunCommandLineIsExplicitAndQuoted) {
   s.structure_params["psppsll"]["capacity"] = "9";
   s.reference.enabled = false;
   const std::string line = run_command_line(s, "build/ldmbench", "out dir");
-  // Every axis from its declaration (harness/app/harness_axes.cpp), in canonical order, reals
+  // Every axis from its declaration (harness/settings/harness_axes.cpp), in canonical order, reals
   // as the shortest text that reads back as the same float.
   for (const char* part : {"build/ldmbench run --scene 'scenes/my scene.json' --pass ao --structure ppfla",
                            " --views 32 --r-ldm 128 ",

@@ -7,7 +7,7 @@
 #include <string>
 #include <variant>
 
-#include "harness/app/measurement.h"
+#include "harness/measuring/measurement.h"
 #include "harness/scene/scene_loader.h"
 #include "support/test_support.h"
 

@@ -20,8 +20,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "harness/app/measurement.h"
-#include "harness/app/record_schema.h"
+#include "harness/measuring/measurement.h"
+#include "harness/settings/record_schema.h"
 #include "harness/scene/scene_loader.h"
 #include "support/test_support.h"
 #include "work/counted_measurement.h"

@@ -16,8 +16,8 @@
 #include <variant>
 #include <vector>
 
-#include "harness/app/measurement.h"
-#include "harness/app/record_schema.h"
+#include "harness/measuring/measurement.h"
+#include "harness/settings/record_schema.h"
 #include "harness/measure/gpu_timer.h"
 #include "harness/measure/work_counters.h"
 #include "harness/scene/scene_loader.h"

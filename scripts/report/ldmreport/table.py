@@ -123,7 +123,7 @@ class Table:
 
     def status(self):
         """The record's status, with `ok` records that measure nothing (a non-empty
-        `degenerate` column, harness/app/scene_profile.h) as "degenerate": flagged like
+        `degenerate` column, harness/measuring/scene_profile.h) as "degenerate": flagged like
         lossy, invalid and failed ones, never ranked, off the fronts and fits."""
         status = self.text("status")
         degenerate = self.text("degenerate").replace("nan", "")

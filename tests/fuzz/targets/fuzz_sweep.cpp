@@ -1,13 +1,13 @@
 // libFuzzer target: any bytes as a sweep file. The parser must either give combinations
 // (each naming only known axes) or throw UserError; anything else (another exception, a
 // crash, undefined behaviour, a hang) is a finding. The vocabulary is fixed: the parser
-// knows the registries only through it (harness/app/sweep_spec.h).
+// knows the registries only through it (harness/run/sweep_spec.h).
 #include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
 
-#include "harness/app/sweep_spec.h"
+#include "harness/run/sweep_spec.h"
 #include "harness/util/error.h"
 
 namespace {

@@ -1,0 +1,156 @@
+#pragma once
+// One measurement of a (scene, structure, pass, N, R_LDM) configuration, as a value: what
+// `ldmbench run` turns into a record, what `ldmbench_gbench` reports, and what the tests
+// inspect. All three call measure(), so they build, time and judge alike.
+//
+// measure() uploads what the pass requires, takes the fragment census, prepares the
+// structure and the pass, then runs frames: raster baselines │ structure build under its
+// sizing policy (ldm_impls/common/sizing_driver.h) │ pass, each sub-pass timed, and after
+// every frame (untimed) the inspector's read-back judged by
+// BuildHealth (ldm_impls/common/build_health.h). Warm-up frames are judged but not kept.
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "harness/measure/clock_warmup.h"
+#include "harness/measure/frame_stop_rule.h"
+#include "harness/measure/gpu_timer.h"
+#include "harness/measure/timing_stats.h"
+#include "harness/passes/pass.h"
+#include "harness/scene/scene.h"
+#include "ldm_impls/common/build_health.h"
+#include "ldm_impls/common/build_verifier.h"
+#include "ldm_impls/common/fragment_census.h"
+#include "ldm_impls/ldm_structure.h"
+
+namespace ldm {
+
+struct MeasurementRequest {
+  std::string structure;
+  std::map<std::string, std::string> structure_params;
+  // How the structure learns its sizes (ldm_impls/common/sizing.h); the default is the
+  // run's (docs/reference/structures.md).
+  SizingSettings sizing = {SizingPolicy::PreviousFrame};
+  std::string pass = "ao";
+  std::map<std::string, std::string> pass_params;
+  uint32_t views = 32, resolution = 128;
+  int width = 256, height = 256;
+  // At least `frames` measured frames, then more until `precision` is met or its cap
+  // reached (harness/measure/frame_stop_rule.h); precision.target 0: exactly `frames`.
+  int warmup = 2, frames = 5;
+  TimePrecision precision{0.0};  // exactly `frames` unless asked (`ldmbench run` asks)
+  TimerSource timer = TimerSource::FencedWallClock;
+  // How much of each build is checked (ldm_impls/common/build_verifier.h).
+  VerifyMode verify = VerifyMode::Sampled;
+  uint32_t verify_stride = kDefaultVerifyStride;
+  // Decides before each measured frame whether to run it; unset: the stop rule above.
+  // Google Benchmark passes its own loop (State::KeepRunning) here.
+  std::function<bool()> keep_running;
+  // Called with every measured frame's times (sub-passes plus "build" and "frame").
+  std::function<void(const FrameTimes&)> on_frame;
+  // Where the GPU's clock can be read (NVIDIA), warm-up frames after the fixed ones until it
+  // reaches its working clock, for at most precision.clock_warmup_seconds
+  // (harness/measure/clock_warmup.h); unset: the fixed warm-up alone.
+  std::function<std::optional<GpuClockReading>()> read_gpu_clock;
+  // Called right before the first and right after the last measured frame: the record's
+  // machine state (harness/measuring/machine_state.h) is sampled there, around what is timed.
+  std::function<void()> before_measured_frames, after_measured_frames;
+  // After the measured frames, the untimed counting replay (MeasurementSession::
+  // count_work): the record's work_* columns. Off only where nothing reads them.
+  bool count_work = true;
+};
+
+// The fragment census in the few numbers a record keeps.
+struct CensusSummary {
+  uint64_t fragments = 0;
+  uint32_t max_depth_complexity = 0;
+  double mean_depth_complexity = 0;
+  double nonempty_pixel_fraction = 0;
+  DepthProfile profile;  // the list lengths' distribution (ldm_impls/common/fragment_census.h)
+};
+
+struct Measurement {
+  // What was measured.
+  std::string scene_name, scene_hash;
+  uint64_t triangles = 0;
+  std::string structure, pass;
+  std::vector<std::pair<std::string, RecordValue>> pass_settings;  // Pass::describe()
+  std::string scene_attributes, payload;
+  uint64_t scene_gpu_bytes = 0;
+  CensusSummary census;
+  TimerSource timer = TimerSource::FencedWallClock;
+  std::string device;  // empty: the GL context's renderer; a CPU pass: the CPU model
+
+  // The verdict on every build (warm-up included) and on the images.
+  BuildStatus status = BuildStatus::Ok;
+  std::string status_detail;
+  BuildStats last_build;  // stats() of the last build
+  bool overflow = false;
+  uint64_t checksum_changes = 0, lists_checksum = 0;
+  uint64_t tied_depths = 0;  // LdmIntegrity::tied_depths, the most of any build
+  // How the builds were checked, and the wall time the checks took (warm-up, measured).
+  std::string verify_mode;
+  uint32_t verify_stride = 0;
+  VerifyCounts verify_counts;
+  double verify_warmup_ms = 0, verify_measured_ms = 0;
+  // The structure's sizing() and the policy's (SizingDriver::describe()).
+  std::vector<std::pair<std::string, std::string>> sizing;
+  // Rebuilds after an overflow (all builds; in measured frames) and reallocations.
+  uint64_t sizing_rebuilds = 0, sizing_rebuilds_measured = 0, sizing_reallocations = 0;
+  std::vector<BufferMemory> memory;  // the structure's and the sizing policy's buffers
+  std::vector<BufferMemory> pass_memory;  // Pass::memory(): the pass's own (not in bytes_*)
+
+  // Every measured frame, in order: each sub-pass's milliseconds, then "build" (the
+  // structure's sub-passes), "pass" (the pass's own) and "frame" (everything but the raster
+  // baselines).
+  std::vector<FrameTimes> frames;
+  // Whether the frames reached the request's precision target (FrameStopRule), and the
+  // largest relative half-width of the watched sub-passes' intervals they did reach.
+  bool time_target_met = true;
+  double time_half_width = 0;
+  // The warm-up frames added until the GPU's clock reached its working level.
+  ClockWarmupResult clock_warmup;
+  // Fragments the last raster_touch pass shaded (harness/passes/raster_baseline.h): the
+  // census total when the touch baseline really touched every fragment.
+  uint64_t raster_touch_fragments = 0;
+  std::vector<std::string> pass_subpasses;  // the pass's own, as declared
+
+  // The counting replay's work_* fields (empty: not counted), its wall time, and whether
+  // it ran; its disagreements with the measured frames make the record invalid.
+  std::vector<std::pair<std::string, RecordValue>> work;
+  bool work_counted = false;
+  double work_replay_ms = 0;
+
+  std::vector<PassImage> images;
+  std::vector<std::pair<std::string, RecordValue>> pass_results;  // Pass::results()
+  Image coverage;  // Pass::coverage(): where the camera sees a surface (empty: not known)
+
+  TimingSeries series() const;  // the measured frames
+  // Sum over the measured frames of every timed sub-pass (the frame and the baselines).
+  double frames_timed_ms() const;
+  std::vector<TimingSummary> summaries() const;  // per sub-pass, first-seen order
+  uint64_t bytes_allocated() const;
+  uint64_t bytes_used() const;
+};
+
+// Every measured frame's times as a tidy CSV: "repetition,frame,subpass,ms", one row per
+// sub-pass and sum of each frame, in order (for statistical comparisons of runs, beyond the
+// summaries); `repetition` numbers the independent repetition these frames belong to.
+std::string frame_samples_csv(const Measurement& measurement, size_t repetition = 0);
+std::string frame_samples_csv(const std::vector<TimingSeries>& repetitions);
+
+// Why each image cannot be measured (a NaN or infinity), one sentence each; empty when all can.
+std::vector<std::string> image_problems(const std::vector<PassImage>& images);
+
+// "CPU: <model name>" from /proc/cpuinfo (the device column of a CPU pass's record, e.g. rtao).
+std::string cpu_model_name();
+
+// Throws UserError (bad parameters, a configuration the device cannot hold) or GpuError; a
+// build that is merely wrong is not an exception but an "invalid" status.
+Measurement measure(const Scene& scene, const MeasurementRequest& request);
+
+}  // namespace ldm

@@ -1,0 +1,405 @@
+#include "harness/measuring/measurement_session.h"
+
+#include <cstdio>
+#include <cstring>
+
+#include <algorithm>
+#include <cmath>
+#include <chrono>
+#include <optional>
+#include <stdexcept>
+
+#include "harness/measuring/ldm_setup.h"
+#include "harness/settings/record_schema.h"
+#include "harness/measure/work_counters.h"
+#include "harness/metrics/image_checks.h"
+#include "harness/passes/raster_baseline.h"
+#include "harness/util/error.h"
+#include "harness/util/hash.h"
+#include "ldm_impls/common/build_verifier.h"
+#include "ldm_impls/common/ldm_inspector.h"
+#include "ldm_impls/common/sizing_driver.h"
+#include "ldm_impls/common/storage_fit.h"
+
+namespace ldm {
+namespace {
+
+CensusSummary summarize_census(const FragmentCensus& census) {
+  CensusSummary s;
+  s.fragments = census.total_fragments;
+  s.max_depth_complexity = census.max_depth_complexity;
+  s.mean_depth_complexity = census.mean_depth_complexity();
+  s.nonempty_pixel_fraction =
+      census.total_pixels ? double(census.nonempty_pixels) / double(census.total_pixels) : 0.0;
+  s.profile = depth_profile(census);
+  return s;
+}
+
+// Adds the sums "build" (the structure's sub-passes: all but the baselines and the pass's
+// own), "pass" (the pass's own) and "frame" (all but the baselines) to one frame's times.
+// Summed per frame, so that each sum has its own interval (a sum of medians has none).
+void add_frame_sums(FrameTimes& times, const std::vector<std::string>& pass_subpasses) {
+  double build_ms = 0, frame_ms = 0;
+  for (const auto& [name, ms] : times) {
+    // The baselines are timed beside the build but belong to neither the build nor the
+    // frame: they are the yardsticks the build is compared with (build_vs_raster*).
+    if (RasterBaseline::is_baseline_subpass(name)) continue;
+    frame_ms += ms;
+    if (std::find(pass_subpasses.begin(), pass_subpasses.end(), name) == pass_subpasses.end())
+      build_ms += ms;
+  }
+  times.emplace_back("build", build_ms);
+  times.emplace_back("pass", frame_ms - build_ms);
+  times.emplace_back("frame", frame_ms);
+}
+
+std::unique_ptr<Pass> make_request_pass(const MeasurementRequest& request) {
+  return make_pass(request.pass, StructureParams(request.pass_params, "--pass " + request.pass));
+}
+
+}  // namespace
+
+// Everything one configuration's frames need. The LDM members are empty for a peer pass,
+// which has only `peer_scene` and `peer_gpu_scene`.
+struct MeasurementSession::State {
+  MeasurementRequest request;
+  std::unique_ptr<Pass> pass;
+  Measurement m;  // the fields fixed before the first frame, and the kept frames
+  int frames_run = 0;
+  GpuTimer timer;
+
+  // LDM passes.
+  std::unique_ptr<LdmSetup> setup;
+  std::unique_ptr<LdmStructure> structure;
+  std::unique_ptr<RasterBaseline> baseline;
+  std::unique_ptr<LdmInspector> inspector;
+  std::unique_ptr<SizingDriver> sizer;
+  std::optional<BuildHealth> health;
+  std::unique_ptr<BuildVerifier> verifier;
+  uint64_t rebuilds_in_warmup = 0;
+  uint64_t sizing_changes_seen = 0;  // rebuilds + reallocations at the last verification
+  // Where the counting replay disagreed with the measured frames (count_work()).
+  std::vector<std::string> work_problems;
+
+  // Peer passes: the scene as given (no LDM views, so no centred frame is imposed).
+  std::unique_ptr<Scene> peer_scene;
+  std::unique_ptr<GpuScene> peer_gpu_scene;
+
+  State(const MeasurementRequest& r, std::unique_ptr<Pass> p, TimerSource source)
+      : request(r), pass(std::move(p)), timer(source) {}
+
+  Scene& scene() { return setup ? setup->scene : *peer_scene; }
+  void prepare_pass() {
+    if (setup)
+      pass->prepare({setup->scene, *setup->gpu_scene, setup->inputs.get(), structure.get(),
+                     request.width, request.height});
+    else
+      pass->prepare({*peer_scene, *peer_gpu_scene, nullptr, nullptr, request.width,
+                     request.height});
+  }
+};
+
+MeasurementSession::MeasurementSession(const Scene& scene, const MeasurementRequest& request)
+    : state_() {
+  auto pass = make_request_pass(request);
+  const PassRequirements needs = pass->requirements();
+  // A CPU pass's time is the CPU's wall time, and its device the CPU: a GPU timer would
+  // time nothing (timestamps) or wait on an idle GPU (glFinish).
+  const TimerSource timer_source = needs.runs_on_cpu ? TimerSource::CpuWallClock : request.timer;
+  state_ = std::make_unique<State>(request, std::move(pass), timer_source);
+  State& s = *state_;
+  Measurement& m = s.m;
+  m.scene_name = scene.name;
+  m.scene_hash = hex64(scene.content_hash());
+  m.triangles = scene.mesh.triangle_count();
+  m.pass = request.pass;
+  m.pass_settings = s.pass->describe(scene);
+  for (const auto& sub : s.pass->subpasses()) m.pass_subpasses.push_back(sub.name);
+  m.scene_attributes = needs.scene_attributes.describe(scene.derived_normal_triangles, scene.mesh.triangle_count());
+  m.timer = timer_source;
+  if (needs.runs_on_cpu) m.device = cpu_model_name();
+
+  if (!needs.needs_structure) {
+    // A screen-space or ray-traced peer such as HBAO: the scene uploaded with the attributes
+    // the pass asks for, then frames of the pass alone. No census, views, baselines or
+    // build: the record's structure is "none" and its "frame" time is the pass's whole cost.
+    m.structure = "none";
+    m.payload = "none";
+    s.peer_scene = std::make_unique<Scene>(scene);
+    s.peer_gpu_scene = std::make_unique<GpuScene>(*s.peer_scene, needs.scene_attributes);
+    m.scene_gpu_bytes = needs.runs_on_cpu ? 0 : s.peer_gpu_scene->bytes();
+    s.prepare_pass();
+    return;
+  }
+
+  m.structure = request.structure;
+  // Only what the pass reads is uploaded, and the structure stores only its payload.
+  s.setup = std::make_unique<LdmSetup>(scene, needs.scene_attributes, request.views,
+                                       request.resolution, needs.payload, request.sizing);
+  const FragmentCensus& census = s.setup->census;
+  const BuildInputs& in = *s.setup->inputs;
+  m.scene_gpu_bytes = s.setup->gpu_scene->bytes();
+  m.payload = in.payload.describe();
+  m.census = summarize_census(census);
+
+  try {
+    s.structure = s.setup->prepare(request.structure, request.structure_params);
+  } catch (const StorageBlockExceeded& e) {  // say what would fit, from the census
+    throw explained_refusal(e, census, request.views, request.resolution);
+  }
+  s.baseline = std::make_unique<RasterBaseline>(*s.setup->raster, s.setup->views);
+  s.prepare_pass();
+  // Verification reads the census (never sizing): a list longer than its deepest pixel is
+  // corrupt.
+  s.inspector = std::make_unique<LdmInspector>(*s.structure, in,
+                                               std::max(1u, census.max_depth_complexity));
+  s.sizer = std::make_unique<SizingDriver>(*s.structure, in);
+  s.health.emplace(census);
+  s.verifier = std::make_unique<BuildVerifier>(*s.structure, *s.inspector, *s.health,
+                                               request.verify, request.verify_stride);
+  if (census.max_depth_complexity > kMaxListWalk)
+    s.health->report_problem("a pixel holds " + std::to_string(census.max_depth_complexity) +
+                             " fragments, more than list walks follow (" +
+                             std::to_string(kMaxListWalk) + ")");
+}
+
+MeasurementSession::~MeasurementSession() = default;
+
+// One frame: the yardstick, the build, the pass. Work that belongs to the build (e.g. a
+// per-frame census, or a rebuild after an overflow under a sizing policy) goes between
+// begin_frame() and pass->render(), timed under its own sub-pass name, so that it counts
+// as build time; the pass then reads the finished structure.
+FrameTimes MeasurementSession::run_frame() {
+  State& s = *state_;
+  const bool warmup = in_warmup();
+  // The yardsticks on the first warm-up frame (their programs' first use) and on every
+  // kBaselineFrameStride-th measured frame from the first: they are compared with the
+  // build's median, for which a subset of frames suffices, and cost a build's worth each.
+  const int measured_index = s.frames_run - s.request.warmup;
+  const bool yardsticks = warmup ? s.frames_run == 0 : measured_index % kBaselineFrameStride == 0;
+  ++s.frames_run;
+  s.timer.begin_frame();
+  if (s.setup) {
+    if (yardsticks) s.baseline->render(&s.timer);
+    try {
+      s.sizer->build(&s.timer);  // the structure's build() under its sizing policy
+    } catch (const StorageBlockExceeded& e) {  // grown past the device: say what would fit
+      throw explained_refusal(e, s.setup->census, s.request.views, s.request.resolution);
+    }
+  }
+  s.pass->render(&s.timer);
+  FrameTimes times = s.timer.end_frame();
+  if (s.setup) {
+    // Untimed: what the build stored, read back through the query API (in full, or a
+    // sample of it: build_verifier.h); its wall time is the harness's own cost.
+    const auto verify_start = std::chrono::steady_clock::now();
+    const uint64_t sizing_changes = s.sizer->rebuilds() + s.sizer->reallocations();
+    s.verifier->verify(sizing_changes != s.sizing_changes_seen);
+    s.sizing_changes_seen = sizing_changes;
+    s.m.last_build = s.verifier->last_stats();
+    const double verify_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - verify_start).count();
+    (warmup ? s.m.verify_warmup_ms : s.m.verify_measured_ms) += verify_ms;
+    if (warmup) {  // judged, but not measured
+      s.rebuilds_in_warmup = s.sizer->rebuilds();
+      return times;
+    }
+    add_frame_sums(times, s.m.pass_subpasses);
+  } else {
+    if (warmup) return times;
+    double frame_ms = 0;
+    for (const auto& [name, ms] : times) frame_ms += ms;
+    times.emplace_back("pass", frame_ms);
+    times.emplace_back("frame", frame_ms);
+  }
+  s.m.frames.push_back(times);
+  return times;
+}
+
+namespace {
+
+// How many values of two images differ by more than `tolerance` relative to the larger of
+// the two (0: bit for bit; a shape mismatch: all of them).
+size_t differing_values(const Image& a, const Image& b, double tolerance) {
+  if (!a.same_shape(b)) return std::max(a.pixels.size(), b.pixels.size());
+  if (std::isinf(tolerance)) return 0;  // the pass says its images depend on arrival order
+  size_t differing = 0;
+  for (size_t i = 0; i < a.pixels.size(); ++i) {
+    if (std::memcmp(&a.pixels[i], &b.pixels[i], sizeof(float)) == 0) continue;
+    const double x = a.pixels[i], y = b.pixels[i];
+    if (tolerance > 0 && std::abs(x - y) <= tolerance * std::max(std::abs(x), std::abs(y))) continue;
+    ++differing;
+  }
+  return differing;
+}
+
+}  // namespace
+
+void MeasurementSession::count_work() {
+  State& s = *state_;
+  if (s.pass->requirements().runs_on_cpu) return;  // no shader to count (the CPU ray tracer)
+  const auto start = std::chrono::steady_clock::now();
+  WorkCounterBuffer counts(configuration_work_counters(s.m.structure, s.request.pass));
+  GpuTimer timer(TimerSource::CpuWallClock);  // only to tell the counters the sub-passes
+  timer.set_observer(&counts);
+  std::unique_ptr<LdmStructure> structure;
+  std::unique_ptr<SizingDriver> sizer;
+  std::unique_ptr<Pass> pass = make_request_pass(s.request);
+  {
+    WorkCountingScope counting(counts.defines());
+    if (s.setup) {
+      structure = s.setup->prepare(s.request.structure, s.request.structure_params);
+      sizer = std::make_unique<SizingDriver>(*structure, *s.setup->inputs);
+      pass->prepare({s.setup->scene, *s.setup->gpu_scene, s.setup->inputs.get(), structure.get(),
+                     s.request.width, s.request.height});
+      pass->continue_sizing_from(*s.pass);
+    } else {
+      pass->prepare({*s.peer_scene, *s.peer_gpu_scene, nullptr, nullptr, s.request.width,
+                     s.request.height});
+    }
+    auto frame = [&] {
+      timer.begin_frame();
+      if (sizer) sizer->build(&timer);
+      pass->render(&timer);
+      timer.end_frame();
+    };
+    // One counted frame, its structure sized as the measured frames' next would be. Where
+    // a sizing policy still grew inside it (the indirect pass's photon buffer under
+    // previous_frame, which the pass sizes itself), its rebuild counted the work twice:
+    // that frame settled the sizes, and the next one is counted.
+    if (sizer) sizer->continue_from(*s.sizer);
+    counts.clear();
+    frame();
+    if (counts.began("rebuild") || counts.began("photon_rebuild")) {
+      counts.clear();
+      frame();
+    }
+  }
+  s.m.work = counts.read(&s.work_problems);
+  s.m.work_counted = true;
+
+  // Counting must change nothing the measured frames computed: the same sorted lists (the
+  // raw buffers may differ where fragments race) and bit for bit the same images.
+  if (structure) {
+    const LdmInspector inspector(*structure, *s.setup->inputs,
+                                 std::max(1u, s.setup->census.max_depth_complexity));
+    const LdmIntegrity replayed = inspector.check();
+    if (replayed.checksum != s.health->first_checksum())
+      s.work_problems.push_back("the counting replay's sorted lists differ from the measured builds' "
+                                "(checksum " + hex64(replayed.checksum) + " against " +
+                                hex64(s.health->first_checksum()) + ")");
+  }
+  const std::vector<PassImage> measured = s.pass->images(), replayed = pass->images();
+  for (size_t i = 0; i < measured.size() && i < replayed.size(); ++i)
+    if (const size_t differing = differing_values(measured[i].image, replayed[i].image,
+                                                  s.pass->image_order_tolerance()))
+      s.work_problems.push_back("the counting replay's " + measured[i].name + " image differs from the "
+                                "measured frames' in " + std::to_string(differing) + " values" +
+                                (s.pass->image_order_tolerance() > 0 ? " beyond the pass's order tolerance" : ""));
+  if (measured.size() != replayed.size())
+    s.work_problems.push_back("the counting replay drew another number of images");
+  s.m.work_replay_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+int MeasurementSession::frames_run() const { return state_->frames_run; }
+bool MeasurementSession::in_warmup() const { return state_->frames_run < state_->request.warmup; }
+
+void MeasurementSession::add_warmup_frame() {
+  State& s = *state_;
+  s.request.warmup = std::max(s.request.warmup, s.frames_run) + 1;
+}
+
+Measurement MeasurementSession::result() const {
+  const State& s = *state_;
+  Measurement m = s.m;
+  m.images = s.pass->images();
+  m.pass_results = s.pass->results();
+  m.coverage = s.pass->coverage();
+  if (m.images.empty()) throw std::logic_error("pass " + s.request.pass + " produced no image");
+  const std::vector<std::string> problems = image_problems(m.images);
+  if (!s.setup) {
+    // The image's own problems and the pass's (e.g. a GPU ray tracer the device's loop limit
+    // may have cut short) make a peer's record invalid, as they do an LDM pass's.
+    std::vector<std::string> all_problems = problems;
+    for (const auto& problem : s.pass->problems()) all_problems.push_back(problem);
+    for (const auto& problem : s.work_problems) all_problems.push_back(problem);
+    m.status = all_problems.empty() ? BuildStatus::Ok : BuildStatus::Invalid;
+    m.memory = s.pass->memory();
+    for (const auto& problem : all_problems)
+      m.status_detail += (m.status_detail.empty() ? "" : "; ") + problem;
+  } else {
+    BuildHealth health = *s.health;  // a snapshot: later frames are judged afresh
+    // A touch baseline that shaded other fragments than the census would make
+    // build_vs_raster_touch a ratio to something else.
+    m.raster_touch_fragments = s.baseline->touched_fragments();
+    if (m.raster_touch_fragments != s.setup->census.total_fragments)
+      health.report_problem("the raster_touch baseline shaded " +
+                            std::to_string(m.raster_touch_fragments) +
+                            " fragments where the census counted " +
+                            std::to_string(s.setup->census.total_fragments));
+    for (const auto& problem : problems) health.report_problem(problem);
+    for (const auto& problem : s.pass->problems()) health.report_problem(problem);
+    for (const auto& problem : s.work_problems) health.report_problem(problem);
+    m.status = health.status();
+    m.status_detail = health.detail();
+    m.overflow = health.overflow();
+    m.checksum_changes = health.checksum_changes();
+    m.tied_depths = health.tied_depths();
+    // Ties in a structure that quantises depths may be distinct depths collided on one key:
+    // their order is lost, which the record says rather than passing as exact (issue 35).
+    if (const double quantum = s.structure->depth_quantum(s.setup->views.views.front());
+        m.tied_depths > 0 && quantum > 0.0) {
+      char text[320];
+      std::snprintf(text, sizeof text,
+                    "%llu fragments stored at their predecessor's quantised depth (depth_quantum %.3g): "
+                    "distinct depths within one key step collided, their order lost, or coincident "
+                    "surfaces; the keys cannot tell which (tied_depths)",
+                    static_cast<unsigned long long>(m.tied_depths), quantum);
+      m.status_detail += std::string(m.status_detail.empty() ? "" : "; ") + text;
+    }
+    m.verify_mode = verify_mode_name(s.verifier->mode());
+    m.verify_stride = s.verifier->stride();
+    m.verify_counts = s.verifier->counts();
+    m.lists_checksum = health.first_checksum();
+    m.sizing = s.structure->sizing();
+    for (const auto& entry : s.sizer->describe()) m.sizing.push_back(entry);
+    m.sizing_rebuilds = s.sizer->rebuilds();
+    m.sizing_rebuilds_measured = s.sizer->rebuilds() - s.rebuilds_in_warmup;
+    m.sizing_reallocations = s.sizer->reallocations();
+    m.memory = s.structure->memory();
+    for (const auto& buffer : s.sizer->memory()) m.memory.push_back(buffer);
+    m.pass_memory = s.pass->memory();  // beside the structure's, not in bytes_*
+    // The pass's own counted loss (e.g. photons beyond the photon buffer) is lossy, as a
+    // structure's is; it never hides an invalid verdict.
+    const std::string pass_loss = s.pass->loss();
+    if (!pass_loss.empty()) {
+      if (m.status == BuildStatus::Ok) m.status = BuildStatus::Lossy;
+      m.status_detail += (m.status_detail.empty() ? "" : "; ") + pass_loss;
+    }
+  }
+  for (const auto& warning : s.pass->warnings())  // measured, but known to be off: say so
+    m.status_detail += (m.status_detail.empty() ? "" : "; ") + warning;
+  // What loading the scene replaced by a default (an OBJ's missing .mtl: grey albedo, on
+  // which the indirect light depends): in the record, not only on stderr.
+  for (const auto& warning : scene().warnings)
+    m.status_detail += (m.status_detail.empty() ? "" : "; ") + warning;
+  return m;
+}
+
+const Scene& MeasurementSession::scene() const {
+  return state_->setup ? state_->setup->scene : *state_->peer_scene;
+}
+
+void MeasurementSession::set_camera(const Camera& camera) {
+  State& s = *state_;
+  s.scene().camera = camera;
+  s.pass = make_request_pass(s.request);
+  s.prepare_pass();
+}
+
+const Pass& MeasurementSession::pass() const { return *state_->pass; }
+const LdmSetup* MeasurementSession::setup() const { return state_->setup.get(); }
+const LdmStructure* MeasurementSession::structure() const { return state_->structure.get(); }
+
+}  // namespace ldm
