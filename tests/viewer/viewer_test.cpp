@@ -362,7 +362,7 @@ TEST(Viewer, SavedRunCommandLineIsExplicitAndQuoted) {
                            " --d-max 0.1 ", " --visibility scene ", " --normal-offset 0.7 ", " --trace plane ",
                            " --sizing budget --sizing-budget-mib 12.5 ", " --image-size 256x256 ",
                            " --frames 5 --warmup 2 --param ppfla:k=4 --repetitions 1 --isolation context --time-target 0.03 "
-                           "--time-cap 2 --max-frames 1000 --timer auto --verify sampled --no-reference",
+                           "--time-cap 2 --clock-warmup 3 --max-frames 1000 --timer auto --verify sampled --no-reference",
                            " --out 'out dir'"})
     EXPECT_NE(line.find(part), std::string::npos) << part << " not in: " << line;
   EXPECT_EQ(line.find("psppsll:capacity"), std::string::npos) << line;
