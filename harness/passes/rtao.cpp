@@ -19,9 +19,7 @@ Rtao::Rtao(StructureParams& params) {
   spp_ = uint32_t(params.get_uint("spp"));
   threads_ = int(params.get_uint("threads"));
   seed_ = params.get_uint("seed");
-  if (params.has("d_max")) overrides_.d_max = float(params.get_double("d_max"));
-  const std::string visibility = params.get_choice("visibility");
-  if (visibility != "scene") overrides_.attenuated = visibility == "attenuated";
+  overrides_ = read_ao_overrides(params);
 }
 
 std::vector<AxisSpec> Rtao::parameters() {

@@ -72,9 +72,7 @@ RtaoGpu::RtaoGpu(StructureParams& params) {
   spp_ = uint32_t(params.get_uint("spp"));
   seed_ = params.get_uint("seed");
   trace_primary_ = params.get_choice("primary") == "trace";
-  if (params.has("d_max")) overrides_.d_max = float(params.get_double("d_max"));
-  const std::string visibility = params.get_choice("visibility");
-  if (visibility != "scene") overrides_.attenuated = visibility == "attenuated";
+  overrides_ = read_ao_overrides(params);
 }
 
 std::vector<AxisSpec> RtaoGpu::parameters() {
