@@ -12,9 +12,7 @@ namespace ldm {
 
 AmbientOcclusion::AmbientOcclusion(StructureParams& params) {
   // An absent key keeps the scene's value.
-  if (params.has("d_max")) overrides_.d_max = float(params.get_double("d_max"));
-  const std::string visibility = params.get_choice("visibility");
-  if (visibility != "scene") overrides_.attenuated = visibility == "attenuated";
+  overrides_ = read_ao_overrides(params);
   if (params.has("normal_offset_pixels"))
     overrides_.normal_offset_pixels = float(params.get_double("normal_offset_pixels"));
   overrides_.trace = parse_ao_trace(params.get_choice("trace"));

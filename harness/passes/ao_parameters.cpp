@@ -1,6 +1,16 @@
 #include "harness/passes/ao_parameters.h"
 
+#include "ldm_impls/ldm_structure.h"
+
 namespace ldm {
+
+AoOverrides read_ao_overrides(StructureParams& params) {
+  AoOverrides overrides;
+  if (params.has("d_max")) overrides.d_max = float(params.get_double("d_max"));
+  const std::string visibility = params.get_choice("visibility");
+  if (visibility != "scene") overrides.attenuated = visibility == "attenuated";
+  return overrides;
+}
 
 std::vector<ColumnSpec> ao_setting_columns(bool ldm) {
   std::vector<ColumnSpec> columns = {

@@ -10,9 +10,17 @@
 
 #include "harness/axes/axis.h"
 #include "harness/scene/ao_axes.h"
+#include "harness/scene/scene.h"
 #include "harness/records/columns.h"
 
 namespace ldm {
+
+class StructureParams;
+
+// The overrides of the scene's d_max and visibility that a pass's parameters
+// ao_pass_parameter(AoAxis::DMax) and ao_pass_parameter(AoAxis::Visibility) carry: an absent
+// d_max and visibility=scene keep the scene's value, as for the LDM AO.
+AoOverrides read_ao_overrides(StructureParams& params);
 
 // The record columns of the effective AO settings a pass writes in describe() (visibility,
 // d_max, falloff_exponent; with `ldm` the LDM trace's too: normal offset, trace, estimator),

@@ -49,9 +49,7 @@ Gtao::Gtao(StructureParams& params) {
   gtao_.normalized = params.get_choice("estimator") == "normalized";
   gtao_.denoise_radius = uint32_t(params.get_uint("denoise"));
   gtao_.reference_weights = params.get_choice("attenuation") == "reference";
-  if (params.has("d_max")) overrides_.d_max = float(params.get_double("d_max"));
-  const std::string visibility = params.get_choice("visibility");
-  if (visibility != "scene") overrides_.attenuated = visibility == "attenuated";
+  overrides_ = read_ao_overrides(params);
 }
 
 // The defaults are the measured optimum of docs/measured/gtao-rtao-gpu.md.

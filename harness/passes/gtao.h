@@ -40,24 +40,12 @@ class HbaoBlur;
 class Gtao : public Pass {
  public:
   explicit Gtao(StructureParams& params);
-  static std::vector<AxisSpec> parameters();
-  static std::vector<ColumnSpec> columns();
+  ~Gtao() override;
+  LDM_PASS_DECLARATIONS("gtao");
   // What its shaders count in the counting replay (harness/measure/work_counters.h).
   static std::vector<WorkCounter> work_counters();
-  ~Gtao() override;
-
-  std::string name() const override { return "gtao"; }
-  PassRequirements requirements() const override;
-  std::vector<TimedSubpass> subpasses() const override;
-  std::vector<std::pair<std::string, RecordValue>> describe(const Scene& scene) const override;
-  void prepare(const PassInputs& in) override;
-  void render(GpuTimer* timer) override;
-  std::vector<PassImage> images() const override;
-  std::vector<std::pair<std::string, RecordValue>> results() const override;
   Image coverage() const override;
   std::vector<BufferMemory> memory() const override;
-  ReferenceResult reference(const Scene& scene, int width, int height,
-                            const ReferenceSettings& settings) const override;
 
   AoSettings settings_for(const Scene& scene) const;
   const GtaoSettings& gtao() const { return gtao_; }

@@ -19,10 +19,7 @@ Hbao::Hbao(StructureParams& params) {
   hbao_.angle_bias = float(params.get_double("angle_bias"));
   hbao_.jitter = params.get_choice("jitter") == "on";
   hbao_.blur_radius = uint32_t(params.get_uint("blur"));
-  // An absent key keeps the scene's value, as for the LDM AO.
-  if (params.has("d_max")) overrides_.d_max = float(params.get_double("d_max"));
-  const std::string visibility = params.get_choice("visibility");
-  if (visibility != "scene") overrides_.attenuated = visibility == "attenuated";
+  overrides_ = read_ao_overrides(params);
 }
 
 std::vector<AxisSpec> Hbao::parameters() {

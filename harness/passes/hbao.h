@@ -26,26 +26,12 @@ namespace ldm {
 class Hbao : public Pass {
  public:
   explicit Hbao(StructureParams& params);
-  // The parameters it reads (--param and the AO axes it takes), declared (harness/axes/axis.h).
-  static std::vector<AxisSpec> parameters();
-  // The record columns it writes (describe(), results(), its counts), declared.
-  static std::vector<ColumnSpec> columns();
+  ~Hbao() override;
+  LDM_PASS_DECLARATIONS("hbao");
   // What its shaders count in the counting replay (harness/measure/work_counters.h).
   static std::vector<WorkCounter> work_counters();
-  ~Hbao() override;
-
-  std::string name() const override { return "hbao"; }
-  PassRequirements requirements() const override;
-  std::vector<TimedSubpass> subpasses() const override;
-  std::vector<std::pair<std::string, RecordValue>> describe(const Scene& scene) const override;
-  void prepare(const PassInputs& in) override;
-  void render(GpuTimer* timer) override;
-  std::vector<PassImage> images() const override;
-  std::vector<std::pair<std::string, RecordValue>> results() const override;
   Image coverage() const override;
   std::vector<BufferMemory> memory() const override;
-  ReferenceResult reference(const Scene& scene, int width, int height,
-                            const ReferenceSettings& settings) const override;
 
   // The scene's AO settings (d_max, visibility) with this pass's overrides applied.
   AoSettings settings_for(const Scene& scene) const;

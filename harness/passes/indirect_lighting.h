@@ -29,21 +29,9 @@ namespace ldm {
 class IndirectLighting : public Pass {
  public:
   explicit IndirectLighting(StructureParams& params);
-  // The parameters it reads (--param and the AO axes it takes), declared (harness/axes/axis.h).
-  static std::vector<AxisSpec> parameters();
-  // The record columns it writes (describe(), results(), its counts), declared.
-  static std::vector<ColumnSpec> columns();
+  LDM_PASS_DECLARATIONS("indirect");
   // What its shaders count in the counting replay (harness/measure/work_counters.h).
   static std::vector<WorkCounter> work_counters();
-
-  std::string name() const override { return "indirect"; }
-  PassRequirements requirements() const override;
-  std::vector<TimedSubpass> subpasses() const override;
-  std::vector<std::pair<std::string, RecordValue>> describe(const Scene& scene) const override;
-  void prepare(const PassInputs& in) override;
-  void render(GpuTimer* timer) override;
-  std::vector<PassImage> images() const override;
-  std::vector<std::pair<std::string, RecordValue>> results() const override;
   Image coverage() const override;
   std::string loss() const override;
   void continue_sizing_from(const Pass& measured) override;
@@ -57,8 +45,6 @@ class IndirectLighting : public Pass {
   // Stored photons whose footprint floats cannot resolve where they lie (photon_resolution).
   std::vector<std::string> warnings() const override;
   std::vector<BufferMemory> memory() const override;
-  ReferenceResult reference(const Scene& scene, int width, int height,
-                            const ReferenceSettings& settings) const override;
   std::vector<ScoredReference> references(const Scene& scene, int width, int height,
                                           const ReferenceSettings& settings) const override;
 

@@ -138,6 +138,30 @@ class Pass {
   }
 };
 
+// What every pass declares, written once so that one place says what every pass overrides
+// (as LDM_STRUCTURE_DECLARATIONS does for the structures): its static declarations (registered in pass_registry.cpp's table), the
+// overrides of Pass's pure virtual functions, and results(), which all six passes implement
+// alike. The other optional overrides (coverage, warnings, problems, memory, loss, ...), the
+// destructor and work_counters() (rtao counts nothing) follow the macro in the passes that
+// have them.
+#define LDM_PASS_DECLARATIONS(NAME)                                                        \
+  /* The parameters it reads (--param, the AO axes it takes), declared (harness/axes). */  \
+  static std::vector<AxisSpec> parameters();                                               \
+  /* The record columns it writes (describe(), results(), its counts), declared. */        \
+  static std::vector<ColumnSpec> columns();                                                \
+                                                                                           \
+  std::string name() const override { return NAME; }                                       \
+  PassRequirements requirements() const override;                                          \
+  std::vector<TimedSubpass> subpasses() const override;                                    \
+  std::vector<std::pair<std::string, RecordValue>> describe(const Scene& scene)            \
+      const override;                                                                      \
+  void prepare(const PassInputs& in) override;                                             \
+  void render(GpuTimer* timer) override;                                                   \
+  std::vector<PassImage> images() const override;                                          \
+  std::vector<std::pair<std::string, RecordValue>> results() const override;               \
+  ReferenceResult reference(const Scene& scene, int width, int height,                     \
+                            const ReferenceSettings& settings) const override
+
 // What the pass registry holds of a pass (harness/passes/pass_registry.cpp): its name, its
 // declared parameters and record columns, and how to make it from checked parameters.
 struct PassRegistration {

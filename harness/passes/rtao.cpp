@@ -19,41 +19,28 @@ Rtao::Rtao(StructureParams& params) {
   spp_ = uint32_t(params.get_uint("spp"));
   threads_ = int(params.get_uint("threads"));
   seed_ = params.get_uint("seed");
-  if (params.has("d_max")) overrides_.d_max = float(params.get_double("d_max"));
-  const std::string visibility = params.get_choice("visibility");
-  if (visibility != "scene") overrides_.attenuated = visibility == "attenuated";
+  overrides_ = read_ao_overrides(params);
 }
 
+// Each parameter in one designated initializer (the fields in AxisSpec's order), as
+// harness/scene/ao_axes.cpp declares the AO axes; the fields left out keep their defaults.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
 std::vector<AxisSpec> Rtao::parameters() {
-  AxisSpec spp;
-  spp.key = "spp";
-  spp.kind = AxisKind::UInt;
-  spp.min = 1;
-  spp.max = 65536;
-  spp.default_value = "1";
-  spp.unit = "samples per pixel";
-  spp.column = "rtao_spp";
-  spp.description = "rays per pixel (cosine-weighted, Embree)";
-  AxisSpec threads;
-  threads.key = "threads";
-  threads.kind = AxisKind::UInt;
-  threads.min = 0;
-  threads.max = 1024;
-  threads.default_value = "0";
-  threads.identity = false;  // how fast, not what: the image is the same with any count
-  threads.unit = "threads";
-  threads.column = "rtao_threads";
-  threads.description = "CPU threads tracing (0: every core)";
-  AxisSpec seed;
-  seed.key = "seed";
-  seed.kind = AxisKind::UInt;
-  seed.min = 0;
-  seed.max = double(uint64_t(1) << 53);  // exact in JSON
-  seed.default_value = std::to_string(kDefaultSeed);
-  seed.column = "rtao_seed";
-  seed.description = "seed of the sample stream (independent of the reference's halves)";
-  return {spp, threads, seed, ao_pass_parameter(AoAxis::DMax), ao_pass_parameter(AoAxis::Visibility)};
+  return {{.key = "spp", .kind = AxisKind::UInt, .min = 1, .max = 65536, .default_value = "1",
+           .unit = "samples per pixel", .description = "rays per pixel (cosine-weighted, Embree)",
+           .column = "rtao_spp"},
+          // Not identity: how fast, not what; the image is the same with any count.
+          {.key = "threads", .kind = AxisKind::UInt, .min = 0, .max = 1024, .default_value = "0",
+           .identity = false, .unit = "threads", .description = "CPU threads tracing (0: every core)",
+           .column = "rtao_threads"},
+          {.key = "seed", .kind = AxisKind::UInt, .min = 0, .max = double(uint64_t(1) << 53),  // exact in JSON
+           .default_value = std::to_string(kDefaultSeed),
+           .description = "seed of the sample stream (independent of the reference's halves)",
+           .column = "rtao_seed"},
+          ao_pass_parameter(AoAxis::DMax), ao_pass_parameter(AoAxis::Visibility)};
 }
+#pragma GCC diagnostic pop
 
 std::vector<ColumnSpec> Rtao::columns() {
   std::vector<ColumnSpec> columns = ao_setting_columns(false);

@@ -31,22 +31,8 @@ inline constexpr uint32_t kRtaoStreamPass = 0x80000000u;
 class Rtao : public Pass {
  public:
   explicit Rtao(StructureParams& params);
-  // The parameters it reads (--param and the AO axes it takes), declared (harness/axes/axis.h).
-  static std::vector<AxisSpec> parameters();
-  // The record columns it writes (describe(), results(), its counts), declared.
-  static std::vector<ColumnSpec> columns();
   ~Rtao() override;
-
-  std::string name() const override { return "rtao"; }
-  PassRequirements requirements() const override;
-  std::vector<TimedSubpass> subpasses() const override;
-  std::vector<std::pair<std::string, RecordValue>> describe(const Scene& scene) const override;
-  void prepare(const PassInputs& in) override;
-  void render(GpuTimer* timer) override;
-  std::vector<PassImage> images() const override;
-  std::vector<std::pair<std::string, RecordValue>> results() const override;
-  ReferenceResult reference(const Scene& scene, int width, int height,
-                            const ReferenceSettings& settings) const override;
+  LDM_PASS_DECLARATIONS("rtao");
 
   AoSettings settings_for(const Scene& scene) const;
   // The worker threads a render of the prepared size uses (the parameter, or all cores for

@@ -72,38 +72,27 @@ RtaoGpu::RtaoGpu(StructureParams& params) {
   spp_ = uint32_t(params.get_uint("spp"));
   seed_ = params.get_uint("seed");
   trace_primary_ = params.get_choice("primary") == "trace";
-  if (params.has("d_max")) overrides_.d_max = float(params.get_double("d_max"));
-  const std::string visibility = params.get_choice("visibility");
-  if (visibility != "scene") overrides_.attenuated = visibility == "attenuated";
+  overrides_ = read_ao_overrides(params);
 }
 
+// Each parameter in one designated initializer (the fields in AxisSpec's order), as
+// harness/scene/ao_axes.cpp declares the AO axes; the fields left out keep their defaults.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
 std::vector<AxisSpec> RtaoGpu::parameters() {
-  AxisSpec spp;
-  spp.key = "spp";
-  spp.kind = AxisKind::UInt;
-  spp.min = 1;
-  spp.max = 65536;
-  spp.default_value = "1";
-  spp.unit = "samples per pixel";
-  spp.column = "rtao_gpu_spp";
-  spp.description = "rays per pixel k (cosine-weighted, traced on the GPU)";
-  AxisSpec seed;
-  seed.key = "seed";
-  seed.kind = AxisKind::UInt;
-  seed.min = 0;
-  seed.max = double(uint64_t(1) << 53);  // exact in JSON
-  seed.default_value = std::to_string(kDefaultSeed);
-  seed.column = "rtao_gpu_seed";
-  seed.description = "seed of the sample stream (the CPU RTAO's numbers for the same seed)";
-  AxisSpec primary;
-  primary.key = "primary";
-  primary.kind = AxisKind::Choice;
-  primary.choices = {"trace", "raster"};
-  primary.default_value = "trace";
-  primary.column = "rtao_gpu_primary";
-  primary.description = "where the pixels' points come from: traced primary rays (the reference's) or the rasterised G-buffer";
-  return {spp, seed, primary, ao_pass_parameter(AoAxis::DMax), ao_pass_parameter(AoAxis::Visibility)};
+  return {{.key = "spp", .kind = AxisKind::UInt, .min = 1, .max = 65536, .default_value = "1",
+           .unit = "samples per pixel", .description = "rays per pixel k (cosine-weighted, traced on the GPU)",
+           .column = "rtao_gpu_spp"},
+          {.key = "seed", .kind = AxisKind::UInt, .min = 0, .max = double(uint64_t(1) << 53),  // exact in JSON
+           .default_value = std::to_string(kDefaultSeed),
+           .description = "seed of the sample stream (the CPU RTAO's numbers for the same seed)",
+           .column = "rtao_gpu_seed"},
+          {.key = "primary", .kind = AxisKind::Choice, .choices = {"trace", "raster"}, .default_value = "trace",
+           .description = "where the pixels' points come from: traced primary rays (the reference's) or the rasterised G-buffer",
+           .column = "rtao_gpu_primary"},
+          ao_pass_parameter(AoAxis::DMax), ao_pass_parameter(AoAxis::Visibility)};
 }
+#pragma GCC diagnostic pop
 
 std::vector<ColumnSpec> RtaoGpu::columns() {
   std::vector<ColumnSpec> columns = ao_setting_columns(false);

@@ -57,27 +57,15 @@ struct RtaoGpuWork {
 class RtaoGpu : public Pass {
  public:
   explicit RtaoGpu(StructureParams& params);
-  static std::vector<AxisSpec> parameters();
-  static std::vector<ColumnSpec> columns();
+  ~RtaoGpu() override;
+  LDM_PASS_DECLARATIONS("rtao_gpu");
   // What its shaders count in the shared counting replay (harness/measure/work_counters.h).
   static std::vector<WorkCounter> work_counters();
-  ~RtaoGpu() override;
-
-  std::string name() const override { return "rtao_gpu"; }
-  PassRequirements requirements() const override;
-  std::vector<TimedSubpass> subpasses() const override;
-  std::vector<std::pair<std::string, RecordValue>> describe(const Scene& scene) const override;
-  // Builds and uploads the BVH (once: the scene is static). Throws UserError when a BVH
-  // array would exceed the device's storage block.
-  void prepare(const PassInputs& in) override;
-  void render(GpuTimer* timer) override;
-  std::vector<PassImage> images() const override;
-  std::vector<std::pair<std::string, RecordValue>> results() const override;
+  // prepare() builds and uploads the BVH (once: the scene is static); it throws UserError
+  // when a BVH array would exceed the device's storage block.
   Image coverage() const override;
   std::vector<std::string> problems() const override;
   std::vector<BufferMemory> memory() const override;
-  ReferenceResult reference(const Scene& scene, int width, int height,
-                            const ReferenceSettings& settings) const override;
 
   AoSettings settings_for(const Scene& scene) const;
   const GpuBvh& bvh() const { return bvh_; }
