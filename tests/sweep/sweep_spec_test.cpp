@@ -121,6 +121,10 @@ TEST(SweepSpec, ErrorsNameTheFileAndTheJsonPath) {
   EXPECT_NE(error_of(R"({"axes": {"views": 4}, "settings": {"images": "yes"}})")
                 .find("s.json: settings.images: expected true or false"),
             std::string::npos);
+  EXPECT_NE(error_of(R"({"axes": {"views": 4}, "settings": {"timing": {"clock_warmup_s": -1}}})")
+                .find("s.json: settings.timing.clock_warmup_s: expected a number in [0, 600]"),
+            std::string::npos)
+      << error_of(R"({"axes": {"views": 4}, "settings": {"timing": {"clock_warmup_s": -1}}})");
   EXPECT_NE(error_of(R"({"axes": {"views": 4}, "include": [{}]})").find("s.json: include[0]: names no axis"),
             std::string::npos);
   // Syntax errors name their line and column (util/json_input.h), like scene files'.
@@ -224,6 +228,8 @@ TEST(SweepPlan, SweepFileOfRunSettingsPlansTheSameConfigurations) {
   s.reference.spp.target_noise_mse = 3e-5;
   s.reference.spp.max_spp_per_half = 64;
   s.reference.seed = 7;
+  s.precision.cap_seconds = 1.5;
+  s.precision.clock_warmup_seconds = 0.25;
 
   const std::string dir = test::make_temp_dir("ldm-sweep");
   const SweepPlan plan = plan_sweep(write_sweep(dir, sweep_file_json(s, "round trip")), RunSettings());
@@ -244,6 +250,8 @@ TEST(SweepPlan, SweepFileOfRunSettingsPlansTheSameConfigurations) {
   EXPECT_EQ(got.reference.spp.target_noise_mse, 3e-5);
   EXPECT_EQ(got.reference.spp.max_spp_per_half, 64u);
   EXPECT_EQ(got.reference.seed, 7u);
+  EXPECT_EQ(got.precision.cap_seconds, 1.5);
+  EXPECT_EQ(got.precision.clock_warmup_seconds, 0.25);
   ASSERT_TRUE(got.normal_offset_pixels.has_value());
   EXPECT_EQ(*got.normal_offset_pixels, 1.25f);
 }
