@@ -25,6 +25,7 @@
 #include "harness/stats/time_tests.h"
 #include "harness/util/error.h"
 #include "harness/util/json_input.h"
+#include "harness/util/text.h"
 
 namespace ldm {
 namespace {
@@ -360,13 +361,6 @@ std::string fixed(double v, const char* format) {
 }
 
 std::string mib(double bytes) { return bytes < 0 ? "-" : fixed(bytes / (1024.0 * 1024.0), "%.3g"); }
-
-// "llvmpipe" or "llvmpipe, zink": the drivers (or devices) of a run's records, in order.
-std::string joined(const std::vector<std::string>& names) {
-  std::string out;
-  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
-  return out;
-}
 
 std::vector<std::string> distinct(const std::vector<json>& records, const std::function<std::string(const json&)>& of) {
   std::vector<std::string> out;

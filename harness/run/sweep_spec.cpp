@@ -9,17 +9,12 @@
 #include "harness/axes/axis.h"
 #include "harness/util/error.h"
 #include "harness/util/json_input.h"
+#include "harness/util/text.h"
 
 namespace ldm {
 namespace {
 
 using json = nlohmann::json;
-
-std::string joined(const std::vector<std::string>& names) {
-  std::string out;
-  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
-  return out;
-}
 
 std::string number_text(double x) {
   char buffer[32];

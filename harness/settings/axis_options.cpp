@@ -6,16 +6,11 @@
 
 #include "harness/settings/harness_axes.h"
 #include "harness/util/error.h"
+#include "harness/util/text.h"
 #include "ldm_impls/ldm_structure.h"
 
 namespace ldm {
 namespace {
-
-std::string joined(const std::vector<std::string>& names) {
-  std::string out;
-  for (const auto& n : names) out += (out.empty() ? "" : ", ") + n;
-  return out;
-}
 
 std::string format_g(double x) {
   char buffer[32];

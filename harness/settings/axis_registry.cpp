@@ -5,16 +5,11 @@
 
 #include "harness/settings/harness_axes.h"
 #include "harness/passes/pass.h"
+#include "harness/util/text.h"
 #include "ldm_impls/ldm_structure.h"
 
 namespace ldm {
 namespace {
-
-std::string joined(const std::vector<std::string>& names, const char* separator) {
-  std::string out;
-  for (const auto& n : names) out += (out.empty() ? "" : separator) + n;
-  return out;
-}
 
 // A Markdown table cell: a literal '|' (as in "sum V|cos|") would end the cell.
 std::string cell(const std::string& text) {

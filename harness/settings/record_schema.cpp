@@ -6,6 +6,7 @@
 #include "harness/settings/harness_axes.h"
 #include "harness/passes/pass.h"
 #include "harness/records/harness_columns.h"
+#include "harness/util/text.h"
 #include "ldm_impls/ldm_structure.h"
 
 namespace ldm {
@@ -19,21 +20,13 @@ const std::vector<std::string>& always_written_columns() {
   return columns;
 }
 
-namespace {
-std::string joined(const std::vector<std::string>& names) {
-  std::string text;
-  for (const auto& name : names) text += (text.empty() ? "" : " ") + name;
-  return text;
-}
-}  // namespace
-
 std::string declared_columns_text() {
   std::vector<std::string> names;
   for (const auto& column : record_columns()) names.push_back(column.name);
-  return joined(names);
+  return joined(names, " ");
 }
 
-std::string always_written_columns_text() { return joined(always_written_columns()); }
+std::string always_written_columns_text() { return joined(always_written_columns(), " "); }
 
 std::vector<WorkCounter> configuration_work_counters(const std::string& structure, const std::string& pass) {
   std::vector<WorkCounter> counters;
