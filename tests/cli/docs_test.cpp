@@ -194,6 +194,20 @@ TEST(Docs, LinkCheckerFindsBrokenLinks) {
   EXPECT_NE(o.output.find("6 relative links checked, 3 broken"), std::string::npos) << o.output;
 }
 
+// Every non-empty line a table script printed stands, whole, in the document, and the
+// output held at least `min_rows` table rows (a script that printed nothing fails).
+void expect_every_line_stands_in(const std::string& doc_name, const std::string& doc, const std::string& output,
+                                 int min_rows) {
+  std::istringstream lines(output);
+  int rows = 0;
+  for (std::string line; std::getline(lines, line);) {
+    if (line.empty()) continue;
+    EXPECT_NE(doc.find(line + "\n"), std::string::npos) << "not in " << doc_name << ": " << line;
+    rows += line.rfind("| ", 0) == 0;
+  }
+  EXPECT_GE(rows, min_rows) << output;
+}
+
 // The README's main table is what scripts/readme_table.py prints from the committed records
 // (docs/measured/readme-main/): every line of it stands in the README as printed, so the
 // table cannot drift from its records.
@@ -202,14 +216,7 @@ TEST(Docs, ReadmeMainTableIsItsRecords) {
   const auto o = test::run_shell(std::string(LDM_PYTHON) + " " + (kRoot / "scripts" / "readme_table.py").string() + " " +
                                  (kRoot / "docs" / "measured" / "readme-main" / "records.csv").string());
   ASSERT_EQ(o.status, 0) << o.output;
-  std::istringstream lines(o.output);
-  int rows = 0;
-  for (std::string line; std::getline(lines, line);) {
-    if (line.empty()) continue;
-    EXPECT_NE(readme.find(line + "\n"), std::string::npos) << "not in README.md: " << line;
-    rows += line.rfind("| ", 0) == 0;
-  }
-  EXPECT_GE(rows, 10) << o.output;
+  expect_every_line_stands_in("README.md", readme, o.output, 10);
 }
 
 // The GPU suite's measured page holds what scripts/gpu_suite_tables.py prints from the
@@ -220,14 +227,7 @@ TEST(Docs, GpuSuitePageTablesAreItsRecords) {
                                  (kRoot / "scripts" / "gpu_suite_tables.py").string() + " " +
                                  (kRoot / "docs" / "measured" / "gpu-suite" / "nvidia-h200-pcie-sse2").string());
   ASSERT_EQ(o.status, 0) << o.output;
-  std::istringstream lines(o.output);
-  int rows = 0;
-  for (std::string line; std::getline(lines, line);) {
-    if (line.empty()) continue;
-    EXPECT_NE(page.find(line + "\n"), std::string::npos) << "not in gpu-suite.md: " << line;
-    rows += line.rfind("| ", 0) == 0;
-  }
-  EXPECT_GE(rows, 50) << o.output;
+  expect_every_line_stands_in("gpu-suite.md", page, o.output, 50);
 }
 
 TEST(Docs, ReadmeIsShort) {
