@@ -39,14 +39,15 @@ def repetitions(journal):
 
 
 def base_point(rows):
-    print("| scene | structure | build ms | AO pass ms | frame ms | MSE | MiB allocated |")
+    print("| scene | structure | build ms | AO pass ms | frame ms [95 % interval] | MSE | MiB allocated |")
     print("| --- | --- | ---: | ---: | ---: | ---: | ---: |")
     for scene in ("cornell", "atrium"):
         for s in STRUCTURES:
             r = next(r for r in rows if r["scene"] == scene and r["structure"] == s and r["pass"] == "ao"
                      and r["n_views"] == "32" and r["r_ldm"] == "256")
             print(f"| {scene} | {s} | {ms(num(r, 'build_ms_median'))} | {ms(num(r, 'pass_ms_median'))} | "
-                  f"{ms(num(r, 'frame_ms_median'))} | {num(r, 'mse'):.3g} | {num(r, 'bytes_allocated') / 2**20:.1f} |")
+                  f"{ms(num(r, 'frame_ms_median'))} [{ms(num(r, 'frame_ms_ci_low'))}, {ms(num(r, 'frame_ms_ci_high'))}] | "
+                  f"{num(r, 'mse'):.3g} | {num(r, 'bytes_allocated') / 2**20:.1f} |")
 
 
 def against_n(rows):
@@ -121,7 +122,25 @@ def coverage(run1_rows, run2_reps):
         print(f"| {config} | {ms(a)} | {ms(b)} | ×{b / a:.2f} |")
 
 
+def model_fits(run):
+    """`ldmbench model RUN`'s fit quality per sub-pass (5-fold cross-validation by
+    configuration): the fit is deterministic, so its figures are the records'."""
+    import re
+    import subprocess
+    out = subprocess.run([ldmrecords.default_ldmbench(), "model", str(run)], check=True,
+                         capture_output=True, text=True).stdout
+    pattern = re.compile(r"· (\w+) \(.*\): (\d+) records, \d+ configurations; R² ([-0-9.]+), "
+                         r"held-out median error ([0-9.]+ %) \(p90 ([0-9.]+ %)")
+    print("| sub-pass | records | R² | held-out median error | p90 |")
+    print("| --- | ---: | ---: | ---: | ---: |")
+    for line in out.splitlines():
+        m = pattern.search(line)
+        if m:
+            print("| " + " | ".join(m.groups()) + " |")
+
+
 def indirect(reps):
+    print("One repetition each (round 1 of 3, the rest stopped by the time guard): no interval.\n")
     print("| configuration | splatting ms | frame ms | photons stored | splat fragments | fragments per µs |")
     print("| --- | ---: | ---: | ---: | ---: | ---: |")
     for r in reps:
@@ -166,8 +185,8 @@ def across_devices(other_csv, device_rows):
             a, b = other.get(column, ""), mine.get(column, "")
             if a in ("", None) and b in ("", None):
                 continue
-            subpass = next(p for p in ("prefix_sum", "construct", "gbuffer", "count", "sort", "ao")
-                           if column.startswith(f"work_{p}_"))
+            subpass = next((p for p in ("prefix_sum", "construct", "gbuffer", "count", "sort", "ao")
+                            if column.startswith(f"work_{p}_")), "other")
             x, y = float(a), float(b)
             if x == y:
                 equal[subpass] += 1
@@ -177,7 +196,7 @@ def across_devices(other_csv, device_rows):
     print(f"{configs} configurations counted on both devices.\n")
     print("| sub-pass | deterministic values equal | differing | largest relative difference |")
     print("| --- | ---: | ---: | ---: |")
-    for subpass in ("count", "prefix_sum", "construct", "sort", "gbuffer", "ao"):
+    for subpass in ("count", "prefix_sum", "construct", "sort", "gbuffer", "ao", "other"):
         if equal[subpass] or differ[subpass]:
             gap = f"{largest[subpass]:.1e}" if differ[subpass] else "0"
             print(f"| {subpass} | {equal[subpass]} | {differ[subpass]} | {gap} |")
@@ -208,6 +227,8 @@ def main():
     if other.exists():
         print("\n### The same configurations counted on llvmpipe\n")
         across_devices(other, rows)
+    print("\n### The cost model fitted on run 1's AO\n")
+    model_fits(run1 / "ao")
     if (run1 / "indirect" / "records.jsonl").exists():
         print("\n### Indirect light: the repetitions that ran\n")
         indirect(repetitions(run1 / "indirect" / "records.jsonl"))
