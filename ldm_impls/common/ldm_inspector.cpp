@@ -29,14 +29,13 @@ LdmInspector::LdmInspector(const LdmStructure& structure, const BuildInputs& in,
       views_(in.views),
       max_list_length_(max_list_length),
       generation_(structure.storage_generation()),
-      check_program_(inspect_program(structure, false, max_list_length)),
-      dump_program_(inspect_program(structure, true, max_list_length)) {}
+      check_program_(inspect_program(structure, false, max_list_length)) {}
 
 void LdmInspector::compile_if_stale() const {
   if (structure_.storage_generation() == generation_) return;
   generation_ = structure_.storage_generation();
   check_program_ = inspect_program(structure_, false, max_list_length_);
-  dump_program_ = inspect_program(structure_, true, max_list_length_);
+  dump_program_ = GlProgram();
 }
 
 void LdmInspector::dispatch(const GlProgram& program, uint64_t first, uint64_t count,
@@ -139,6 +138,9 @@ std::vector<std::vector<float>> LdmInspector::read_back(uint32_t view) const {
   dump.clear_to_zero();
   dump.upload(offsets.data(), count * sizeof(uint32_t), 8 * sizeof(uint32_t));
   dump.bind_storage(kValidationBinding);
+  // Built at the first read-back: most inspectors only check (the counting replay's, the
+  // verifier's), and a compile costs llvmpipe more than a check of a small structure.
+  if (!dump_program_) dump_program_ = inspect_program(structure_, true, max_list_length_);
   dispatch(dump_program_, first, count, false, groups_for(count, kInspectBlockPixels));
   std::vector<float> depths(total);
   dump.download(depths.data(), total * sizeof(float), (8 + count) * sizeof(uint32_t));
