@@ -66,6 +66,8 @@ import shutil
 import subprocess
 import sys
 import tempfile
+
+import ldmrecords
 import time
 from collections import defaultdict
 from pathlib import Path
@@ -252,7 +254,7 @@ def covering_runs(driver, build, sweep, sweep_file, dump, scratch):
     # Exit 3: some configurations failed (key_bits=64 on llvmpipe): part 2 judges them.
     run_logged([ldmbench, "sweep", sweep_file, "--out", work / "run", "--cache-dir", work / "cache"],
                env, work / "sweep.log", ok_codes=(0, 3))
-    records = json.loads((work / "run" / "records.json").read_text())["records"]
+    records = ldmrecords.read(work / "run")
     for binary, tests in TEST_PROGRAMS:
         run_logged([build / "tests" / binary, f"--gtest_filter={tests}"], env,
                    work / f"{binary}.log")
