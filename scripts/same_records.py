@@ -24,6 +24,10 @@ build/ldmbench). Today, and why (everything else, present in either record, must
 - ref_from_cache: whether an earlier run had already rendered the reference (runs sharing a
   cache: whichever came first rendered it); the reference's own columns (ref_spp,
   ref_noise_mse, ref_cache_key, ...) are compared.
+Columns compared within a tolerance: those the schema declares summed in arrival order
+(flag summed_in_arrival_order: the accuracy columns, the indirect pass's flux audits) agree
+within the record's image_order_tolerance, relative, where the record has one (the indirect
+pass: its splats blend in the order photons were appended); exactly everywhere else.
 The image and sample files the records name must exist in both folders (their paths are
 compared as columns; the sample files hold frame times and are not compared).
 """
@@ -59,11 +63,26 @@ def load_records(run):
     return by_id
 
 
-def same_value(a, b):
-    # NaN (a metric with no value) equals NaN; everything else compares exactly.
+def same_value(a, b, tolerance=0.0):
+    # NaN (a metric with no value) equals NaN; numbers agree within `tolerance` (relative);
+    # everything else compares exactly.
     if isinstance(a, float) and isinstance(b, float) and math.isnan(a) and math.isnan(b):
         return True
+    numbers = all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in (a, b))
+    if tolerance > 0 and numbers:
+        return abs(a - b) <= tolerance * max(abs(a), abs(b))
     return a == b
+
+
+def order_tolerance(column, a, b):
+    """The relative tolerance two records' `column` agree within: the records' own
+    image_order_tolerance for a column summed in arrival order, else 0 (exact)."""
+    if not ldmrecords.summed_in_arrival_order().match(column):
+        return 0.0
+    tolerances = [r.get("image_order_tolerance") for r in (a, b)]
+    if not all(isinstance(t, (int, float)) and not isinstance(t, bool) for t in tolerances):
+        return 0.0
+    return max(tolerances)
 
 
 def differences(expected_run, actual_run):
@@ -80,7 +99,7 @@ def differences(expected_run, actual_run):
                 continue
             if column not in a or column not in b:
                 out.append(f"{config}: column {column} only in {expected_run if column in a else actual_run}")
-            elif not same_value(a[column], b[column]):
+            elif not same_value(a[column], b[column], order_tolerance(column, a, b)):
                 out.append(f"{config}: {column}: {a[column]!r} != {b[column]!r}")
             elif FILE_COLUMNS.match(column) and isinstance(a[column], str) and a[column]:
                 for run in (expected_run, actual_run):

@@ -185,7 +185,11 @@ std::vector<ColumnSpec> IndirectLighting::columns() {
       {"pass", "flux_splat_clipped", "W", "indirect: of flux_stored, the kernels' mass cut by the topological bias a (points off the photon's tangent plane)"},
       {"pass", "flux_deposited", "W", "indirect: flux the splats deposit on the surfaces the image shows: the integral of pi L / rho over them (an untimed audit splat)"},
       {"pass", "visible_area", "scene units^2", "indirect: area of the surfaces the image shows (flux_deposited / visible_area is their mean indirect irradiance)"},
+      {"pass", "image_order_tolerance", "", "indirect: the relative difference within which two runs' images, accuracy and flux_* columns agree (the splats blend, and the audits add, in the order the photons were appended: their float sums round differently); none where the photon buffer overflowed: which photons were stored then depends on arrival"},
   };
+  for (ColumnSpec& column : columns)
+    if (column.name == "flux_stored" || column.name == "flux_deposited" || column.name.rfind("flux_splat_", 0) == 0)
+      column.summed_in_arrival_order = true;
   return columns;
 }
 
@@ -318,6 +322,7 @@ std::vector<std::pair<std::string, RecordValue>> IndirectLighting::results() con
   out.emplace_back("flux_splat_clipped", a.uncut - a.deposited);
   out.emplace_back("flux_deposited", a.deposited);
   out.emplace_back("visible_area", a.visible_area);
+  if (std::isfinite(image_order_tolerance())) out.emplace_back("image_order_tolerance", image_order_tolerance());
   return out;
 }
 

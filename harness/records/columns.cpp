@@ -183,6 +183,8 @@ std::vector<ColumnSpec> main_columns() {
       kMeanRatio,
       kMeanRatioSe,
       kMetricsError,
+      kMultiRefRenderSeconds,
+      kMultiRefFromCache,
       kMultiColumnPattern,
       kImageExr,
       kImagePng,
@@ -320,6 +322,7 @@ std::string columns_json(const std::vector<ColumnSpec>& columns) {
                     {"kind", column_kind_name(c.kind)},
                     {"varies_between_runs", c.varies_between_runs},
                     {"deterministic", c.deterministic},
+                    {"summed_in_arrival_order", c.summed_in_arrival_order},
                     {"better", c.better == Better::Lower    ? "lower"
                                : c.better == Better::Higher ? "higher"
                                                             : "neither"}});

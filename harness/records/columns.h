@@ -38,6 +38,11 @@ struct ColumnSpec {
   // (the work counters of a structure): every column that does not vary between runs.
   bool deterministic = true;
   Better better = Better::Neither;
+  // Whether the value is summed in an order that arrival decides where a pass blends or adds
+  // in that order (the indirect pass's splats and flux audits): two runs then agree within
+  // the record's image_order_tolerance (relative), not exactly. Exact for every record whose
+  // pass declares no such tolerance (AO and the peers).
+  bool summed_in_arrival_order = false;
 
   ColumnSpec() = default;
   ColumnSpec(std::string group_, std::string name_, std::string unit_, std::string description_,
@@ -53,6 +58,11 @@ struct ColumnSpec {
         better(better_) {}
 };
 using Column = ColumnSpec;
+// `column`, declared as summed in arrival order.
+inline ColumnSpec summed_in_arrival_order(ColumnSpec column) {
+  column.summed_in_arrival_order = true;
+  return column;
+}
 const char* column_kind_name(ColumnKind kind);  // number, text, flag, mixed
 
 const std::vector<ColumnSpec>& harness_record_columns();

@@ -186,20 +186,35 @@ def default_ldmbench():
         os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)))), "build", "ldmbench")
 
 
-_varying = {}
+_flagged = {}
 
 
-def varies_between_runs(ldmbench=None):
-    """A compiled pattern of the columns the schema declares as varying between two runs of one
-    configuration (measured time, machine state, host and job, whether the reference came from
-    the cache: `ldmbench columns --json`, flag varies_between_runs); a templated name such as
-    <subpass>_ms_median matches any text in place of <subpass>. Read once per binary."""
+def columns_flagged(flag, ldmbench=None):
+    """A compiled pattern of the columns whose `ldmbench columns --json` entry sets `flag`; a
+    templated name such as <subpass>_ms_median matches any text in place of <subpass>. Read
+    once per binary and flag."""
     import re
     import subprocess
     ldmbench = ldmbench or default_ldmbench()
-    if ldmbench not in _varying:
+    if ldmbench not in _flagged:
         out = subprocess.run([ldmbench, "columns", "--json"], check=True, capture_output=True, text=True).stdout
-        names = [c["name"] for c in json.loads(out)["columns"] if c.get("varies_between_runs")]
+        _flagged[ldmbench] = json.loads(out)["columns"]
+    key = (ldmbench, flag)
+    if key not in _flagged:
+        names = [c["name"] for c in _flagged[ldmbench] if c.get(flag)]
         parts = [".+".join(re.escape(p) for p in re.split(r"<[^>]+>", n)) for n in names]
-        _varying[ldmbench] = re.compile("^(" + "|".join(parts) + ")$")
-    return _varying[ldmbench]
+        _flagged[key] = re.compile("^(" + "|".join(parts) + ")$" if parts else "(?!)")
+    return _flagged[key]
+
+
+def varies_between_runs(ldmbench=None):
+    """The columns the schema declares as varying between two runs of one configuration
+    (measured time, machine state, host and job, whether the reference came from the cache:
+    flag varies_between_runs), as a compiled pattern (columns_flagged)."""
+    return columns_flagged("varies_between_runs", ldmbench)
+
+
+def summed_in_arrival_order(ldmbench=None):
+    """The columns two runs agree in only within the record's image_order_tolerance
+    (relative), where the pass sums in arrival order (flag summed_in_arrival_order)."""
+    return columns_flagged("summed_in_arrival_order", ldmbench)
