@@ -189,7 +189,7 @@ std::map<std::string, std::vector<json>> axis_block(const json& object,
 std::vector<std::string> setting_keys(const std::vector<SettingRule>& rules, const std::string& group) {
   std::vector<std::string> keys;
   for (const auto& r : rules) {
-    if (group.empty() ? false : r.path.rfind(group + ".", 0) != 0) continue;
+    if (!group.empty() && r.path.rfind(group + ".", 0) != 0) continue;
     std::string key = group.empty() ? r.path : r.path.substr(group.size() + 1);
     key = key.substr(0, key.find('.'));
     if (std::find(keys.begin(), keys.end(), key) == keys.end()) keys.push_back(key);
