@@ -9,6 +9,7 @@
 
 #include "harness/settings/axis_options.h"
 #include "harness/settings/harness_axes.h"
+#include "harness/settings/run_setting_options.h"
 #include "harness/run/run_command.h"
 #include "harness/cli/commands.h"
 #include "harness/cli/run_options.h"
@@ -123,37 +124,8 @@ void add_run_options(CLI::App* run, RunOptions* o) {
       ->check(CLI::Range(16, 16384));
   run->add_option("--height", o->height, "Output image height in pixels (with --width: --image-size)")
       ->check(CLI::Range(16, 16384));
-  run->add_option("--time-target", s.precision.target,
-                  "Measure frames until the 95% interval of the median (order statistics) is "
-                  "within this relative half-width for build and frame (0.03: +-3%), or "
-                  "--time-cap; 0: exactly --frames")
-      ->check(CLI::Range(0.0, 1.0))
-      ->capture_default_str();
-  run->add_option("--time-cap", s.precision.cap_seconds,
-                  "Seconds of measured frames per repetition after which it stops, target "
-                  "met or not (a miss is a warning in status_detail)")
-      ->check(CLI::Range(0.0, 86400.0))
-      ->capture_default_str();
-  run->add_option("--clock-warmup", s.precision.clock_warmup_seconds,
-                  "NVIDIA: after the warm-up frames, more until the GPU's SM clock reaches its "
-                  "working level (90% of its maximum, or steady at 75%), for at most this many "
-                  "seconds (nvidia-smi; elsewhere nothing is added); 0: off")
-      ->check(CLI::Range(0.0, 600.0))
-      ->capture_default_str();
-  run->add_option("--max-frames", s.precision.max_frames, "Measured frames per repetition, at most")
-      ->check(CLI::Range(1, 1000000))
-      ->capture_default_str();
-  run->add_option("--isolation", o->isolation,
-                  "What keeps repetitions independent: context (a fresh GL context per round, "
-                  "in this process) or process (a process of its own per repetition)")
-      ->check(CLI::IsMember({"context", "process"}))
-      ->capture_default_str();
-  run->add_option("--repetitions", s.repetitions,
-                  "Independent repetitions of every configuration, each in a fresh GL context, "
-                  "round robin over the configurations; the record's interval is then over the "
-                  "repetitions (what `ldmbench compare` needs to judge time)")
-      ->check(CLI::Range(1, 1000))
-      ->capture_default_str();
+  // Every run-wide setting's option, from its declaration (harness/settings/run_setting_table.cpp).
+  add_run_setting_options(run, s, o->setting_options);
   run->add_option("--param", o->params,
                   "A structure's or pass's parameter OWNER:KEY=VALUE, repeatable; a comma list "
                   "is an axis (`ldmbench axes` describes each): " + declared_parameters());
@@ -166,25 +138,6 @@ void add_run_options(CLI::App* run, RunOptions* o) {
                 "(without it such a folder is refused; the same sweep is resumed)");
   run->add_flag("--redo-failed", s.redo_failed,
                 "Resuming: measure again the configurations --out holds as failed (else kept)");
-  run->add_flag("!--no-images", s.write_images, "Do not write images");
-  run->add_flag("!--no-work", s.count_work,
-                "Skip the untimed counting replay: no work_* columns (only to measure what counting costs)");
-  run->add_flag("!--no-reference", s.reference.enabled,
-                "Skip the path-traced reference and the image metrics");
-  run->add_option("--reference-spp", s.reference.spp.spp_per_half,
-                  "Reference samples per pixel per half (0: double until the noise target)")
-      ->check(CLI::Range(0u, 1u << 20))
-      ->capture_default_str();
-  run->add_option("--reference-noise", s.reference.spp.target_noise_mse,
-                  "Noise target of the automatic spp rule: the reference's expected MSE")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
-  run->add_option("--reference-max-spp", s.reference.spp.max_spp_per_half,
-                  "Cap of the automatic spp rule (samples per pixel per half)")
-      ->check(CLI::Range(1u, 1u << 20))
-      ->capture_default_str();
-  run->add_option("--reference-seed", s.reference.seed, "Seed of the reference (halves: s, s+1)")
-      ->capture_default_str();
   run->add_option("--cache-dir", s.reference.cache_dir,
                   "Reference cache folder (default: $XDG_CACHE_HOME/ldmbench/references, else "
                   "~/.cache/ldmbench/references)");
@@ -192,18 +145,6 @@ void add_run_options(CLI::App* run, RunOptions* o) {
                   "EGL platform: auto (NVIDIA device if present, else Mesa surfaceless), device, "
                   "surfaceless")
       ->check(CLI::IsMember({"auto", "device", "surfaceless"}))
-      ->capture_default_str();
-  run->add_option("--timer", s.timer,
-                  "Sub-pass timing: gl_timestamp (GPU timer queries), fenced_wall_clock "
-                  "(glFinish around each sub-pass), or auto (wall clock on software "
-                  "rasterisers such as llvmpipe, whose timestamps miss most of the work)")
-      ->check(CLI::IsMember({"auto", "gl_timestamp", "fenced_wall_clock"}))
-      ->capture_default_str();
-  run->add_option("--verify", s.verify,
-                  "How much of each build is checked: sampled (in full after the first build "
-                  "and after the sizing policy changed the storage, otherwise one 64-pixel "
-                  "block in 32, rotating) or every (in full after every build)")
-      ->check(CLI::IsMember({"every", "sampled"}))
       ->capture_default_str();
   add_gpu_option(run, o->gpu);
   run->add_flag("--gl-debug", s.context.debug_output, "Print OpenGL debug messages");
@@ -235,7 +176,7 @@ RunSettings run_settings_from(RunOptions* o) {
   }
   settings.context.platform = parse_egl_platform(o->platform);
   settings.context.gpu = gpu_request_from_environment(o->gpu.text());
-  settings.isolation = parse_repetition_isolation(o->isolation);
+  apply_run_setting_options(o->setting_options, settings);
   return settings;
 }
 

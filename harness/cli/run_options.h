@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "harness/settings/axis_options.h"
+#include "harness/settings/run_setting_options.h"
 #include "harness/settings/run_settings.h"
 #include "harness/cli/commands.h"
 
@@ -19,7 +20,7 @@ struct RunOptions {
   std::vector<std::string> params;
   int width = 0, height = 0;  // --width/--height: the image size's two sides
   std::string platform = "auto";
-  std::string isolation = "context";
+  RunSettingOptions setting_options;  // the run-wide settings' (harness/settings/run_setting_options.h)
   GpuOption gpu;
 };
 

@@ -6,6 +6,7 @@
 
 #include "harness/passes/raster_baseline.h"
 #include "harness/records/harness_columns.h"
+#include "harness/settings/run_setting_table.h"
 
 namespace ldm {
 namespace {
@@ -36,9 +37,11 @@ void add_timing_columns(Record& r, const TimingOutcome& t) {
   r.set(columns::kRepetitions, repetitions);
   r.set(columns::kFramesMeasured, total);
   r.set(columns::kFramesPerRepetition, joined_counts(t.frames_per_repetition));
-  r.set(columns::kTimeTarget, t.precision.target);
-  r.set(columns::kTimeCapS, t.precision.cap_seconds);
-  r.set(columns::kTimeClockWarmupS, t.precision.clock_warmup_seconds);
+  // The run-wide settings that carry a column (time_target, time_cap_s, time_clock_warmup_s),
+  // from their declarations (harness/settings/run_setting_table.cpp).
+  for (const RunSetting& setting : run_setting_table())
+    if (const auto* field = std::get_if<double TimePrecision::*>(&setting.field); field && setting.column)
+      r.set(*setting.column, t.precision.**field);
   r.set(columns::kTimeTargetMet, t.target_met);
   r.set(columns::kTimeInterval, repetitions > 1 ? kRepetitionInterval : kFrameInterval);
   for (const auto& s : t.summaries) {

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "harness/settings/harness_axes.h"
+#include "harness/settings/run_setting_table.h"
 #include "harness/run/shard_assignment.h"
 #include "harness/passes/pass.h"
 #include "harness/scene/generators.h"
@@ -65,27 +66,17 @@ std::string resolve_scene(const std::string& spec, const fs::path& sweep_dir) {
   return spec;
 }
 
+// Every declared run-wide setting the file gives (checked by parse_sweep_spec), by its
+// declaration (harness/settings/run_setting_table.h).
 void apply_settings(const json& settings, RunSettings& s) {
-  if (settings.contains("images")) s.write_images = settings["images"].get<bool>();
-  if (settings.contains("work")) s.count_work = settings["work"].get<bool>();
-  if (settings.contains("timer")) s.timer = settings["timer"].get<std::string>();
-  if (settings.contains("verify")) s.verify = settings["verify"].get<std::string>();
-  if (settings.contains("timing")) {
-    const json& t = settings["timing"];
-    if (t.contains("repetitions")) s.repetitions = int(t["repetitions"].get<uint32_t>());
-    if (t.contains("isolation")) s.isolation = parse_repetition_isolation(t["isolation"].get<std::string>());
-    if (t.contains("target")) s.precision.target = t["target"].get<double>();
-    if (t.contains("cap_s")) s.precision.cap_seconds = t["cap_s"].get<double>();
-    if (t.contains("clock_warmup_s")) s.precision.clock_warmup_seconds = t["clock_warmup_s"].get<double>();
-    if (t.contains("max_frames")) s.precision.max_frames = int(t["max_frames"].get<uint32_t>());
-  }
-  if (settings.contains("reference")) {
-    const json& r = settings["reference"];
-    if (r.contains("enabled")) s.reference.enabled = r["enabled"].get<bool>();
-    if (r.contains("spp")) s.reference.spp.spp_per_half = r["spp"].get<uint32_t>();
-    if (r.contains("noise")) s.reference.spp.target_noise_mse = r["noise"].get<double>();
-    if (r.contains("max_spp")) s.reference.spp.max_spp_per_half = r["max_spp"].get<uint32_t>();
-    if (r.contains("seed")) s.reference.seed = r["seed"].get<uint32_t>();
+  for (const RunSetting& setting : run_setting_table()) {
+    const json* value = &settings;
+    for (const std::string& part : {setting.group(), setting.key()}) {
+      if (part.empty()) continue;
+      value = value->is_object() && value->contains(part) ? &(*value)[part] : nullptr;
+      if (!value) break;
+    }
+    if (value) set_run_setting_json(setting, s, *value);
   }
 }
 
@@ -148,6 +139,7 @@ SweepVocabulary current_sweep_vocabulary() {
   for (const HarnessAxis& axis : harness_axes()) v.axes.push_back(axis.spec);
   for (const auto& name : structure_names()) v.parameters[name] = structure_parameters(name);
   for (const auto& name : pass_names()) v.parameters[name] = pass_parameters(name);
+  v.settings = run_setting_rules();
   return v;
 }
 

@@ -184,69 +184,90 @@ std::map<std::string, std::vector<json>> axis_block(const json& object,
   return out;
 }
 
-void check_settings(const json& settings, const std::string& name) {
-  require_object(settings, name, "settings");
-  for (const auto& [key, value] : settings.items()) {
-    const std::string path = "settings." + key;
-    if (key == "comment") continue;
-    if (key == "images" || key == "work") {
+// The keys of the settings object at `group` ("" the top level, "timing"...), in declared order:
+// a setting's own key, or the group it belongs to.
+std::vector<std::string> setting_keys(const std::vector<SettingRule>& rules, const std::string& group) {
+  std::vector<std::string> keys;
+  for (const auto& r : rules) {
+    if (!group.empty() && r.path.rfind(group + ".", 0) != 0) continue;
+    std::string key = group.empty() ? r.path : r.path.substr(group.size() + 1);
+    key = key.substr(0, key.find('.'));
+    if (std::find(keys.begin(), keys.end(), key) == keys.end()) keys.push_back(key);
+  }
+  return keys;
+}
+
+const SettingRule* find_setting_rule(const std::vector<SettingRule>& rules, const std::string& path) {
+  for (const auto& r : rules)
+    if (r.path == path) return &r;
+  return nullptr;
+}
+
+// One value by its declared rule.
+void check_setting_value(const SettingRule& rule, const json& value, const std::string& name,
+                         const std::string& path) {
+  switch (rule.kind) {
+    case SettingRule::Kind::Flag:
       if (!value.is_boolean()) fail(name, path, "expected true or false, got " + type_name(value));
-    } else if (key == "timer") {
-      static const std::vector<std::string> timers = {"auto", "gl_timestamp", "fenced_wall_clock"};
+      return;
+    case SettingRule::Kind::Choice:
       if (!value.is_string() ||
-          std::find(timers.begin(), timers.end(), value.get<std::string>()) == timers.end())
-        fail(name, path, "expected one of " + joined(timers) + ", got " + value.dump());
-    } else if (key == "verify") {
-      static const std::vector<std::string> modes = {"every", "sampled"};
-      if (!value.is_string() ||
-          std::find(modes.begin(), modes.end(), value.get<std::string>()) == modes.end())
-        fail(name, path, "expected one of " + joined(modes) + ", got " + value.dump());
-    } else if (key == "reference") {
-      require_object(value, name, path);
-      for (const auto& [rkey, rvalue] : value.items()) {
-        const std::string rpath = path + "." + rkey;
-        if (rkey == "enabled") {
-          if (!rvalue.is_boolean()) fail(name, rpath, "expected true or false, got " + type_name(rvalue));
-        } else if (rkey == "spp" || rkey == "max_spp" || rkey == "seed") {
-          const double max = rkey == "seed" ? 4294967295.0 : double(1u << 20);
-          const double min = rkey == "max_spp" ? 1 : 0;
-          if (!rvalue.is_number_unsigned() || double(rvalue.get<uint64_t>()) > max ||
-              double(rvalue.get<uint64_t>()) < min)
-            fail(name, rpath, "expected an integer in [" + number_text(min) + ", " + number_text(max) +
-                                  "], got " + rvalue.dump());
-        } else if (rkey == "noise") {
-          if (!rvalue.is_number() || !(rvalue.get<double>() > 0) || !std::isfinite(rvalue.get<double>()))
-            fail(name, rpath, "expected a positive number, got " + rvalue.dump());
-        } else {
-          fail(name, rpath, "unknown key (known: enabled, spp, noise, max_spp, seed)");
-        }
+          std::find(rule.choices.begin(), rule.choices.end(), value.get<std::string>()) == rule.choices.end())
+        fail(name, path, "expected one of " + joined(rule.choices) + ", got " + value.dump());
+      return;
+    case SettingRule::Kind::Integer:
+      if (!value.is_number_unsigned() || double(value.get<uint64_t>()) > rule.max ||
+          double(value.get<uint64_t>()) < rule.min)
+        fail(name, path, "expected an integer in [" + number_text(rule.min) + ", " + number_text(rule.max) +
+                             "], got " + value.dump());
+      return;
+    case SettingRule::Kind::Real: {
+      if (rule.positive) {
+        if (!value.is_number() || !(value.get<double>() > 0) || !std::isfinite(value.get<double>()))
+          fail(name, path, "expected a positive number, got " + value.dump());
+        return;
       }
-      if (value.contains("spp") && value.contains("max_spp") &&
-          value["spp"].get<uint64_t>() > value["max_spp"].get<uint64_t>())
-        fail(name, path + ".spp", "exceeds settings.reference.max_spp");
-    } else if (key == "timing") {
-      require_object(value, name, path);
-      for (const auto& [tkey, tvalue] : value.items()) {
-        const std::string tpath = path + "." + tkey;
-        if (tkey == "repetitions" || tkey == "max_frames") {
-          const double max = tkey == "repetitions" ? 1000 : 1000000;
-          if (!tvalue.is_number_unsigned() || tvalue.get<uint64_t>() < 1 || double(tvalue.get<uint64_t>()) > max)
-            fail(name, tpath, "expected an integer in [1, " + number_text(max) + "], got " + tvalue.dump());
-        } else if (tkey == "target" || tkey == "cap_s" || tkey == "clock_warmup_s") {
-          const double max = tkey == "target" ? 1 : tkey == "cap_s" ? 86400 : 600;
-          const double v = tvalue.is_number() ? tvalue.get<double>() : -1;
-          if (!tvalue.is_number() || !(v >= 0) || v > max)
-            fail(name, tpath, "expected a number in [0, " + number_text(max) + "], got " + tvalue.dump());
-        } else if (tkey == "isolation") {
-          if (!tvalue.is_string() || (tvalue != "context" && tvalue != "process"))
-            fail(name, tpath, "expected \"context\" or \"process\", got " + tvalue.dump());
-        } else {
-          fail(name, tpath, "unknown key (known: repetitions, isolation, target, cap_s, clock_warmup_s, max_frames)");
-        }
-      }
-    } else {
-      fail(name, path, "unknown key (known: images, timer, verify, reference, timing, comment)");
+      const double v = value.is_number() ? value.get<double>() : -1;
+      if (!value.is_number() || !(v >= rule.min) || v > rule.max)
+        fail(name, path, "expected a number in [" + number_text(rule.min) + ", " + number_text(rule.max) +
+                             "], got " + value.dump());
+      return;
     }
+  }
+}
+
+// The object at `group` of the settings ("" the top level): every key a declared setting or a
+// group of them, each value by its rule.
+void check_setting_group(const json& object, const std::vector<SettingRule>& rules, const std::string& group,
+                         const std::string& name, const std::string& path) {
+  require_object(object, name, path);
+  for (const auto& [key, value] : object.items()) {
+    const std::string item_path = path + "." + key;
+    if (group.empty() && key == "comment") continue;
+    const std::string setting = group.empty() ? key : group + "." + key;
+    if (const SettingRule* rule = find_setting_rule(rules, setting)) {
+      check_setting_value(*rule, value, name, item_path);
+      continue;
+    }
+    const std::vector<std::string> inner = setting_keys(rules, setting);
+    if (!inner.empty()) {
+      check_setting_group(value, rules, setting, name, item_path);
+      continue;
+    }
+    std::vector<std::string> known = setting_keys(rules, group);
+    if (group.empty()) known.push_back("comment");
+    fail(name, item_path, "unknown key (known: " + joined(known) + ")");
+  }
+}
+
+void check_settings(const json& settings, const std::vector<SettingRule>& rules, const std::string& name) {
+  check_setting_group(settings, rules, "", name, "settings");
+  // Between two settings: the reference's fixed spp within its cap.
+  if (settings.contains("reference")) {
+    const json& value = settings["reference"];
+    if (value.contains("spp") && value.contains("max_spp") &&
+        value["spp"].get<uint64_t>() > value["max_spp"].get<uint64_t>())
+      fail(name, "settings.reference.spp", "exceeds settings.reference.max_spp");
   }
 }
 
@@ -322,7 +343,7 @@ SweepSpec parse_sweep_spec(const std::string& text, const std::string& name,
     }
   }
   if (root.contains("settings")) {
-    check_settings(root["settings"], name);
+    check_settings(root["settings"], vocabulary.settings, name);
     spec.settings = root["settings"];
   }
   spec.canonical = identity_text(root);

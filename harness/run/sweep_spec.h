@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "harness/axes/axis.h"
+#include "harness/settings/setting_rule.h"
 
 namespace ldm {
 
@@ -25,6 +26,9 @@ namespace ldm {
 struct SweepVocabulary {
   std::vector<AxisSpec> axes;                                // the harness's, canonical order
   std::map<std::string, std::vector<AxisSpec>> parameters;  // owner -> its parameters
+  // The run-wide settings of the "settings" object, in their declared order
+  // (harness/settings/run_setting_table.h: run_setting_rules()).
+  std::vector<SettingRule> settings;
 };
 
 // One combination: axis name -> its value, canonical (names and WxH as strings, integers as

@@ -9,31 +9,16 @@
 #include <nlohmann/json.hpp>
 
 #include "harness/settings/harness_axes.h"
+#include "harness/settings/run_setting_table.h"
 
 namespace ldm {
 namespace {
-
-// Enough digits that the float (or double) read back is the one written.
-std::string exact(double value, int digits) {
-  char buffer[48];
-  std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
-  return buffer;
-}
 
 template <typename T, typename Name>
 std::string joined(const std::vector<T>& values, Name name) {
   std::string out;
   for (const auto& v : values) out += (out.empty() ? "" : ",") + name(v);
   return out;
-}
-
-// The shortest text that reads back as the same double (0.03, not 0.029999999999999999).
-std::string shortest(double value) {
-  for (int digits = 1; digits < 17; ++digits) {
-    const std::string text = exact(value, digits);
-    if (std::strtod(text.c_str(), nullptr) == value) return text;
-  }
-  return exact(value, 17);
 }
 
 }  // namespace
@@ -87,25 +72,17 @@ std::string run_command_line(const RunSettings& s, const std::string& program,
   for (const auto& [owner, params] : s.structure_params)
     if (measured(s, owner))
       for (const auto& [key, value] : params) add("--param", owner + ":" + key + "=" + value);
-  add("--repetitions", std::to_string(s.repetitions));
-  add("--isolation", repetition_isolation_name(s.isolation));
-  add("--time-target", shortest(s.precision.target));
-  add("--time-cap", shortest(s.precision.cap_seconds));
-  add("--clock-warmup", shortest(s.precision.clock_warmup_seconds));
-  add("--max-frames", std::to_string(s.precision.max_frames));
-  add("--timer", s.timer);
-  add("--verify", s.verify);
-  if (!s.reference.enabled) {
-    line += " --no-reference";
-  } else {
-    add("--reference-spp", std::to_string(s.reference.spp.spp_per_half));
-    add("--reference-noise", exact(s.reference.spp.target_noise_mse, 17));
-    add("--reference-max-spp", std::to_string(s.reference.spp.max_spp_per_half));
-    add("--reference-seed", std::to_string(s.reference.seed));
-    if (!s.reference.cache_dir.empty()) add("--cache-dir", s.reference.cache_dir);
+  // Every run-wide setting from its declaration (harness/settings/run_setting_table.h): a flag
+  // only when off (--no-images), the others always, with their value.
+  for (const RunSetting& setting : run_setting_table()) {
+    if (!run_setting_written(setting, s)) continue;
+    if (setting.kind == SettingRule::Kind::Flag) {
+      if (!run_setting_json(setting, s).get<bool>()) line += " " + setting.flag;
+    } else {
+      add(setting.flag, run_setting_text(setting, s));
+    }
   }
-  if (!s.write_images) line += " --no-images";
-  if (!s.count_work) line += " --no-work";
+  if (s.reference.enabled && !s.reference.cache_dir.empty()) add("--cache-dir", s.reference.cache_dir);
   if (!out_dir.empty()) add("--out", out_dir);
   return line;
 }
@@ -129,24 +106,17 @@ std::string sweep_file_json(const RunSettings& s, const std::string& description
         axes[owner + ":" + key] = values.size() == 1 ? json(values[0]) : json(values);
       }
 
-  json reference = {{"enabled", s.reference.enabled}};
-  if (s.reference.enabled) {
-    reference["spp"] = s.reference.spp.spp_per_half;
-    reference["noise"] = s.reference.spp.target_noise_mse;
-    reference["max_spp"] = s.reference.spp.max_spp_per_half;
-    reference["seed"] = s.reference.seed;
-  }
   json file = json::object();
   if (!description.empty()) file["description"] = description;
   file["axes"] = axes;
-  const json timing = {{"repetitions", s.repetitions},
-                       {"isolation", repetition_isolation_name(s.isolation)},
-                       {"target", s.precision.target},
-                       {"cap_s", s.precision.cap_seconds},
-                       {"clock_warmup_s", s.precision.clock_warmup_seconds},
-                       {"max_frames", s.precision.max_frames}};
-  file["settings"] = {{"reference", reference}, {"images", s.write_images}, {"work", s.count_work}, {"timer", s.timer},
-                      {"verify", s.verify}, {"timing", timing}};
+  // Every run-wide setting from its declaration, at its key path under "settings".
+  json settings = json::object();
+  for (const RunSetting& setting : run_setting_table()) {
+    if (!run_setting_written(setting, s)) continue;
+    json& place = setting.group().empty() ? settings : settings[setting.group()];
+    place[setting.key()] = run_setting_json(setting, s);
+  }
+  file["settings"] = settings;
   return file.dump(2) + "\n";
 }
 

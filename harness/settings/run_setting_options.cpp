@@ -1,0 +1,53 @@
+#include "harness/settings/run_setting_options.h"
+
+#include <type_traits>
+#include <variant>
+
+#include "harness/settings/run_setting_table.h"
+
+namespace ldm {
+
+// One option per run-wide setting, in the table's order: a flag turns its setting off
+// (!--no-images); a number is checked by its range, typed as its field (so that the help
+// reads INT, UINT or FLOAT), a choice by its names.
+void add_run_setting_options(CLI::App* command, RunSettings& s, RunSettingOptions& options) {
+  for (const RunSetting& setting : run_setting_table()) {
+    CLI::Option* option = nullptr;
+    std::visit(
+        [&](const auto& field) {
+          using F = std::decay_t<decltype(field)>;
+          if constexpr (std::is_same_v<F, SettingFieldOf<bool>>) {
+            command->add_flag("!" + setting.flag, field(s), setting.help);
+          } else if constexpr (std::is_same_v<F, SettingText>) {
+            std::string& text = options.texts[setting.path];
+            text = field.get(s);
+            option = command->add_option(setting.flag, text, setting.help);
+          } else {
+            auto& value = [&]() -> auto& {
+              if constexpr (std::is_same_v<F, double TimePrecision::*>) return s.precision.*field;
+              else return field(s);
+            }();
+            using T = std::remove_reference_t<decltype(value)>;
+            option = command->add_option(setting.flag, value, setting.help);
+            if constexpr (std::is_arithmetic_v<T>) {
+              if (setting.positive) option->check(CLI::PositiveNumber);
+              else if (setting.cli_range) option->check(CLI::Range(T(setting.min), T(setting.max)));
+            }
+          }
+        },
+        setting.field);
+    if (!option) continue;
+    if (setting.kind == SettingRule::Kind::Choice) option->check(CLI::IsMember(setting.choices));
+    option->capture_default_str();
+  }
+}
+
+void apply_run_setting_options(const RunSettingOptions& options, RunSettings& settings) {
+  for (const RunSetting& setting : run_setting_table())
+    if (const auto* text = std::get_if<SettingText>(&setting.field)) {
+      const auto given = options.texts.find(setting.path);
+      if (given != options.texts.end()) text->set(settings, given->second);
+    }
+}
+
+}  // namespace ldm
