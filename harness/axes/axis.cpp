@@ -194,4 +194,34 @@ std::string long_flag(const std::string& flags) {
   return best;
 }
 
+std::optional<std::string> axis_text(const AxisValues& values, const std::string& key) {
+  const auto it = values.find(key);
+  if (it == values.end()) return std::nullopt;
+  return it->second;
+}
+
+std::optional<double> axis_real(const AxisValues& values, const std::string& key) {
+  const std::optional<std::string> text = axis_text(values, key);
+  if (!text) return std::nullopt;
+  size_t used = 0;
+  double value = 0;
+  try {
+    value = std::stod(*text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text->size())
+    throw std::logic_error("axis " + key + ": \"" + *text + "\" is not a number");
+  return value;
+}
+
+std::optional<uint64_t> axis_uint(const AxisValues& values, const std::string& key) {
+  const std::optional<std::string> text = axis_text(values, key);
+  if (!text) return std::nullopt;
+  uint64_t value = 0;
+  if (!parse_unsigned(*text, value))
+    throw std::logic_error("axis " + key + ": \"" + *text + "\" is not an unsigned integer");
+  return value;
+}
+
 }  // namespace ldm

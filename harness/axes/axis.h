@@ -11,7 +11,9 @@
 // Values travel as canonical text: what `--param ppfla:k=4` or `-N 32` carries, checked and
 // normalised by canonical_axis_value() (an integer without leading zeros, a real as the
 // shortest text of the float or double the run uses, a choice as its name).
+#include <cstdint>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -105,6 +107,20 @@ nlohmann::json axis_spec_json(const AxisSpec& spec);
 
 // The spec of `key` in `specs`, or null.
 const AxisSpec* find_axis(const std::vector<AxisSpec>& specs, const std::string& key);
+
+// One configuration's value of every axis that applies to it, canonical: harness axes by key
+// ("views"), parameters qualified by their owner ("ppfla:k"). The one carrier of a
+// configuration's values from its declaration to its consumers: measure() hands it to every
+// pass (PassInputs::axes), so that an axis reaches the code that reads it through its
+// declaration and that code alone.
+using AxisValues = std::map<std::string, std::string>;
+
+// The value of axis `key` in `values`, read as a number or as text (nullopt: the
+// configuration has no such axis). The values are canonical, so a number that does not
+// parse is a harness bug: std::logic_error naming the key.
+std::optional<double> axis_real(const AxisValues& values, const std::string& key);
+std::optional<uint64_t> axis_uint(const AxisValues& values, const std::string& key);
+std::optional<std::string> axis_text(const AxisValues& values, const std::string& key);
 
 // "--name" of a CLI11 flags string ("-N,--views" -> "--views"; "-R" -> "-R").
 std::string long_flag(const std::string& flags);

@@ -59,6 +59,7 @@ MeasurementRequest measurement_request(const Configuration& config, const RunSet
   request.sizing = config.sizing;
   request.pass = config.pass;
   request.pass_params = config.pass_params;
+  request.axes = config.values;
   request.views = config.views;
   request.resolution = config.resolution;
   request.width = settings.width;

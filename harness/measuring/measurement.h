@@ -37,6 +37,9 @@ struct MeasurementRequest {
   SizingSettings sizing = {SizingPolicy::PreviousFrame};
   std::string pass = "ao";
   std::map<std::string, std::string> pass_params;
+  // The configuration's value of every axis (Configuration::values): handed to the pass
+  // (PassInputs::axes), where an axis declared for it is read.
+  AxisValues axes;
   uint32_t views = 32, resolution = 128;
   int width = 256, height = 256;
   // At least `frames` measured frames, then more until `precision` is met or its cap

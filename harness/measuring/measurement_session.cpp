@@ -92,10 +92,10 @@ struct MeasurementSession::State {
   void prepare_pass() {
     if (setup)
       pass->prepare({setup->scene, *setup->gpu_scene, setup->inputs.get(), structure.get(),
-                     request.width, request.height});
+                     request.width, request.height, &request.axes});
     else
       pass->prepare({*peer_scene, *peer_gpu_scene, nullptr, nullptr, request.width,
-                     request.height});
+                     request.height, &request.axes});
   }
 };
 
@@ -251,11 +251,11 @@ void MeasurementSession::count_work() {
       structure = s.setup->prepare(s.request.structure, s.request.structure_params);
       sizer = std::make_unique<SizingDriver>(*structure, *s.setup->inputs);
       pass->prepare({s.setup->scene, *s.setup->gpu_scene, s.setup->inputs.get(), structure.get(),
-                     s.request.width, s.request.height});
+                     s.request.width, s.request.height, &s.request.axes});
       pass->continue_sizing_from(*s.pass);
     } else {
       pass->prepare({*s.peer_scene, *s.peer_gpu_scene, nullptr, nullptr, s.request.width,
-                     s.request.height});
+                     s.request.height, &s.request.axes});
     }
     auto frame = [&] {
       timer.begin_frame();

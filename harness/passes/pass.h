@@ -19,6 +19,7 @@
 #include <utility>
 #include <vector>
 
+#include "harness/axes/axis.h"
 #include "harness/image/image.h"
 #include "harness/measure/gpu_timer.h"
 #include "harness/measure/work_counters.h"
@@ -74,6 +75,10 @@ struct PassInputs {
   const BuildInputs* ldm = nullptr;
   const LdmStructure* structure = nullptr;
   int width = 0, height = 0;
+  // The configuration's value of every axis (harness/axes/axis.h: axis_real, axis_uint,
+  // axis_text): where an axis declared for a pass reaches it, with no field of its own on
+  // the way. Null where nothing measures a configuration (a pass prepared by hand).
+  const AxisValues* axes = nullptr;
 };
 
 class Pass {

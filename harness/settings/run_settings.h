@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "harness/axes/axis.h"
 #include "harness/gl/egl_context.h"
 #include "harness/measure/frame_stop_rule.h"
 #include "harness/reference/reference_settings.h"
@@ -78,9 +79,7 @@ struct RunSettings {
 // The structure of a configuration whose pass reads no LDM (Pass requirements).
 inline constexpr const char* kNoStructure = "none";
 
-// One configuration's value of every axis that applies to it, canonical: harness axes by key
-// ("views"), parameters qualified by their owner ("ppfla:k").
-using AxisValues = std::map<std::string, std::string>;
+// AxisValues: one configuration's value of every axis (harness/axes/axis.h).
 
 struct Configuration {
   std::string scene;  // spec as given (name or path)

@@ -22,8 +22,10 @@
 #include "harness/run/sweep_spec.h"
 #include "harness/passes/ambient_occlusion.h"
 #include "harness/passes/pass.h"
+#include "harness/scene/scene_loader.h"
 #include "harness/util/error.h"
 #include "ldm_impls/ldm_structure.h"
+#include "tests/support/test_support.h"
 
 namespace ldm {
 namespace {
@@ -74,11 +76,52 @@ void declare_test_pass() {
   register_pass(pass);
 }
 
+// A pass that consumes the test axis: the AO pass, reading test_gain where every pass gets
+// its configuration (PassInputs::axes), and writing what it read to a column it declares.
+// Nothing between the axis's declaration above and this consumer names the axis.
+class GainReadingAo : public AmbientOcclusion {
+ public:
+  using AmbientOcclusion::AmbientOcclusion;
+  static std::vector<ColumnSpec> columns() {
+    std::vector<ColumnSpec> specs = AmbientOcclusion::columns();
+    specs.push_back({"pass", "test_gain_read", "x", "the test axis's value as the pass read it",
+                     ColumnKind::Number});
+    return specs;
+  }
+  std::string name() const override { return "test_gain_ao"; }
+  void prepare(const PassInputs& in) override {
+    AmbientOcclusion::prepare(in);
+    gain_read_ = in.axes ? axis_real(*in.axes, "test_gain") : std::nullopt;
+  }
+  std::vector<std::pair<std::string, RecordValue>> results() const override {
+    auto out = AmbientOcclusion::results();
+    if (gain_read_) out.emplace_back("test_gain_read", *gain_read_);
+    return out;
+  }
+
+ private:
+  std::optional<double> gain_read_;
+};
+
+void declare_gain_reading_pass() {
+  const auto names = pass_names();
+  if (std::find(names.begin(), names.end(), "test_gain_ao") != names.end()) return;
+  PassRegistration pass;
+  pass.name = "test_gain_ao";
+  pass.parameters = AmbientOcclusion::parameters;
+  pass.columns = GainReadingAo::columns;
+  pass.make = [](StructureParams& p) { return std::make_unique<GainReadingAo>(p); };
+  pass.work = AmbientOcclusion::work_counters;
+  pass.query_subpasses = {"ao"};
+  register_pass(pass);
+}
+
 class Axes : public ::testing::Test {
  protected:
   void SetUp() override {
     declare_test_gain_axis();
     declare_test_pass();
+    declare_gain_reading_pass();
   }
 };
 
@@ -178,6 +221,57 @@ TEST_F(Axes, AnAxisDeclaredInATestReachesTheRecordColumnItNames) {
   } catch (const std::logic_error& e) {
     EXPECT_NE(std::string(e.what()).find("test_undeclared_column"), std::string::npos) << e.what();
   }
+}
+
+// End to end, measured: the axis's value travels from the command line through the
+// configuration into measure(), reaches the pass that reads it, and lands in the record both
+// as the axis's own column and as what the pass read, with nothing on the way naming it.
+TEST_F(Axes, AnAxisDeclaredInATestReachesThePassThatReadsItAndTheRecord) {
+  test::gl_context();
+  RunSettings settings = parsed({"--test-gain", "2.5", "-N", "4", "-R", "16"});
+  settings.passes = {"test_gain_ao"};
+  settings.width = settings.height = 32;
+  settings.frames = 1;
+  settings.warmup = 0;
+  settings.reference.enabled = false;
+  settings.write_images = false;
+  const auto configs = expand_configurations(settings);
+  ASSERT_EQ(configs.size(), 1u);
+  const Scene scene = load_scene("cornell");
+  const std::string out = test::make_temp_dir("ldm-axes-measured");
+  const Record record = measure_configuration(scene, configs.front(), settings,
+                                              test::gl_context().device(), {out, out + "/images"});
+  EXPECT_EQ(std::get<std::string>(*record.get("status")), "ok")
+      << std::get<std::string>(*record.get("status_detail"));
+  ASSERT_NE(record.get("test_gain"), nullptr) << "the axis's column is not in the record";
+  EXPECT_EQ(std::get<double>(*record.get("test_gain")), 2.5);
+  const RecordValue* read = record.get("test_gain_read");
+  ASSERT_NE(read, nullptr) << "the pass did not get the axis's value";
+  EXPECT_EQ(std::get<double>(*read), 2.5);
+
+  // A configuration without the axis: the pass reads nothing, and writes nothing.
+  RunSettings plain = parsed({"-N", "4", "-R", "16"});
+  plain.passes = settings.passes;
+  plain.width = plain.height = 32;
+  plain.frames = 1;
+  plain.warmup = 0;
+  plain.reference.enabled = false;
+  plain.write_images = false;
+  const auto plain_configs = expand_configurations(plain);
+  ASSERT_EQ(plain_configs.size(), 1u);
+  const Record without = measure_configuration(scene, plain_configs.front(), plain,
+                                               test::gl_context().device(), {out, out + "/images"});
+  EXPECT_EQ(without.get("test_gain_read"), nullptr);
+}
+
+TEST(AxisValues, TypedAccessorsReadCanonicalTextAndRefuseWhatIsNot) {
+  const AxisValues values = {{"views", "32"}, {"d_max", "1.5"}, {"scene", "cornell"}, {"bad", "x1"}};
+  EXPECT_EQ(axis_uint(values, "views"), 32u);
+  EXPECT_EQ(axis_real(values, "d_max"), 1.5);
+  EXPECT_EQ(axis_text(values, "scene"), "cornell");
+  EXPECT_EQ(axis_real(values, "absent"), std::nullopt);
+  EXPECT_THROW(axis_real(values, "bad"), std::logic_error);
+  EXPECT_THROW(axis_uint(values, "d_max"), std::logic_error);
 }
 
 TEST_F(Axes, AnAxisDeclaredInATestIsASweepFileKeyAndIsWrittenBack) {
