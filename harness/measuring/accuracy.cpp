@@ -4,16 +4,19 @@
 #include <cmath>
 
 #include "harness/metrics/heat_map.h"
+#include "harness/records/harness_columns.h"
 #include "harness/metrics/image_metrics.h"
 #include "harness/util/error.h"
 
 namespace ldm {
 
+using namespace columns;
+
 void append_status_detail(Record& r, const std::string& text) {
   const RecordValue* detail = r.get("status_detail");
   const std::string before = detail ? std::get<std::string>(*detail) : "";
   if (before.find(text) != std::string::npos) return;
-  r.set("status_detail", before.empty() ? text : before + "; " + text);
+  r.set(kStatusDetail, before.empty() ? text : before + "; " + text);
 }
 
 namespace {
@@ -23,9 +26,9 @@ struct PrefixedRecord {
   Record& r;
   const std::string& prefix;
   template <typename T>
-  void set(const std::string& key, T value) {
-    if (key == "status") r.set(key, value);
-    else r.set(prefix + key, value);
+  void set(const Column& column, T value) {
+    if (column.name == columns::kStatus.name) r.set(column, value);
+    else r.set(prefix + column.name, value);
   }
 };
 
@@ -39,16 +42,16 @@ void add_accuracy(Record& record, const ReferenceResult& reference, const Image&
   MetricOptions options;
   options.ssim_exposure = ssim_exposure;
   const ImageComparison noise = compare_images(reference.half_a, reference.half_b, options);
-  r.set("ref_spp", reference.spp_total);
-  r.set("ref_noise_mse", reference.noise_mse);
-  r.set("ref_noise_mssim", noise.mssim);
-  r.set("ref_noise_target_met", reference.noise_target_met);
-  r.set("ref_render_seconds", reference.render_seconds);
-  r.set("ref_from_cache", reference.from_cache);
-  r.set("ref_cache_key", reference.cache_key);
+  r.set(kRefSpp, reference.spp_total);
+  r.set(kRefNoiseMse, reference.noise_mse);
+  r.set(kRefNoiseMssim, noise.mssim);
+  r.set(kRefNoiseTargetMet, reference.noise_target_met);
+  r.set(kRefRenderSeconds, reference.render_seconds);
+  r.set(kRefFromCache, reference.from_cache);
+  r.set(kRefCacheKey, reference.cache_key);
   if (reference.ray_offset > 0) {
-    r.set("ref_ray_offset", reference.ray_offset);
-    r.set("ref_ray_offset_ok", reference.ray_offset_warning.empty());
+    r.set(kRefRayOffset, reference.ray_offset);
+    r.set(kRefRayOffsetOk, reference.ray_offset_warning.empty());
     if (!reference.ray_offset_warning.empty()) append_status_detail(record, reference.ray_offset_warning);
   }
   if (!reference.noise_target_met) {
@@ -62,27 +65,27 @@ void add_accuracy(Record& record, const ReferenceResult& reference, const Image&
   try {
     metrics = compare_images(reference.image, image, options);
   } catch (const UserError& e) {
-    r.set("metrics_error", e.what());
-    r.set("status", "invalid");
+    r.set(kMetricsError, e.what());
+    r.set(kStatus, "invalid");
     append_status_detail(record, std::string("image not measured: ") + e.what());
     return;
   }
-  r.set("mse", metrics.mse);
-  r.set("nrmse", metrics.nrmse);
-  r.set("psnr", metrics.psnr);
-  r.set("mssim", metrics.mssim);
-  r.set("ssim_exposure", metrics.ssim_exposure);
+  r.set(kMse, metrics.mse);
+  r.set(kNrmse, metrics.nrmse);
+  r.set(kPsnr, metrics.psnr);
+  r.set(kMssim, metrics.mssim);
+  r.set(kSsimExposure, metrics.ssim_exposure);
   if (coverage && !coverage->pixels.empty()) {
     // Beside the whole image's: a model covering a small share of the image would otherwise
     // have its error diluted by background pixels both images agree on.
     const CoveredComparison covered = compare_covered(reference.image, image, metrics, *coverage);
-    r.set("mse_covered", covered.mse);
-    r.set("nrmse_covered", covered.nrmse);
-    r.set("mssim_covered", covered.mssim);
+    r.set(kMseCovered, covered.mse);
+    r.set(kNrmseCovered, covered.nrmse);
+    r.set(kMssimCovered, covered.mssim);
   }
   // MSE against the converged image is about mse - ref_noise_mse; below a few times the
   // floor, differences between configurations are noise of the reference.
-  r.set("mse_over_noise", reference.noise_mse > 0 ? metrics.mse / reference.noise_mse : INFINITY);
+  r.set(kMseOverNoise, reference.noise_mse > 0 ? metrics.mse / reference.noise_mse : INFINITY);
   // The error's systematic part (issue 20): the mean difference over every pixel and
   // channel, whose square is the part of the MSE no amount of averaging removes, and the
   // image's mean over the reference's.
@@ -93,13 +96,13 @@ void add_accuracy(Record& record, const ReferenceResult& reference, const Image&
     image_sum += image.pixels[i];
   }
   const double bias = image.pixels.empty() ? 0.0 : difference / double(image.pixels.size());
-  r.set("bias", bias);
-  r.set("bias_share", metrics.mse > 0 ? bias * bias / metrics.mse : 0.0);
-  r.set("mean_ratio", reference_sum > 0 ? image_sum / reference_sum : (image_sum > 0 ? INFINITY : 1.0));
+  r.set(kBias, bias);
+  r.set(kBiasShare, metrics.mse > 0 ? bias * bias / metrics.mse : 0.0);
+  r.set(kMeanRatio, reference_sum > 0 ? image_sum / reference_sum : (image_sum > 0 ? INFINITY : 1.0));
   // The ratio's standard error from the reference's noise alone (the image is deterministic):
   // the reference's mean has variance noise_mse / n with independent pixels and channels.
   if (reference_sum > 0 && !image.pixels.empty())
-    r.set("mean_ratio_se", image_sum / reference_sum *
+    r.set(kMeanRatioSe, image_sum / reference_sum *
                                std::sqrt(reference.noise_mse / double(image.pixels.size())) /
                                (reference_sum / double(image.pixels.size())));
 
@@ -110,14 +113,14 @@ void add_accuracy(Record& record, const ReferenceResult& reference, const Image&
       images->write_exr(name + ".exr", reference.image);
       images->write_png(name + ".png", reference.image);
     }
-    r.set("reference_exr", images->record_path(name + ".exr"));
-    r.set("ssim_map_png", images->write_png(stem + "-ssim.png", heat_map(metrics.ssim_map, 1.0)));
+    r.set(kReferenceExr, images->record_path(name + ".exr"));
+    r.set(kSsimMapPng, images->write_png(stem + "-ssim.png", heat_map(metrics.ssim_map, 1.0)));
     const float max_diff = *std::max_element(metrics.abs_diff.pixels.begin(),
                                              metrics.abs_diff.pixels.end());
     images->write_exr(stem + "-diff.exr", metrics.abs_diff);
-    r.set("diff_png", images->write_png(stem + "-diff.png",
+    r.set(kDiffPng, images->write_png(stem + "-diff.png",
                                         heat_map(metrics.abs_diff, max_diff > 0 ? max_diff : 1.0)));
-    r.set("diff_png_max", double(max_diff));
+    r.set(kDiffPngMax, double(max_diff));
   }
 }
 

@@ -476,8 +476,8 @@ inline const Column kSsimMapPng{"images", "ssim_map_png", "",
 inline const Column kDiffPng{"images", "diff_png", "",
     "absolute difference to the reference as a heat map (EXR beside it)",
     ColumnKind::Text, VariesBetweenRuns::No, Better::Neither};
-inline const Column kDiffPngMax{"images", "diff_png_max", "",
+inline const Column kDiffPngMax = summed_in_arrival_order({"images", "diff_png_max", "",
     "the difference that maps to the top of the heat map",
-    ColumnKind::Number, VariesBetweenRuns::No, Better::Neither};
+    ColumnKind::Number, VariesBetweenRuns::No, Better::Neither});
 
 }  // namespace ldm::columns
