@@ -12,28 +12,12 @@ namespace {
 
 AxisSpec numeric(const char* key, AxisKind kind, double lo, double hi, const char* fallback,
                  const char* unit, const char* description) {
-  AxisSpec p;
-  p.key = key;
-  p.kind = kind;
-  p.min = lo;
-  p.max = hi;
-  p.default_value = fallback;
-  p.unit = unit;
-  p.column = std::string("gtao_") + key;
-  p.description = description;
-  return p;
+  return numeric_parameter(key, kind, lo, hi, fallback, unit, description, std::string("gtao_") + key);
 }
 
 AxisSpec choice(const char* key, std::vector<std::string> choices, const char* fallback,
                 const char* description) {
-  AxisSpec p;
-  p.key = key;
-  p.kind = AxisKind::Choice;
-  p.choices = std::move(choices);
-  p.default_value = fallback;
-  p.column = std::string("gtao_") + key;
-  p.description = description;
-  return p;
+  return choice_parameter(key, std::move(choices), fallback, description, std::string("gtao_") + key);
 }
 
 }  // namespace

@@ -23,39 +23,15 @@ Hbao::Hbao(StructureParams& params) {
 }
 
 std::vector<AxisSpec> Hbao::parameters() {
-  auto uint_param = [](const char* key, double lo, double hi, const char* fallback, const char* unit,
-                       const char* column, const char* description) {
-    AxisSpec p;
-    p.key = key;
-    p.kind = AxisKind::UInt;
-    p.min = lo;
-    p.max = hi;
-    p.default_value = fallback;
-    p.unit = unit;
-    p.column = column;
-    p.description = description;
-    return p;
-  };
-  AxisSpec angle_bias;
-  angle_bias.key = "angle_bias";
-  angle_bias.kind = AxisKind::Real;
-  angle_bias.min = 0.0;
-  angle_bias.max = 1.5;
-  angle_bias.default_value = "0.1";
-  angle_bias.unit = "radians";
-  angle_bias.column = "hbao_angle_bias";
-  angle_bias.description = "horizon angle bias (ignores tangent-plane occluders)";
-  AxisSpec jitter;
-  jitter.key = "jitter";
-  jitter.kind = AxisKind::Choice;
-  jitter.choices = {"off", "on"};
-  jitter.default_value = "off";
-  jitter.column = "hbao_jitter";
-  jitter.description = "per-pixel rotation of the directions";
-  return {uint_param("directions", 1, 256, "8", "directions", "hbao_directions", "directions sampled per pixel"),
-          uint_param("steps", 1, 512, "8", "steps", "hbao_steps", "ray-marching steps per direction, within d_max"),
-          angle_bias, jitter,
-          uint_param("blur", 0, 16, "0", "pixels", "hbao_blur", "cross-bilateral blur radius (0: none)"),
+  return {numeric_parameter("directions", AxisKind::UInt, 1, 256, "8", "directions", "directions sampled per pixel",
+                            "hbao_directions"),
+          numeric_parameter("steps", AxisKind::UInt, 1, 512, "8", "steps", "ray-marching steps per direction, within d_max",
+                            "hbao_steps"),
+          numeric_parameter("angle_bias", AxisKind::Real, 0.0, 1.5, "0.1", "radians",
+                            "horizon angle bias (ignores tangent-plane occluders)", "hbao_angle_bias"),
+          choice_parameter("jitter", {"off", "on"}, "off", "per-pixel rotation of the directions", "hbao_jitter"),
+          numeric_parameter("blur", AxisKind::UInt, 0, 16, "0", "pixels", "cross-bilateral blur radius (0: none)",
+                            "hbao_blur"),
           ao_pass_parameter(AoAxis::DMax), ao_pass_parameter(AoAxis::Visibility)};
 }
 

@@ -19,14 +19,10 @@ ListNodePool::ListNodePool(const std::string& structure, StructureParams& params
 }
 
 AxisSpec ListNodePool::capacity_parameter() {
-  AxisSpec p;
-  p.key = "capacity";
-  p.kind = AxisKind::UInt;
-  p.min = 1;
-  p.max = double((uint64_t(1) << 31) - 1);
+  AxisSpec p = numeric_parameter(
+      "capacity", AxisKind::UInt, 1, double((uint64_t(1) << 31) - 1), "", "nodes",
+      "fixes the node pool (all views), overriding the sizing policy; what does not fit is dropped and counted");
   p.default_note = "sized by the sizing policy";
-  p.unit = "nodes";
-  p.description = "fixes the node pool (all views), overriding the sizing policy; what does not fit is dropped and counted";
   return p;
 }
 

@@ -6,14 +6,10 @@
 namespace ldm {
 
 AxisSpec sort_local_parameter() {
-  AxisSpec p;
-  p.key = "local";
-  p.kind = AxisKind::UInt;
-  p.min = 1;
-  p.max = kMaxSortLocal;
+  AxisSpec p = numeric_parameter(
+      "local", AxisKind::UInt, 1, kMaxSortLocal, "", "entries",
+      "entries of the sort pass's local array (longer lists are merge-sorted in place)");
   p.default_note = "oracle: the census's deepest pixel (at most 128); other policies: 64";
-  p.unit = "entries";
-  p.description = "entries of the sort pass's local array (longer lists are merge-sorted in place)";
   return p;
 }
 

@@ -155,30 +155,17 @@ std::vector<WorkCounter> HaBuffer::query_work_counters() {
 }
 
 std::vector<AxisSpec> HaBuffer::parameters() {
-  AxisSpec load_factor;
-  load_factor.key = "load_factor";
-  load_factor.kind = AxisKind::Real;
-  load_factor.min = 0.01;
-  load_factor.max = 64.0;
+  AxisSpec load_factor = numeric_parameter("load_factor", AxisKind::Real, 0.01, 64.0, "0.75",
+                                           "fragments per entry",
+                                           "table size |H| = max(N R^2, fragments / load_factor)");
   load_factor.real_is_double = true;
-  load_factor.default_value = "0.75";
-  load_factor.unit = "fragments per entry";
-  load_factor.description = "table size |H| = max(N R^2, fragments / load_factor)";
-  AxisSpec max_age;
-  max_age.key = "max_age";
-  max_age.kind = AxisKind::UInt;
-  max_age.min = 0;
-  max_age.max = 254;
-  max_age.default_value = "254";
-  max_age.unit = "probes";
-  max_age.description = "longest probe sequence; fragments that would need more are dropped and counted";
-  AxisSpec key_bits;
-  key_bits.key = "key_bits";
-  key_bits.kind = AxisKind::Choice;
-  key_bits.choices = {"32", "64", "auto"};
+  const AxisSpec max_age = numeric_parameter(
+      "max_age", AxisKind::UInt, 0, 254, "254", "probes",
+      "longest probe sequence; fragments that would need more are dropped and counted");
   // 32 by default on every device: the records of two devices then compare the same packing.
-  key_bits.default_value = "32";
-  key_bits.description = "key packing: 32 (8-bit age, 24-bit depth), 64 (the exact float; needs 64-bit atomics), auto";
+  const AxisSpec key_bits = choice_parameter(
+      "key_bits", {"32", "64", "auto"}, "32",
+      "key packing: 32 (8-bit age, 24-bit depth), 64 (the exact float; needs 64-bit atomics), auto");
   return {load_factor, max_age, key_bits};
 }
 
