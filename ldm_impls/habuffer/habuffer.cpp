@@ -7,6 +7,8 @@
 
 #include "harness/gl/bindings.h"
 #include "harness/util/error.h"
+#include "ldm_impls/common/compute_grid.h"
+#include "ldm_impls/common/structure_counters.h"
 #include "ldm_impls/common/uint_reduction.h"
 
 namespace ldm {
@@ -89,13 +91,11 @@ HaBuffer::HaBuffer(StructureParams& params) {
 }
 
 std::vector<WorkCounter> HaBuffer::work_counters() {
-  std::vector<WorkCounter> counters;
-  for (WorkCounter c : geometry_work_counters("construct")) counters.push_back(std::move(c));
   // Counted by shaders/ldm/habuffer/ha_build.frag, once per fragment. Every insertion chain
   // depends on what arrived before it (which entry an atomicMax finds), so all but the
   // tickets are arrival-dependent; the table they end in is not (see query_work_counters()).
   constexpr WorkOrder kArrival = WorkOrder::ArrivalDependent;
-  const std::vector<WorkCounter> construct = {
+  return with_geometry_counters({"construct"}, {
       {"construct", "hash_probes", WorkShape::Distribution, "slots",
        "construct: slots one fragment's insertion tried (an atomicMax on the table each), "
        "evicted entries carried on included", kArrival},
@@ -129,9 +129,7 @@ std::vector<WorkCounter> HaBuffer::work_counters() {
       {"construct", "bytes_loaded_ha_offsets", WorkShape::Total, "bytes",
        "construct: offsets o_a read: one per slot tried, one per eviction (the evicted entry's pixel)",
        kArrival},
-  };
-  counters.insert(counters.end(), construct.begin(), construct.end());
-  return counters;
+  });
 }
 
 // Counted by shaders/ldm/habuffer/ha_query.glsl; a query is one ldm_begin or ldm_next. Robin
@@ -342,13 +340,9 @@ uint32_t HaBuffer::read_highest_age_count() const {
   // A scratch word of the read-back, not state of the structure: cleared here directly.
   const uint32_t zero = 0;
   glClearNamedBufferData(age_summary_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-  highest_age_program_.use();
   age_counts_.bind_storage(kStructureBinding0 + 2);
   age_summary_.bind_storage(kStructureBinding0 + 3);
-  const uint64_t groups = (pixels_ + 255) / 256;
-  const uint64_t gx = std::min<uint64_t>(groups, 32768), gy = (groups + gx - 1) / gx;
-  glDispatchCompute(GLuint(gx), GLuint(gy), 1);
-  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  run_linear_compute(highest_age_program_, pixels_, 256, GL_BUFFER_UPDATE_BARRIER_BIT);
   uint32_t highest = 0;
   age_summary_.download(&highest, sizeof highest);
   return highest;
