@@ -8,6 +8,7 @@
 #include "harness/reference/ao_reference.h"
 #include "harness/scene/scene_loader.h"
 #include "harness/util/error.h"
+#include "support/pass_run.h"
 #include "support/test_support.h"
 
 namespace ldm {
@@ -15,21 +16,16 @@ namespace {
 
 // The RTAO image of `scene` (size x size) with the given parameters.
 Image rtao_image(const Scene& scene, int size, std::map<std::string, std::string> params) {
-  test::gl_context();  // the peer measurement uploads the scene; rtao itself draws nothing
-  StructureParams p(std::move(params), "rtao test");
-  p.declare(Rtao::parameters());
-  Rtao pass(p);
-  p.check("pass rtao");
-  const GpuScene gpu_scene(scene, AttributeSet{});
-  pass.prepare({scene, gpu_scene, nullptr, nullptr, size, size});
+  // The peer measurement uploads the scene; rtao itself draws nothing.
+  test::PassRun<Rtao> run("rtao", scene, size, size, std::move(params), AttributeSet{});
   GpuTimer timer(TimerSource::CpuWallClock);
   timer.begin_frame();
-  pass.render(&timer);
+  const Image image = run.render(&timer);
   const FrameTimes times = timer.end_frame();
   EXPECT_EQ(times.size(), 1u);
   EXPECT_EQ(times.front().first, "rtao");
   EXPECT_GT(times.front().second, 0.0) << "CPU wall time of the trace";
-  return pass.images().front().image;
+  return image;
 }
 
 double mean_of(const Image& image) {

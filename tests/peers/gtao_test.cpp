@@ -13,6 +13,8 @@
 #include "harness/scene/scene_loader.h"
 #include "harness/util/error.h"
 #include "support/ao_closed_forms.h"
+#include "support/hand_gbuffer.h"
+#include "support/pass_run.h"
 #include "support/test_support.h"
 
 namespace ldm {
@@ -22,17 +24,7 @@ constexpr double kPi = std::numbers::pi;
 
 // The GTAO image of `scene` (size x size) with the given parameters.
 Image gtao_image(const Scene& scene, int size, std::map<std::string, std::string> params) {
-  test::gl_context();
-  StructureParams p(std::move(params), "gtao test");
-  p.declare(Gtao::parameters());
-  Gtao pass(p);
-  p.check("pass gtao");
-  AttributeSet attributes;
-  attributes.normals = true;
-  const GpuScene gpu_scene(scene, attributes);
-  pass.prepare({scene, gpu_scene, nullptr, nullptr, size, size});
-  pass.render(nullptr);
-  return pass.images().front().image;
+  return test::PassRun<Gtao>("gtao", scene, size, size, std::move(params)).render();
 }
 
 // Where pixel (x, y)'s primary ray (y = 0 the top row) meets the floor y = 0.
@@ -186,21 +178,7 @@ TEST(Gtao, OpenPlaneIsUnoccluded) {
   EXPECT_NEAR(sum / covered, 1.0, worst / 4) << "but unbiased over the rotations";
 }
 
-// A hand-made G-buffer: `width` x `height` texels of (position, covered) and normals.
-struct HandGBuffer {
-  int width, height;
-  std::vector<glm::vec4> positions, normals;
-  HandGBuffer(int w, int h) : width(w), height(h), positions(w * h), normals(w * h) {}
-  void set(int x, int y, glm::vec3 p, glm::vec3 n = {0.0f, 0.0f, 1.0f}) {
-    positions[y * width + x] = glm::vec4(p, 1.0f);
-    normals[y * width + x] = glm::vec4(n, 0.0f);
-  }
-  GlTexture2D upload(const std::vector<glm::vec4>& texels) const {
-    GlTexture2D texture(GL_RGBA32F, width, height);
-    glTextureSubImage2D(texture.id(), 0, 0, 0, width, height, GL_RGBA, GL_FLOAT, texels.data());
-    return texture;
-  }
-};
+using test::HandGBuffer;
 
 // The camera at the origin looking down -z; x at pixel (1, 1) is the point (0, 0, -4) of a
 // floor facing the camera (n = v = +z, so gamma = 0 in every slice). One slice without
@@ -263,18 +241,13 @@ TEST(Gtao, AttenuationAndThicknessMatchAHandComputedCase) {
 TEST(Gtao, DenoiseIsASubpassAndItsTargetsAreCounted) {
   test::gl_context();
   const Scene scene = load_scene("cornell");
-  StructureParams p({{"denoise", "2"}, {"jitter", "on"}}, "gtao test");
-  p.declare(Gtao::parameters());
-  Gtao pass(p);
-  ASSERT_EQ(pass.subpasses().back().name, "denoise");
-  AttributeSet attributes;
-  attributes.normals = true;
-  const GpuScene gpu_scene(scene, attributes);
   const int size = 64;
-  pass.prepare({scene, gpu_scene, nullptr, nullptr, size, size});
+  test::PassRun<Gtao> run("gtao", scene, size, size, {{"denoise", "2"}, {"jitter", "on"}});
+  Gtao& pass = *run.pass;
+  ASSERT_EQ(pass.subpasses().back().name, "denoise");
   GpuTimer timer(TimerSource::FencedWallClock);
   timer.begin_frame();
-  pass.render(&timer);
+  run.render(&timer);
   const FrameTimes times = timer.end_frame();
   std::vector<std::string> names;
   for (const auto& [name, ms] : times) names.push_back(name);

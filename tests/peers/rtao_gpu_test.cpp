@@ -20,6 +20,7 @@
 #include "harness/reference/embree_scene.h"
 #include "harness/scene/camera.h"
 #include "support/ao_closed_forms.h"
+#include "support/pass_run.h"
 #include "support/test_support.h"
 
 namespace ldm {
@@ -33,28 +34,14 @@ struct GpuRun {
 };
 
 GpuRun rtao_gpu_run(const Scene& scene, int size, std::map<std::string, std::string> params) {
-  test::gl_context();
-  StructureParams p(std::move(params), "rtao_gpu test");
-  p.declare(RtaoGpu::parameters());
-  RtaoGpu pass(p);
-  p.check("pass rtao_gpu");
-  AttributeSet attributes;
-  attributes.normals = true;
-  const GpuScene gpu_scene(scene, attributes);
-  pass.prepare({scene, gpu_scene, nullptr, nullptr, size, size});
-  pass.render(nullptr);
-  return {pass.images().front().image, pass.work(), pass.problems(), pass.read_triangle_ids()};
+  test::PassRun<RtaoGpu> run("rtao_gpu", scene, size, size, std::move(params));
+  const Image image = run.render();
+  RtaoGpu& pass = *run.pass;
+  return {image, pass.work(), pass.problems(), pass.read_triangle_ids()};
 }
 
 Image rtao_cpu_image(const Scene& scene, int size, std::map<std::string, std::string> params) {
-  StructureParams p(std::move(params), "rtao test");
-  p.declare(Rtao::parameters());
-  Rtao pass(p);
-  p.check("pass rtao");
-  const GpuScene gpu_scene(scene, AttributeSet{});
-  pass.prepare({scene, gpu_scene, nullptr, nullptr, size, size});
-  pass.render(nullptr);
-  return pass.images().front().image;
+  return test::PassRun<Rtao>("rtao", scene, size, size, std::move(params), AttributeSet{}).render();
 }
 
 // The triangle each pixel's primary ray hits in Embree (the reference's and the CPU RTAO's
@@ -385,18 +372,12 @@ TEST(RtaoGpu, ParametersMemoryAndBvhColumns) {
     if (key == "rtao_gpu_spp") found = std::get<int64_t>(value) == 8;
   EXPECT_TRUE(found);
 
-  test::gl_context();
   const Scene scene = load_scene("cornell");
-  StructureParams p(std::map<std::string, std::string>{{"spp", "2"}}, "rtao_gpu test");
-  p.declare(RtaoGpu::parameters());
-  RtaoGpu pass(p);
-  AttributeSet attributes;
-  attributes.normals = true;
-  const GpuScene gpu_scene(scene, attributes);
-  pass.prepare({scene, gpu_scene, nullptr, nullptr, 32, 32});
+  test::PassRun<RtaoGpu> run("rtao_gpu", scene, 32, 32, {{"spp", "2"}});
+  RtaoGpu& pass = *run.pass;
   GpuTimer timer(TimerSource::FencedWallClock);
   timer.begin_frame();
-  pass.render(&timer);
+  run.render(&timer);
   std::vector<std::string> names;
   for (const auto& [name, ms] : timer.end_frame()) names.push_back(name);
   EXPECT_EQ(names, (std::vector<std::string>{"rtao_gpu_primary", "rtao_gpu"}));
