@@ -39,9 +39,7 @@ std::vector<WorkCounter> AmbientOcclusion::work_counters() {
 }
 
 std::vector<ColumnSpec> AmbientOcclusion::columns() {
-  std::vector<ColumnSpec> columns = ao_setting_columns(true);
-  for (auto& c : ao_range_columns()) columns.push_back(c);
-  return columns;
+  return ao_pass_columns(true, {}, true);
 }
 
 AoSettings AmbientOcclusion::settings_for(const Scene& scene) const {
@@ -63,13 +61,7 @@ std::vector<TimedSubpass> AmbientOcclusion::subpasses() const {
 
 std::vector<std::pair<std::string, RecordValue>> AmbientOcclusion::describe(
     const Scene& scene) const {
-  const AoSettings ao = settings_for(scene);
-  return {{"visibility", std::string(ao.attenuated ? "attenuated" : "unattenuated")},
-          {"d_max", double(ao.d_max)},
-          {"falloff_exponent", double(ao.falloff_exponent)},
-          {"normal_offset_pixels", double(ao.normal_offset_pixels)},
-          {"trace", ao_trace_name(ao.trace)},
-          {"ao_estimator", ao_estimator_name(ao.estimator)}};
+  return ao_setting_values(settings_for(scene), true);
 }
 
 void AmbientOcclusion::prepare(const PassInputs& in) {

@@ -52,8 +52,7 @@ std::vector<AxisSpec> Gtao::parameters() {
 }
 
 std::vector<ColumnSpec> Gtao::columns() {
-  std::vector<ColumnSpec> columns = ao_setting_columns(false);
-  const std::vector<ColumnSpec> own = {
+  return ao_pass_columns(false, {
       {"pass", "gtao_slices", "", "GTAO: slice planes through the view vector per pixel (--param gtao:slices=)"},
       {"pass", "gtao_steps", "", "GTAO: horizon-search samples per side of a slice (--param gtao:steps=)"},
       {"pass", "gtao_radius", "d_max", "GTAO: search radius R as a multiple of d_max (--param gtao:radius=)"},
@@ -64,10 +63,7 @@ std::vector<ColumnSpec> Gtao::columns() {
       {"pass", "gtao_estimator", "", "GTAO: mean (the paper's mean over slices) or normalized (over the slices' open hemispheres)"},
       {"pass", "gtao_attenuation", "", "GTAO: reference (each horizon rise weighted by the reference's 1 - V(r)) or binary (1 within R, faded by gtao_falloff: the engines' horizon)"},
       {"pass", "gtao_denoise", "pixels", "GTAO: radius of the cross-bilateral denoise, timed as denoise (0: none; --param gtao:denoise=)"},
-  };
-  columns.insert(columns.end(), own.begin(), own.end());
-  for (auto& c : ao_range_columns()) columns.push_back(c);
-  return columns;
+  }, true);
 }
 
 std::vector<WorkCounter> Gtao::work_counters() {
@@ -113,20 +109,17 @@ std::vector<TimedSubpass> Gtao::subpasses() const {
 }
 
 std::vector<std::pair<std::string, RecordValue>> Gtao::describe(const Scene& scene) const {
-  const AoSettings ao = settings_for(scene);
-  return {{"visibility", std::string(ao.attenuated ? "attenuated" : "unattenuated")},
-          {"d_max", double(ao.d_max)},
-          {"falloff_exponent", double(ao.falloff_exponent)},
-          {"gtao_slices", int64_t(gtao_.slices)},
-          {"gtao_steps", int64_t(gtao_.steps)},
-          {"gtao_radius", double(gtao_.radius_scale)},
-          {"gtao_falloff", double(gtao_.falloff)},
-          {"gtao_thickness", double(gtao_.thickness)},
-          {"gtao_step_power", double(gtao_.step_power)},
-          {"gtao_jitter", std::string(gtao_.jitter ? "on" : "off")},
-          {"gtao_estimator", std::string(gtao_.normalized ? "normalized" : "mean")},
-          {"gtao_attenuation", std::string(gtao_.reference_weights ? "reference" : "binary")},
-          {"gtao_denoise", int64_t(gtao_.denoise_radius)}};
+  return ao_setting_values(settings_for(scene), false, {
+      {"gtao_slices", int64_t(gtao_.slices)},
+      {"gtao_steps", int64_t(gtao_.steps)},
+      {"gtao_radius", double(gtao_.radius_scale)},
+      {"gtao_falloff", double(gtao_.falloff)},
+      {"gtao_thickness", double(gtao_.thickness)},
+      {"gtao_step_power", double(gtao_.step_power)},
+      {"gtao_jitter", std::string(gtao_.jitter ? "on" : "off")},
+      {"gtao_estimator", std::string(gtao_.normalized ? "normalized" : "mean")},
+      {"gtao_attenuation", std::string(gtao_.reference_weights ? "reference" : "binary")},
+      {"gtao_denoise", int64_t(gtao_.denoise_radius)}});
 }
 
 void Gtao::prepare(const PassInputs& in) {

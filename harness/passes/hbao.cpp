@@ -36,17 +36,13 @@ std::vector<AxisSpec> Hbao::parameters() {
 }
 
 std::vector<ColumnSpec> Hbao::columns() {
-  std::vector<ColumnSpec> columns = ao_setting_columns(false);
-  const std::vector<ColumnSpec> own = {
+  return ao_pass_columns(false, {
       {"pass", "hbao_directions", "", "HBAO: N_HBAO screen-space directions per pixel (--param hbao:directions=)"},
       {"pass", "hbao_steps", "", "HBAO: S_HBAO ray-marching steps per direction, out to d_max (--param hbao:steps=)"},
       {"pass", "hbao_angle_bias", "radians", "HBAO: bias added to the tangent angle (--param hbao:angle_bias=)"},
       {"pass", "hbao_jitter", "", "HBAO: off, or on (per-pixel rotation and step offset from a tiled 4x4 random table)"},
       {"pass", "hbao_blur", "pixels", "HBAO: radius of the cross-bilateral blur after the AO, timed as blur (0: none; --param hbao:blur=)"},
-  };
-  columns.insert(columns.end(), own.begin(), own.end());
-  for (auto& c : ao_range_columns()) columns.push_back(c);
-  return columns;
+  }, true);
 }
 
 std::vector<WorkCounter> Hbao::work_counters() {
@@ -93,15 +89,12 @@ std::vector<TimedSubpass> Hbao::subpasses() const {
 }
 
 std::vector<std::pair<std::string, RecordValue>> Hbao::describe(const Scene& scene) const {
-  const AoSettings ao = settings_for(scene);
-  return {{"visibility", std::string(ao.attenuated ? "attenuated" : "unattenuated")},
-          {"d_max", double(ao.d_max)},
-          {"falloff_exponent", double(ao.falloff_exponent)},
-          {"hbao_directions", int64_t(hbao_.directions)},
-          {"hbao_steps", int64_t(hbao_.steps)},
-          {"hbao_angle_bias", double(hbao_.angle_bias)},
-          {"hbao_jitter", std::string(hbao_.jitter ? "on" : "off")},
-          {"hbao_blur", int64_t(hbao_.blur_radius)}};
+  return ao_setting_values(settings_for(scene), false, {
+      {"hbao_directions", int64_t(hbao_.directions)},
+      {"hbao_steps", int64_t(hbao_.steps)},
+      {"hbao_angle_bias", double(hbao_.angle_bias)},
+      {"hbao_jitter", std::string(hbao_.jitter ? "on" : "off")},
+      {"hbao_blur", int64_t(hbao_.blur_radius)}});
 }
 
 void Hbao::prepare(const PassInputs& in) {

@@ -95,8 +95,7 @@ std::vector<AxisSpec> RtaoGpu::parameters() {
 #pragma GCC diagnostic pop
 
 std::vector<ColumnSpec> RtaoGpu::columns() {
-  std::vector<ColumnSpec> columns = ao_setting_columns(false);
-  const std::vector<ColumnSpec> own = {
+  return ao_pass_columns(false, {
       {"pass", "rtao_gpu_spp", "samples", "GPU RTAO: AO rays per pixel k (--param rtao_gpu:spp=)"},
       {"pass", "rtao_gpu_seed", "", "GPU RTAO: seed of its random stream (the CPU RTAO's numbers for the same seed; independent of the reference's halves)"},
       {"pass", "rtao_gpu_primary", "", "GPU RTAO: trace (each pixel's point from a primary ray through the BVH, as the reference finds it) or raster (the rasterised G-buffer)"},
@@ -110,9 +109,7 @@ std::vector<ColumnSpec> RtaoGpu::columns() {
       {"pass", "rtao_gpu_bvh_depth", "", "GPU RTAO: inner-node levels on the BVH's longest path (the traversal stack's size)"},
       {"pass", "rtao_gpu_steps_max", "iterations", "GPU RTAO: loop iterations of the longest AO shader invocation (nodes, triangles and ray starts of its k rays), from the counting replay; at or past loop_iteration_limit the record is invalid"},
       {"pass", "rtao_gpu_primary_steps_max", "iterations", "GPU RTAO: loop iterations of the longest primary-ray invocation (primary=trace; 0 with raster), judged as rtao_gpu_steps_max"},
-  };
-  columns.insert(columns.end(), own.begin(), own.end());
-  return columns;
+  }, false);
 }
 
 // The record's work_rtao_gpu_* columns come from the shared counting replay (the same names
@@ -160,13 +157,10 @@ std::vector<TimedSubpass> RtaoGpu::subpasses() const {
 }
 
 std::vector<std::pair<std::string, RecordValue>> RtaoGpu::describe(const Scene& scene) const {
-  const AoSettings ao = settings_for(scene);
-  return {{"visibility", std::string(ao.attenuated ? "attenuated" : "unattenuated")},
-          {"d_max", double(ao.d_max)},
-          {"falloff_exponent", double(ao.falloff_exponent)},
-          {"rtao_gpu_spp", int64_t(spp_)},
-          {"rtao_gpu_seed", int64_t(seed_)},
-          {"rtao_gpu_primary", std::string(trace_primary_ ? "trace" : "raster")}};
+  return ao_setting_values(settings_for(scene), false, {
+      {"rtao_gpu_spp", int64_t(spp_)},
+      {"rtao_gpu_seed", int64_t(seed_)},
+      {"rtao_gpu_primary", std::string(trace_primary_ ? "trace" : "raster")}});
 }
 
 GlProgram RtaoGpu::build(bool counting) const {
