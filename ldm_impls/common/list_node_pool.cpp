@@ -26,13 +26,17 @@ AxisSpec ListNodePool::capacity_parameter() {
   return p;
 }
 
+WorkCounter ListNodePool::nodes_visited_counter() {
+  return {"", "nodes_visited", WorkShape::Distribution, "nodes",
+          "PSPPSLL, PPSLL or DF-buffer: nodes (DF-buffer: depth-array entries) one query (an "
+          "ldm_begin or ldm_next) moved the cursor onto: 1, or 0 at the end of the list"};
+}
+
 std::vector<WorkCounter> ListNodePool::query_work_counters() {
   // A query is one ldm_begin or ldm_next; the lists are sorted whatever the order their
   // fragments arrived in, so every count is deterministic.
   return {
-      {"", "nodes_visited", WorkShape::Distribution, "nodes",
-       "PSPPSLL, PPSLL or DF-buffer: nodes (DF-buffer: depth-array entries) one query (an "
-       "ldm_begin or ldm_next) moved the cursor onto: 1, or 0 at the end of the list"},
+      nodes_visited_counter(),
       {"", "bytes_loaded_heads", WorkShape::Total, "bytes",
        "PSPPSLL or PPSLL: list heads its queries read (4 bytes per ldm_begin)"},
       {"", "bytes_loaded_nodes", WorkShape::Total, "bytes",

@@ -5,6 +5,7 @@
 
 #include "harness/gl/bindings.h"
 #include "ldm_impls/common/compute_grid.h"
+#include "ldm_impls/common/list_node_pool.h"
 #include "ldm_impls/common/post_sort.h"
 #include "ldm_impls/common/structure_counters.h"
 
@@ -22,6 +23,8 @@ constexpr uint64_t kUnfilledWord = 3;
 
 DfBuffer::DfBuffer(StructureParams& params) { requested_local_ = read_sort_local_param(params); }
 
+// A data table of its own counters, alike in form only to the other structures' (see
+// ldm_impls/common/structure_counters.h).
 std::vector<WorkCounter> DfBuffer::work_counters() {
   constexpr WorkOrder kArrival = WorkOrder::ArrivalDependent;
   std::vector<WorkCounter> own = {
@@ -68,9 +71,7 @@ std::vector<WorkCounter> DfBuffer::work_counters() {
 // sorted whatever the order of arrival, so every count is deterministic.
 std::vector<WorkCounter> DfBuffer::query_work_counters() {
   return {
-      {"", "nodes_visited", WorkShape::Distribution, "nodes",
-       "PSPPSLL, PPSLL or DF-buffer: nodes (DF-buffer: depth-array entries) one query (an "
-       "ldm_begin or ldm_next) moved the cursor onto: 1, or 0 at the end of the list"},
+      ListNodePool::nodes_visited_counter(),
       {"", "bytes_loaded_offsets", WorkShape::Total, "bytes",
        "DF-buffer offsets its queries read (8 bytes per ldm_begin)"},
       {"", "bytes_loaded_depths", WorkShape::Total, "bytes",

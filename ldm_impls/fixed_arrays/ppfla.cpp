@@ -12,6 +12,8 @@ namespace ldm {
 
 Ppfla::Ppfla(StructureParams& params) : requested_k_(read_fixed_array_k(params)) {}
 
+// A data table of its own counters, alike in form only to the other structures' (see
+// ldm_impls/common/structure_counters.h).
 std::vector<WorkCounter> Ppfla::work_counters() {
   constexpr WorkOrder kArrival = WorkOrder::ArrivalDependent;
   return with_geometry_counters({"construct"}, {
@@ -77,11 +79,7 @@ void Ppfla::allocate(const FixedArrayLayout& layout) {
   defines_ = fixed_array_defines(layout_);
   entries_ = GlBuffer("entries", layout_.entry_bytes());
   build_program_ = fragments_->build_program("ldm/fixed_arrays/ppfla_build.frag", defines_);
-  ShaderDefines sort_defines = binding_defines();
-  sort_defines.values.insert(sort_defines.values.end(), defines_.values.begin(),
-                             defines_.values.end());
-  sort_program_ =
-      build_program({{GL_COMPUTE_SHADER, "ldm/fixed_arrays/ppfla_sort.comp", {}}}, sort_defines);
+  sort_program_ = build_compute_program("ldm/fixed_arrays/ppfla_sort.comp", defines_);
   query_defines_changed();
 }
 

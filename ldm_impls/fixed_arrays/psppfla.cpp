@@ -15,6 +15,8 @@ constexpr uint32_t kEmptyEntry = 0xFFFFFFFFu;
 
 Psppfla::Psppfla(StructureParams& params) : requested_k_(read_fixed_array_k(params)) {}
 
+// A data table of its own counters, alike in form only to the other structures' (see
+// ldm_impls/common/structure_counters.h).
 std::vector<WorkCounter> Psppfla::work_counters() {
   // shaders/ldm/fixed_arrays/psppfla_build.frag. Every walk ends at the first empty entry it
   // meets and every entry ends exactly one walk, so a pixel of c fragments takes

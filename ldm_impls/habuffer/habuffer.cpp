@@ -90,6 +90,8 @@ HaBuffer::HaBuffer(StructureParams& params) {
   key_bits_request_ = params.get_choice("key_bits");
 }
 
+// A data table of its own counters, alike in form only to the other structures' (see
+// ldm_impls/common/structure_counters.h).
 std::vector<WorkCounter> HaBuffer::work_counters() {
   // Counted by shaders/ldm/habuffer/ha_build.frag, once per fragment. Every insertion chain
   // depends on what arrived before it (which entry an atomicMax finds), so all but the
@@ -311,11 +313,7 @@ void HaBuffer::allocate_table(uint64_t table_size) {
     guess_defines.set("HA_STOP_TICKET", std::to_string(stop_ticket()) + "u");
     guess_program_ = fragments_->build_program("ldm/habuffer/ha_build.frag", guess_defines);
   }
-  ShaderDefines reduce_defines = binding_defines();
-  reduce_defines.values.insert(reduce_defines.values.end(), defines_.values.begin(),
-                               defines_.values.end());
-  highest_age_program_ =
-      build_program({{GL_COMPUTE_SHADER, "ldm/habuffer/ha_highest_age.comp", {}}}, reduce_defines);
+  highest_age_program_ = build_compute_program("ldm/habuffer/ha_highest_age.comp", defines_);
   query_defines_changed();
 }
 

@@ -15,6 +15,8 @@ Ppsll::Ppsll(StructureParams& params) : pool_("ppsll", params) {
   requested_local_ = read_sort_local_param(params);
 }
 
+// A data table of its own counters, alike in form only to the other structures' (see
+// ldm_impls/common/structure_counters.h).
 std::vector<WorkCounter> Ppsll::work_counters() {
   std::vector<WorkCounter> own = {
       // shaders/ldm/ppsll/build.frag: every fragment allocates, stores and pushes one node.

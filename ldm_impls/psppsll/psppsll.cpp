@@ -9,6 +9,8 @@ Psppsll::Psppsll(StructureParams& params) : pool_("psppsll", params) {
   atomic_reads_ = params.get_bool("atomic_reads");
 }
 
+// A data table of its own counters, alike in form only to the other structures' (see
+// ldm_impls/common/structure_counters.h).
 std::vector<WorkCounter> Psppsll::work_counters() {
   // shaders/ldm/psppsll/build.frag: where an insertion walks, and how often its
   // compare-and-swap loses, depends on the order the fragments arrive.
