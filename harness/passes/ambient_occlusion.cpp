@@ -97,11 +97,8 @@ Image AmbientOcclusion::coverage() const { return coverage_mask(gbuffer_->read_p
 
 std::vector<std::pair<std::string, RecordValue>> AmbientOcclusion::results() const {
   // Eq. 13 may exceed 1 (a quadrature of the cosine): say how far, over covered pixels.
-  const AoRange range = ao_range(ao_->read_image(), gbuffer_->read_positions());
-  std::vector<std::pair<std::string, RecordValue>> out = {
-      {"ao_max", range.max},
-      {"ao_fraction_above_1", range.fraction_above_1},
-      {"covered_pixel_fraction", covered_pixel_fraction(gbuffer_->read_positions())}};
+  std::vector<std::pair<std::string, RecordValue>> out =
+      ao_range_results(ao_->read_image(), gbuffer_->read_positions());
   for (auto& field : trace_step_fields(ao_->trace_steps())) out.push_back(std::move(field));
   return out;
 }

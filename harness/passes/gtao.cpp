@@ -66,6 +66,8 @@ std::vector<ColumnSpec> Gtao::columns() {
   }, true);
 }
 
+// A data table of the pass's own counters, alike in form only to the other passes' and
+// structures' (see ldm_impls/common/structure_counters.h).
 std::vector<WorkCounter> Gtao::work_counters() {
   std::vector<WorkCounter> counters = gbuffer_work_counters("gbuffer");
   const std::vector<WorkCounter> own = {
@@ -167,11 +169,7 @@ std::vector<BufferMemory> Gtao::memory() const {
 Image Gtao::coverage() const { return coverage_mask(gbuffer_->read_positions()); }
 
 std::vector<std::pair<std::string, RecordValue>> Gtao::results() const {
-  const Image positions = gbuffer_->read_positions();
-  const AoRange range = ao_range(images().front().image, positions);
-  return {{"ao_max", range.max},
-          {"ao_fraction_above_1", range.fraction_above_1},
-          {"covered_pixel_fraction", covered_pixel_fraction(positions)}};
+  return ao_range_results(images().front().image, gbuffer_->read_positions());
 }
 
 ReferenceResult Gtao::reference(const Scene& scene, int width, int height,

@@ -45,6 +45,8 @@ std::vector<ColumnSpec> Hbao::columns() {
   }, true);
 }
 
+// A data table of the pass's own counters, alike in form only to the other passes' and
+// structures' (see ldm_impls/common/structure_counters.h).
 std::vector<WorkCounter> Hbao::work_counters() {
   std::vector<WorkCounter> counters = gbuffer_work_counters("gbuffer");
   const std::vector<WorkCounter> own = {
@@ -142,10 +144,7 @@ std::vector<BufferMemory> Hbao::memory() const {
 Image Hbao::coverage() const { return coverage_mask(gbuffer_->read_positions()); }
 
 std::vector<std::pair<std::string, RecordValue>> Hbao::results() const {
-  const AoRange range = ao_range(images().front().image, gbuffer_->read_positions());
-  return {{"ao_max", range.max},
-          {"ao_fraction_above_1", range.fraction_above_1},
-          {"covered_pixel_fraction", covered_pixel_fraction(gbuffer_->read_positions())}};
+  return ao_range_results(images().front().image, gbuffer_->read_positions());
 }
 
 ReferenceResult Hbao::reference(const Scene& scene, int width, int height,

@@ -69,6 +69,8 @@ std::vector<AxisSpec> IndirectLighting::parameters() {
           ao_pass_parameter(AoAxis::Visibility)};
 }
 
+// A data table of the pass's own counters, alike in form only to the other passes' and
+// structures' (see ldm_impls/common/structure_counters.h).
 std::vector<WorkCounter> IndirectLighting::work_counters() {
   std::vector<WorkCounter> counters = gbuffer_work_counters("gbuffer");
   for (WorkCounter c : gbuffer_work_counters("light_gbuffer")) counters.push_back(std::move(c));

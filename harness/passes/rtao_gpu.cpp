@@ -66,6 +66,19 @@ void set_uvec2(const GlProgram& program, const char* name, uint64_t value) {
   glProgramUniform2ui(program.id(), program.uniform(name), uint32_t(value), uint32_t(value >> 32));
 }
 
+// The BVH traversal's defines, shared by the AO and the primary-ray shaders: the stack
+// size, counting or not, and the BVH's and the counts' bindings.
+ShaderDefines traversal_defines(uint32_t bvh_depth, bool counting) {
+  ShaderDefines defines = binding_defines();
+  defines.set("RTAO_GPU_STACK", std::max<uint32_t>(bvh_depth, 1));
+  defines.set("RTAO_GPU_COUNT", counting ? 1 : 0);
+  defines.set("RTAO_GPU_NODES_BINDING", kNodesBinding);
+  defines.set("RTAO_GPU_TRIANGLES_BINDING", kTrianglesBinding);
+  defines.set("RTAO_GPU_SLOTS_BINDING", kSlotsBinding);
+  defines.set("RTAO_GPU_COUNTS_BINDING", kCountsBinding);
+  return defines;
+}
+
 }  // namespace
 
 RtaoGpu::RtaoGpu(StructureParams& params) {
@@ -116,6 +129,8 @@ std::vector<ColumnSpec> RtaoGpu::columns() {
 // and meaning they had when work() wrote them: per ray means and maxima, now with p50, p99
 // and totals). work() stays for what must be judged on the measured instance, also under
 // --no-work: the loop limit (problems()) and the replayed image.
+// A data table of the pass's own counters, alike in form only to the other passes' and
+// structures' (see ldm_impls/common/structure_counters.h).
 std::vector<WorkCounter> RtaoGpu::work_counters() {
   std::vector<WorkCounter> counters = gbuffer_work_counters("gbuffer");  // primary=raster
   const std::vector<WorkCounter> own = {
@@ -164,15 +179,9 @@ std::vector<std::pair<std::string, RecordValue>> RtaoGpu::describe(const Scene& 
 }
 
 GlProgram RtaoGpu::build(bool counting) const {
-  ShaderDefines defines = binding_defines();
+  ShaderDefines defines = traversal_defines(bvh_.depth, counting);
   defines.set("RTAO_GPU_SPP", std::to_string(spp_) + "u");
   defines.set("RTAO_GPU_ATTENUATED", ao_.attenuated ? 1 : 0);
-  defines.set("RTAO_GPU_STACK", std::max<uint32_t>(bvh_.depth, 1));
-  defines.set("RTAO_GPU_COUNT", counting ? 1 : 0);
-  defines.set("RTAO_GPU_NODES_BINDING", kNodesBinding);
-  defines.set("RTAO_GPU_TRIANGLES_BINDING", kTrianglesBinding);
-  defines.set("RTAO_GPU_SLOTS_BINDING", kSlotsBinding);
-  defines.set("RTAO_GPU_COUNTS_BINDING", kCountsBinding);
   GlProgram program = build_program({{GL_COMPUTE_SHADER, "passes/rtao_gpu.comp", {}}}, defines);
   const glm::vec3 eye = scene_->camera.eye;
   program.set("camera_eye", eye.x, eye.y, eye.z);
@@ -186,13 +195,7 @@ GlProgram RtaoGpu::build(bool counting) const {
 }
 
 GlProgram RtaoGpu::build_primary(bool counting) const {
-  ShaderDefines defines = binding_defines();
-  defines.set("RTAO_GPU_STACK", std::max<uint32_t>(bvh_.depth, 1));
-  defines.set("RTAO_GPU_COUNT", counting ? 1 : 0);
-  defines.set("RTAO_GPU_NODES_BINDING", kNodesBinding);
-  defines.set("RTAO_GPU_TRIANGLES_BINDING", kTrianglesBinding);
-  defines.set("RTAO_GPU_SLOTS_BINDING", kSlotsBinding);
-  defines.set("RTAO_GPU_COUNTS_BINDING", kCountsBinding);
+  ShaderDefines defines = traversal_defines(bvh_.depth, counting);
   defines.set("RTAO_GPU_SCENE_NORMALS_BINDING", kSceneNormalsBinding);
   defines.set("RTAO_GPU_SCENE_INDICES_BINDING", kSceneIndicesBinding);
   GlProgram program = build_program({{GL_COMPUTE_SHADER, "passes/rtao_gpu_primary.comp", {}}}, defines);
