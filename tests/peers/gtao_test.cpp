@@ -239,37 +239,8 @@ TEST(Gtao, AttenuationAndThicknessMatchAHandComputedCase) {
 }
 
 TEST(Gtao, DenoiseIsASubpassAndItsTargetsAreCounted) {
-  test::gl_context();
-  const Scene scene = load_scene("cornell");
-  const int size = 64;
-  test::PassRun<Gtao> run("gtao", scene, size, size, {{"denoise", "2"}, {"jitter", "on"}});
-  Gtao& pass = *run.pass;
-  ASSERT_EQ(pass.subpasses().back().name, "denoise");
-  GpuTimer timer(TimerSource::FencedWallClock);
-  timer.begin_frame();
-  run.render(&timer);
-  const FrameTimes times = timer.end_frame();
-  std::vector<std::string> names;
-  for (const auto& [name, ms] : times) names.push_back(name);
-  EXPECT_EQ(names, (std::vector<std::string>{"gbuffer", "gtao", "denoise"}));
-  uint64_t total = 0;
-  for (const BufferMemory& b : pass.memory()) total += b.allocated;
-  // Two RGBA32F, a depth and two R32F targets: 16 + 16 + 4 + 4 + 4 bytes a pixel.
-  EXPECT_EQ(total, uint64_t(size) * size * 44);
-  // The jittered image, denoised, is smoother: covered neighbours differ less.
-  const Image denoised = pass.images().front().image;
-  const Image raw = gtao_image(scene, size, {{"jitter", "on"}});
-  auto roughness = [](const Image& image) {
-    double sum = 0;
-    for (int y = 0; y < image.height; ++y)
-      for (int x = 1; x < image.width; ++x) {
-        if (image.at(x, y, 0) == 0.0f || image.at(x - 1, y, 0) == 0.0f) continue;
-        const double d = image.at(x, y, 0) - image.at(x - 1, y, 0);
-        sum += d * d;
-      }
-    return sum;
-  };
-  EXPECT_LT(roughness(denoised), 0.5 * roughness(raw));
+  test::expect_smoothing_subpass<Gtao>("gtao", load_scene("cornell"), 64, "denoise",
+                                       {"gbuffer", "gtao", "denoise"});
 }
 
 TEST(Gtao, ParametersAreChecked) {

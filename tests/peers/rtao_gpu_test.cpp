@@ -191,7 +191,9 @@ TEST(RtaoGpu, ErrorBeyondTheReferenceNoiseFallsAsOneOverK) {
 
 // The mean of n samples of V in [0, 1] lies within 5 standard errors sqrt(AO (1 - AO) / n) of
 // the exact AO in every pixel, and the mean deviation over the pixels within 5 of its own
-// (as tests/reference/ao_analytic_test.cpp checks the reference).
+// (as tests/reference/ao_analytic_test.cpp checks the reference). Not shared with that
+// check: it holds the reference to float rounding (1e-6, exact where the variance is 0),
+// this one the GPU's arithmetic to 1e-5, over at least half the pixels instead of 9 in 10.
 void expect_converged(const Image& image, uint32_t samples,
                       const std::function<std::optional<double>(int, int)>& expected) {
   double deviation = 0, variance = 0;
