@@ -125,52 +125,18 @@ std::vector<std::pair<std::string, RecordValue>> Gtao::describe(const Scene& sce
 }
 
 void Gtao::prepare(const PassInputs& in) {
-  scene_ = &in.scene;
-  gpu_scene_ = &in.gpu_scene;
-  width_ = in.width;
-  height_ = in.height;
-  gbuffer_ = std::make_unique<GBufferPass>(in.width, in.height);
-  kernel_ = std::make_unique<GtaoKernel>(gtao_, settings_for(in.scene), in.width, in.height);
+  auto kernel = std::make_unique<GtaoKernel>(gtao_, settings_for(in.scene), in.width, in.height);
   const CameraFrame frame = camera_frame(in.scene.camera, in.width, in.height);
   const float focal_pixels = 0.5f * float(in.height) / frame.tan_half_fov_y;
-  kernel_->set_camera({frame.eye, frame.forward, frame.right, frame.up, focal_pixels});
-  if (gtao_.denoise_radius > 0) {
-    denoise_ = std::make_unique<HbaoBlur>(gtao_.denoise_radius, kernel_->target());
-    denoise_->set_camera({frame.eye, frame.forward, focal_pixels});
-  }
+  kernel->set_camera({frame.eye, frame.forward, frame.right, frame.up, focal_pixels});
+  frame_.prepare(in, std::move(kernel), gtao_.denoise_radius);
 }
 
-void Gtao::render(GpuTimer* timer) {
-  gbuffer_->render(*gpu_scene_, *scene_, timer);
-  {
-    ScopedSubpass timed(timer, "gtao");
-    kernel_->run(gbuffer_->positions(), gbuffer_->normals());
-  }
-  if (denoise_) {
-    ScopedSubpass timed(timer, "denoise");
-    denoise_->run(gbuffer_->positions(), gbuffer_->normals());
-  }
-}
-
-std::vector<PassImage> Gtao::images() const {
-  return {{"ao", image_from_gl_rows(kernel_->target().read_floats(1), width_, height_, 1)}};
-}
-
-std::vector<BufferMemory> Gtao::memory() const {
-  // Render targets, every texel written each frame (allocated = used), the G-buffer included.
-  std::vector<BufferMemory> targets = gbuffer_->memory();
-  const uint64_t ao_bytes = kernel_->target().bytes();
-  targets.push_back({"gtao_ao", ao_bytes, ao_bytes});
-  if (denoise_)
-    targets.push_back({"gtao_denoise_scratch", denoise_->scratch().bytes(), denoise_->scratch().bytes()});
-  return targets;
-}
-
-Image Gtao::coverage() const { return coverage_mask(gbuffer_->read_positions()); }
-
-std::vector<std::pair<std::string, RecordValue>> Gtao::results() const {
-  return ao_range_results(images().front().image, gbuffer_->read_positions());
-}
+void Gtao::render(GpuTimer* timer) { frame_.render(timer); }
+std::vector<PassImage> Gtao::images() const { return frame_.images(); }
+std::vector<BufferMemory> Gtao::memory() const { return frame_.memory(); }
+Image Gtao::coverage() const { return frame_.coverage(); }
+std::vector<std::pair<std::string, RecordValue>> Gtao::results() const { return frame_.results(); }
 
 ReferenceResult Gtao::reference(const Scene& scene, int width, int height,
                                 const ReferenceSettings& settings) const {

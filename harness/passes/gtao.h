@@ -31,11 +31,10 @@
 #include "harness/passes/gbuffer_pass.h"
 #include "harness/passes/gtao_kernel.h"
 #include "harness/passes/pass.h"
+#include "harness/passes/screen_space_ao.h"
 #include "harness/records/columns.h"
 
 namespace ldm {
-
-class HbaoBlur;
 
 class Gtao : public Pass {
  public:
@@ -53,12 +52,7 @@ class Gtao : public Pass {
  private:
   GtaoSettings gtao_;
   AoOverrides overrides_;
-  const Scene* scene_ = nullptr;
-  const GpuScene* gpu_scene_ = nullptr;
-  int width_ = 0, height_ = 0;
-  std::unique_ptr<GBufferPass> gbuffer_;
-  std::unique_ptr<GtaoKernel> kernel_;
-  std::unique_ptr<HbaoBlur> denoise_;  // null without denoise
+  ScreenSpaceAo<GtaoKernel> frame_{"gtao", "denoise"};
 };
 
 }  // namespace ldm

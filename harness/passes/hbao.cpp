@@ -100,52 +100,16 @@ std::vector<std::pair<std::string, RecordValue>> Hbao::describe(const Scene& sce
 }
 
 void Hbao::prepare(const PassInputs& in) {
-  scene_ = &in.scene;
-  gpu_scene_ = &in.gpu_scene;
-  width_ = in.width;
-  height_ = in.height;
-  gbuffer_ = std::make_unique<GBufferPass>(in.width, in.height);
-  kernel_ = std::make_unique<HbaoKernel>(hbao_, settings_for(in.scene), in.width, in.height);
-  const CameraFrame frame = camera_frame(in.scene.camera, in.width, in.height);
-  const HbaoCamera camera{frame.eye, frame.forward, 0.5f * float(in.height) / frame.tan_half_fov_y};
-  kernel_->set_camera(camera);
-  if (hbao_.blur_radius > 0) {
-    blur_ = std::make_unique<HbaoBlur>(hbao_.blur_radius, kernel_->target());
-    blur_->set_camera(camera);
-  }
+  auto kernel = std::make_unique<HbaoKernel>(hbao_, settings_for(in.scene), in.width, in.height);
+  kernel->set_camera(ScreenSpaceAo<HbaoKernel>::smoothing_camera(in));
+  frame_.prepare(in, std::move(kernel), hbao_.blur_radius);
 }
 
-void Hbao::render(GpuTimer* timer) {
-  gbuffer_->render(*gpu_scene_, *scene_, timer);
-  {
-    ScopedSubpass timed(timer, "hbao");
-    kernel_->run(gbuffer_->positions(), gbuffer_->normals());
-  }
-  if (blur_) {
-    ScopedSubpass timed(timer, "blur");
-    blur_->run(gbuffer_->positions(), gbuffer_->normals());
-  }
-}
-
-std::vector<PassImage> Hbao::images() const {
-  return {{"ao", image_from_gl_rows(kernel_->target().read_floats(1), width_, height_, 1)}};
-}
-
-std::vector<BufferMemory> Hbao::memory() const {
-  // Render targets, every texel written each frame (allocated = used). The G-buffer is
-  // counted too: the LDM AO draws the same one, but its records count only its structure.
-  std::vector<BufferMemory> targets = gbuffer_->memory();
-  const uint64_t ao_bytes = kernel_->target().bytes();
-  targets.push_back({"hbao_ao", ao_bytes, ao_bytes});
-  if (blur_) targets.push_back({"hbao_blur_scratch", blur_->scratch().bytes(), blur_->scratch().bytes()});
-  return targets;
-}
-
-Image Hbao::coverage() const { return coverage_mask(gbuffer_->read_positions()); }
-
-std::vector<std::pair<std::string, RecordValue>> Hbao::results() const {
-  return ao_range_results(images().front().image, gbuffer_->read_positions());
-}
+void Hbao::render(GpuTimer* timer) { frame_.render(timer); }
+std::vector<PassImage> Hbao::images() const { return frame_.images(); }
+std::vector<BufferMemory> Hbao::memory() const { return frame_.memory(); }
+Image Hbao::coverage() const { return frame_.coverage(); }
+std::vector<std::pair<std::string, RecordValue>> Hbao::results() const { return frame_.results(); }
 
 ReferenceResult Hbao::reference(const Scene& scene, int width, int height,
                                 const ReferenceSettings& settings) const {
