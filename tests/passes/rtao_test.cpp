@@ -104,19 +104,10 @@ TEST(Rtao, ErrorFallsAsOneOverSpp) {
 }
 
 TEST(Rtao, ParametersAreCheckedAndItRunsOnTheCpu) {
-  for (const auto& [key, value] : std::vector<std::pair<std::string, std::string>>{
-           {"spp", "0"}, {"spp", "65537"}, {"threads", "-1"}, {"visibility", "half"},
-           {"d_max", "0"}, {"trace", "plane"}}) {
-    EXPECT_THROW(make_pass("rtao", StructureParams({{key, value}}, "--pass rtao")), UserError)
-        << key << "=" << value;
-  }
-  const auto pass = make_pass("rtao", StructureParams(std::map<std::string, std::string>{{"spp", "8"}}));
-  EXPECT_FALSE(pass->requirements().needs_structure);
-  EXPECT_TRUE(pass->requirements().runs_on_cpu);
-  bool found = false;
-  for (const auto& [key, value] : pass->describe(load_scene("cornell")))
-    if (key == "rtao_spp") found = std::get<int64_t>(value) == 8;
-  EXPECT_TRUE(found);
+  test::expect_parameters_checked("rtao",
+                                  {{"spp", "0"}, {"spp", "65537"}, {"threads", "-1"},
+                                   {"visibility", "half"}, {"d_max", "0"}, {"trace", "plane"}},
+                                  "spp", 8, "rtao_spp", true);
 }
 
 }  // namespace

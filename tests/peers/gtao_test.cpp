@@ -244,20 +244,12 @@ TEST(Gtao, DenoiseIsASubpassAndItsTargetsAreCounted) {
 }
 
 TEST(Gtao, ParametersAreChecked) {
-  for (const auto& [key, value] : std::vector<std::pair<std::string, std::string>>{
-           {"slices", "0"}, {"steps", "129"}, {"radius", "0"}, {"falloff", "1.5"},
-           {"thickness", "-0.1"}, {"step_power", "5"}, {"jitter", "yes"}, {"estimator", "max"},
-           {"denoise", "17"}, {"attenuation", "none"}, {"d_max", "0"}, {"trace", "plane"}, {"spp", "4"}}) {
-    EXPECT_THROW(make_pass("gtao", StructureParams({{key, value}}, "--pass gtao")), UserError)
-        << key << "=" << value;
-  }
-  const auto pass = make_pass("gtao", StructureParams(std::map<std::string, std::string>{{"steps", "4"}}));
-  EXPECT_FALSE(pass->requirements().needs_structure);
-  EXPECT_FALSE(pass->requirements().runs_on_cpu);
-  bool found = false;
-  for (const auto& [key, value] : pass->describe(load_scene("cornell")))
-    if (key == "gtao_steps") found = std::get<int64_t>(value) == 4;
-  EXPECT_TRUE(found);
+  test::expect_parameters_checked(
+      "gtao",
+      {{"slices", "0"}, {"steps", "129"}, {"radius", "0"}, {"falloff", "1.5"}, {"thickness", "-0.1"},
+       {"step_power", "5"}, {"jitter", "yes"}, {"estimator", "max"}, {"denoise", "17"},
+       {"attenuation", "none"}, {"d_max", "0"}, {"trace", "plane"}, {"spp", "4"}},
+      "steps", 4, "gtao_steps", false);
 }
 
 }  // namespace

@@ -360,19 +360,11 @@ TEST(RtaoGpu, RefusesABvhBeyondTheStorageBlock) {
 }
 
 TEST(RtaoGpu, ParametersMemoryAndBvhColumns) {
-  for (const auto& [key, value] : std::vector<std::pair<std::string, std::string>>{
-           {"spp", "0"}, {"spp", "65537"}, {"seed", "-1"}, {"visibility", "half"},
-           {"d_max", "0"}, {"threads", "2"}, {"trace", "plane"}, {"primary", "none"}}) {
-    EXPECT_THROW(make_pass("rtao_gpu", StructureParams({{key, value}}, "--pass rtao_gpu")), UserError)
-        << key << "=" << value;
-  }
-  const auto made = make_pass("rtao_gpu", StructureParams(std::map<std::string, std::string>{{"spp", "8"}}));
-  EXPECT_FALSE(made->requirements().needs_structure);
-  EXPECT_FALSE(made->requirements().runs_on_cpu) << "timed on the GPU like every GL pass";
-  bool found = false;
-  for (const auto& [key, value] : made->describe(load_scene("cornell")))
-    if (key == "rtao_gpu_spp") found = std::get<int64_t>(value) == 8;
-  EXPECT_TRUE(found);
+  // Timed on the GPU like every GL pass (not runs_on_cpu).
+  test::expect_parameters_checked("rtao_gpu",
+                                  {{"spp", "0"}, {"spp", "65537"}, {"seed", "-1"}, {"visibility", "half"},
+                                   {"d_max", "0"}, {"threads", "2"}, {"trace", "plane"}, {"primary", "none"}},
+                                  "spp", 8, "rtao_gpu_spp", false);
 
   const Scene scene = load_scene("cornell");
   test::PassRun<RtaoGpu> run("rtao_gpu", scene, 32, 32, {{"spp", "2"}});

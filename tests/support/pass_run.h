@@ -13,6 +13,8 @@
 #include "harness/measure/gpu_timer.h"
 #include "harness/passes/pass.h"
 #include "harness/scene/gpu_scene.h"
+#include "harness/scene/scene_loader.h"
+#include "harness/util/error.h"
 #include "support/test_support.h"
 
 namespace ldm::test {
@@ -48,6 +50,27 @@ struct PassRun {
     return pass->images().front().image;
   }
 };
+
+// `name` refuses each parameter value of `refused` with a UserError; with `key`=`value`
+// (an integer parameter) it needs no structure, runs on the CPU as `runs_on_cpu` says and
+// describes `column` as that value.
+inline void expect_parameters_checked(
+    const std::string& name, const std::vector<std::pair<std::string, std::string>>& refused,
+    const std::string& key, int64_t value, const std::string& column, bool runs_on_cpu) {
+  for (const auto& [bad_key, bad_value] : refused) {
+    EXPECT_THROW(make_pass(name, StructureParams({{bad_key, bad_value}}, "--pass " + name)),
+                 UserError)
+        << bad_key << "=" << bad_value;
+  }
+  const auto pass = make_pass(
+      name, StructureParams(std::map<std::string, std::string>{{key, std::to_string(value)}}));
+  EXPECT_FALSE(pass->requirements().needs_structure);
+  EXPECT_EQ(pass->requirements().runs_on_cpu, runs_on_cpu);
+  bool found = false;
+  for (const auto& [described, described_value] : pass->describe(load_scene("cornell")))
+    if (described == column) found = std::get<int64_t>(described_value) == value;
+  EXPECT_TRUE(found) << column;
+}
 
 // How rough an AO image is: the sum of squared differences of horizontal neighbours, pairs
 // with a background pixel (0) left out (a smoothing pass keeps those edges).
