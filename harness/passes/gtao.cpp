@@ -51,6 +51,8 @@ std::vector<AxisSpec> Gtao::parameters() {
           ao_pass_parameter(AoAxis::DMax), ao_pass_parameter(AoAxis::Visibility)};
 }
 
+// Its own columns after the AO settings': a data table, alike in form only to the other
+// passes'.
 std::vector<ColumnSpec> Gtao::columns() {
   return ao_pass_columns(false, {
       {"pass", "gtao_slices", "", "GTAO: slice planes through the view vector per pixel (--param gtao:slices=)"},

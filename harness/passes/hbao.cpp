@@ -35,6 +35,8 @@ std::vector<AxisSpec> Hbao::parameters() {
           ao_pass_parameter(AoAxis::DMax), ao_pass_parameter(AoAxis::Visibility)};
 }
 
+// Its own columns after the AO settings': a data table, alike in form only to the other
+// passes'.
 std::vector<ColumnSpec> Hbao::columns() {
   return ao_pass_columns(false, {
       {"pass", "hbao_directions", "", "HBAO: N_HBAO screen-space directions per pixel (--param hbao:directions=)"},

@@ -24,6 +24,8 @@
 
 namespace ldm {
 
+// Pass's interface (LDM_PASS_DECLARATIONS) and what the pass adds: declarations alike in
+// form in every pass's header, each its own.
 class Hbao : public Pass {
  public:
   explicit Hbao(StructureParams& params);

@@ -42,6 +42,8 @@ std::vector<AxisSpec> Rtao::parameters() {
 }
 #pragma GCC diagnostic pop
 
+// Its own columns after the AO settings': a data table, alike in form only to the other
+// passes'.
 std::vector<ColumnSpec> Rtao::columns() {
   return ao_pass_columns(false, {
       {"pass", "rtao_spp", "samples", "RTAO: AO rays per pixel of the Embree CPU tracer (--param rtao:spp=)"},

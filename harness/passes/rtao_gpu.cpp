@@ -107,6 +107,8 @@ std::vector<AxisSpec> RtaoGpu::parameters() {
 }
 #pragma GCC diagnostic pop
 
+// Its own columns after the AO settings': a data table, alike in form only to the other
+// passes'.
 std::vector<ColumnSpec> RtaoGpu::columns() {
   return ao_pass_columns(false, {
       {"pass", "rtao_gpu_spp", "samples", "GPU RTAO: AO rays per pixel k (--param rtao_gpu:spp=)"},

@@ -1,5 +1,7 @@
 // Scenes whose ambient occlusion has a closed form (tests/ao derive and check them). Planes
 // are large compared with d_max so that, with attenuated visibility, they act as infinite.
+// Each generator reads its parameters, builds its geometry and places its camera and light:
+// alike in form, different scenes (what they share is floor_square, read_ao, set_camera).
 #include "harness/scene/generators.h"
 #include "harness/scene/mesh_builder.h"
 
