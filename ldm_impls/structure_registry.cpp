@@ -53,11 +53,7 @@ std::vector<WorkCounter> structure_query_work_counters(const std::string& name, 
 }
 
 std::unique_ptr<LdmStructure> make_structure(const std::string& name, StructureParams params) {
-  const Entry& e = entry(name);
-  params.declare(structure_parameters(name));
-  auto structure = e.make(params);
-  params.check("structure " + name);
-  return structure;
+  return registry_make(entry(name), std::move(params), "structure");
 }
 
 }  // namespace ldm

@@ -54,11 +54,7 @@ void register_pass(PassRegistration registration) {
 }
 
 std::unique_ptr<Pass> make_pass(const std::string& name, StructureParams params) {
-  const Entry& e = entry(name);
-  params.declare(pass_parameters(name));
-  auto pass = e.make(params);
-  params.check("pass " + name);
-  return pass;
+  return registry_make(entry(name), std::move(params), "pass");
 }
 
 }  // namespace ldm

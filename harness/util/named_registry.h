@@ -36,4 +36,14 @@ std::vector<AxisSpec> registry_parameters(const Entry& entry) {
   return specs;
 }
 
+// What the entry makes from `params` (StructureParams), checked against its declared
+// parameters; messages name it "<what> <name>".
+template <typename Entry, typename Params>
+auto registry_make(const Entry& entry, Params params, const std::string& what) {
+  params.declare(registry_parameters(entry));
+  auto made = entry.make(params);
+  params.check(what + " " + std::string(entry.name));
+  return made;
+}
+
 }  // namespace ldm
