@@ -8,6 +8,7 @@
 #include "harness/reference/ao_reference.h"
 #include "harness/scene/scene_loader.h"
 #include "harness/util/error.h"
+#include "support/ao_reference_request.h"
 #include "support/pass_run.h"
 #include "support/test_support.h"
 
@@ -72,15 +73,12 @@ TEST(Rtao, SamplesAreIndependentOfTheReferenceHalves) {
   const Scene scene = load_scene("cornell");
   const int size = 32;
   const uint32_t spp = 4;
-  AoReferenceRequest request;
-  request.width = request.height = size;
-  request.spp.spp_per_half = spp;
+  AoReferenceRequest request = test::ao_reference_request(size, spp);
   request.seed = 0x5254414f;  // RTAO's default seed
   // The reference's own random sampler, RTAO's: the ratios above assume both halves' samples
   // are independent draws of RTAO's kind (the default scrambled Sobol halves are far less
   // noisy, and cannot coincide with RTAO's random numbers).
   request.sampler = AoSampler::Random;
-  request.progress = false;
   const ReferenceResult reference = render_ao_reference(scene, request);
   const Image rtao = rtao_image(scene, size, {{"spp", std::to_string(spp)}});
   const double ratio = mean_squared_error(rtao, reference.image) / reference.noise_mse;
@@ -92,11 +90,7 @@ TEST(Rtao, SamplesAreIndependentOfTheReferenceHalves) {
 TEST(Rtao, ErrorFallsAsOneOverSpp) {
   const Scene scene = load_scene("cornell");
   const int size = 32;
-  AoReferenceRequest request;
-  request.width = request.height = size;
-  request.spp.spp_per_half = 512;
-  request.progress = false;
-  const ReferenceResult reference = render_ao_reference(scene, request);
+  const ReferenceResult reference = render_ao_reference(scene, test::ao_reference_request(size, 512));
   const double mse1 = mean_squared_error(rtao_image(scene, size, {{"spp", "1"}}), reference.image);
   const double mse4 = mean_squared_error(rtao_image(scene, size, {{"spp", "4"}}), reference.image);
   EXPECT_GT(mse1 / mse4, 3.0);

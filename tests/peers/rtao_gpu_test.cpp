@@ -19,6 +19,7 @@
 #include "harness/reference/pcg32.h"
 #include "harness/reference/embree_scene.h"
 #include "harness/scene/camera.h"
+#include "support/ao_reference_request.h"
 #include "support/ao_closed_forms.h"
 #include "support/pass_run.h"
 #include "support/test_support.h"
@@ -146,11 +147,8 @@ TEST(RtaoGpu, AgreesWithTheCpuRtaoWithinTheirNoise) {
   for (uint32_t k : {1u, 4u}) {
     const GpuRun gpu = rtao_gpu_run(scene, size, {{"spp", std::to_string(k)}});  // its own seed
     const Image cpu = rtao_cpu_image(scene, size, {{"spp", std::to_string(k)}});
-    AoReferenceRequest request;
-    request.width = request.height = size;
-    request.spp.spp_per_half = k;
+    AoReferenceRequest request = test::ao_reference_request(size, k);
     request.sampler = AoSampler::Random;
-    request.progress = false;
     const ReferenceResult halves = render_ao_reference(scene, request);
     const MeanSquare between = mean_square(gpu.image, cpu);
     const MeanSquare expected = mean_square(halves.half_a, halves.half_b);
@@ -169,11 +167,7 @@ TEST(RtaoGpu, ErrorBeyondTheReferenceNoiseFallsAsOneOverK) {
   for (const char* name : {"cornell", "atrium"}) {
     const Scene scene = load_scene(name);
     const int size = 64;
-    AoReferenceRequest request;
-    request.width = request.height = size;
-    request.spp.spp_per_half = 1024;
-    request.progress = false;
-    const ReferenceResult reference = render_ao_reference(scene, request);
+    const ReferenceResult reference = render_ao_reference(scene, test::ao_reference_request(size, 1024));
     std::vector<MeanSquare> mse;
     const std::vector<uint32_t> ks = {1, 4, 16, 64};
     for (uint32_t k : ks)
