@@ -2,6 +2,7 @@
 #include <functional>
 
 #include "harness/util/error.h"
+#include "harness/util/named_registry.h"
 #include "ldm_impls/ldm_structure.h"
 #include "ldm_impls/dfbuffer/dfbuffer.h"
 #include "ldm_impls/fixed_arrays/ppfla.h"
@@ -34,26 +35,14 @@ const std::vector<Entry>& registry() {
 }
 
 const Entry& entry(const std::string& name) {
-  for (const auto& e : registry())
-    if (name == e.name) return e;
-  std::string known;
-  for (const auto& n : structure_names()) known += (known.empty() ? "" : ", ") + n;
-  throw UserError("--structure: unknown structure '" + name + "' (known: " + known + ")");
+  return registry_entry(registry(), name, "--structure", "structure");
 }
 
 }  // namespace
 
-std::vector<std::string> structure_names() {
-  std::vector<std::string> names;
-  for (const auto& e : registry()) names.emplace_back(e.name);
-  return names;
-}
+std::vector<std::string> structure_names() { return registry_names(registry()); }
 
-std::vector<AxisSpec> structure_parameters(const std::string& name) {
-  std::vector<AxisSpec> specs = entry(name).parameters();
-  for (AxisSpec& s : specs) s.owner = name;
-  return specs;
-}
+std::vector<AxisSpec> structure_parameters(const std::string& name) { return registry_parameters(entry(name)); }
 
 std::vector<WorkCounter> structure_work_counters(const std::string& name) { return entry(name).work(); }
 
@@ -64,11 +53,7 @@ std::vector<WorkCounter> structure_query_work_counters(const std::string& name, 
 }
 
 std::unique_ptr<LdmStructure> make_structure(const std::string& name, StructureParams params) {
-  const Entry& e = entry(name);
-  params.declare(structure_parameters(name));
-  auto structure = e.make(params);
-  params.check("structure " + name);
-  return structure;
+  return registry_make(entry(name), std::move(params), "structure");
 }
 
 }  // namespace ldm

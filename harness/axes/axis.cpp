@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <utility>
 
 #include "harness/util/error.h"
 #include "harness/util/text.h"
@@ -222,6 +223,34 @@ std::optional<uint64_t> axis_uint(const AxisValues& values, const std::string& k
   if (!parse_unsigned(*text, value))
     throw std::logic_error("axis " + key + ": \"" + *text + "\" is not an unsigned integer");
   return value;
+}
+
+AxisSpec numeric_parameter(std::string key, AxisKind kind, double min, double max,
+                           std::string default_value, std::string unit, std::string description,
+                           std::string column) {
+  AxisSpec p;
+  p.key = std::move(key);
+  p.kind = kind;
+  p.min = min;
+  p.max = max;
+  p.default_value = std::move(default_value);
+  p.unit = std::move(unit);
+  p.description = std::move(description);
+  p.column = std::move(column);
+  return p;
+}
+
+AxisSpec choice_parameter(std::string key, std::vector<std::string> choices,
+                          std::string default_value, std::string description,
+                          std::string column) {
+  AxisSpec p;
+  p.key = std::move(key);
+  p.kind = AxisKind::Choice;
+  p.choices = std::move(choices);
+  p.default_value = std::move(default_value);
+  p.description = std::move(description);
+  p.column = std::move(column);
+  return p;
 }
 
 }  // namespace ldm

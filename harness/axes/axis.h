@@ -105,6 +105,16 @@ std::string axis_range_text(const AxisSpec& spec);
 // The declaration as JSON (`ldmbench axes --json`).
 nlohmann::json axis_spec_json(const AxisSpec& spec);
 
+// A structure's or pass's parameter with the fields most of them set (the rest, such as
+// default_note, label or real_is_double, are set on the result): a UInt or Real in
+// [min, max], a Choice among `choices`. `column` is the record column holding it, if any.
+AxisSpec numeric_parameter(std::string key, AxisKind kind, double min, double max,
+                           std::string default_value, std::string unit, std::string description,
+                           std::string column = "");
+AxisSpec choice_parameter(std::string key, std::vector<std::string> choices,
+                          std::string default_value, std::string description,
+                          std::string column = "");
+
 // The spec of `key` in `specs`, or null.
 const AxisSpec* find_axis(const std::vector<AxisSpec>& specs, const std::string& key);
 

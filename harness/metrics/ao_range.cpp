@@ -45,4 +45,12 @@ double covered_pixel_fraction(const Image& positions) {
   return covered / double(mask.pixel_count());
 }
 
+std::vector<std::pair<std::string, RecordValue>> ao_range_results(const Image& ao,
+                                                                  const Image& positions) {
+  const AoRange range = ao_range(ao, positions);
+  return {{"ao_max", range.max},
+          {"ao_fraction_above_1", range.fraction_above_1},
+          {"covered_pixel_fraction", covered_pixel_fraction(positions)}};
+}
+
 }  // namespace ldm

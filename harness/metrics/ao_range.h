@@ -3,8 +3,12 @@
 // the cosine and can exceed 1 where little occludes (2.0 at N = 1); a reader who takes AO as
 // a fraction must see that, so the records carry the maximum and the share above 1.
 #include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "harness/image/image.h"
+#include "harness/records/record.h"
 
 namespace ldm {
 
@@ -25,5 +29,10 @@ double covered_pixel_fraction(const Image& positions);
 // The same pixels as a mask: one channel, 1 where the camera sees a surface, 0 elsewhere
 // (the error over the covered pixels, mse_covered ..., is measured on it).
 Image coverage_mask(const Image& positions);
+
+// An AO pass's results() for its image: ao_max and ao_fraction_above_1 (ao_range()), and
+// covered_pixel_fraction.
+std::vector<std::pair<std::string, RecordValue>> ao_range_results(const Image& ao,
+                                                                  const Image& positions);
 
 }  // namespace ldm

@@ -39,9 +39,7 @@ std::vector<WorkCounter> AmbientOcclusion::work_counters() {
 }
 
 std::vector<ColumnSpec> AmbientOcclusion::columns() {
-  std::vector<ColumnSpec> columns = ao_setting_columns(true);
-  for (auto& c : ao_range_columns()) columns.push_back(c);
-  return columns;
+  return ao_pass_columns(true, {}, true);
 }
 
 AoSettings AmbientOcclusion::settings_for(const Scene& scene) const {
@@ -63,13 +61,7 @@ std::vector<TimedSubpass> AmbientOcclusion::subpasses() const {
 
 std::vector<std::pair<std::string, RecordValue>> AmbientOcclusion::describe(
     const Scene& scene) const {
-  const AoSettings ao = settings_for(scene);
-  return {{"visibility", std::string(ao.attenuated ? "attenuated" : "unattenuated")},
-          {"d_max", double(ao.d_max)},
-          {"falloff_exponent", double(ao.falloff_exponent)},
-          {"normal_offset_pixels", double(ao.normal_offset_pixels)},
-          {"trace", ao_trace_name(ao.trace)},
-          {"ao_estimator", ao_estimator_name(ao.estimator)}};
+  return ao_setting_values(settings_for(scene), true);
 }
 
 void AmbientOcclusion::prepare(const PassInputs& in) {
@@ -105,11 +97,8 @@ Image AmbientOcclusion::coverage() const { return coverage_mask(gbuffer_->read_p
 
 std::vector<std::pair<std::string, RecordValue>> AmbientOcclusion::results() const {
   // Eq. 13 may exceed 1 (a quadrature of the cosine): say how far, over covered pixels.
-  const AoRange range = ao_range(ao_->read_image(), gbuffer_->read_positions());
-  std::vector<std::pair<std::string, RecordValue>> out = {
-      {"ao_max", range.max},
-      {"ao_fraction_above_1", range.fraction_above_1},
-      {"covered_pixel_fraction", covered_pixel_fraction(gbuffer_->read_positions())}};
+  std::vector<std::pair<std::string, RecordValue>> out =
+      ao_range_results(ao_->read_image(), gbuffer_->read_positions());
   for (auto& field : trace_step_fields(ao_->trace_steps())) out.push_back(std::move(field));
   return out;
 }

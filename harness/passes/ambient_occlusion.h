@@ -18,6 +18,8 @@
 
 namespace ldm {
 
+// Pass's interface (LDM_PASS_DECLARATIONS) and what the pass adds: declarations alike in
+// form in every pass's header, each its own.
 class AmbientOcclusion : public Pass {
  public:
   explicit AmbientOcclusion(StructureParams& params);

@@ -36,4 +36,27 @@ std::vector<ColumnSpec> ao_range_columns() {
   };
 }
 
+std::vector<ColumnSpec> ao_pass_columns(bool ldm, const std::vector<ColumnSpec>& own, bool range) {
+  std::vector<ColumnSpec> columns = ao_setting_columns(ldm);
+  columns.insert(columns.end(), own.begin(), own.end());
+  if (range)
+    for (auto& c : ao_range_columns()) columns.push_back(c);
+  return columns;
+}
+
+std::vector<std::pair<std::string, RecordValue>> ao_setting_values(
+    const AoSettings& ao, bool ldm, const std::vector<std::pair<std::string, RecordValue>>& own) {
+  std::vector<std::pair<std::string, RecordValue>> values = {
+      {"visibility", std::string(ao.attenuated ? "attenuated" : "unattenuated")},
+      {"d_max", double(ao.d_max)},
+      {"falloff_exponent", double(ao.falloff_exponent)}};
+  if (ldm) {
+    values.emplace_back("normal_offset_pixels", double(ao.normal_offset_pixels));
+    values.emplace_back("trace", ao_trace_name(ao.trace));
+    values.emplace_back("ao_estimator", ao_estimator_name(ao.estimator));
+  }
+  values.insert(values.end(), own.begin(), own.end());
+  return values;
+}
+
 }  // namespace ldm

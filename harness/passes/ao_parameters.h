@@ -6,12 +6,14 @@
 // parameter named in `pass_parameter`; a pass that reads one lists ao_pass_parameter(...) of
 // it among its own parameters(). Neither is set as --param PASS:KEY: one name per setting.
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "harness/axes/axis.h"
 #include "harness/scene/ao_axes.h"
 #include "harness/scene/scene.h"
 #include "harness/records/columns.h"
+#include "harness/records/record.h"
 
 namespace ldm {
 
@@ -27,5 +29,12 @@ AoOverrides read_ao_overrides(StructureParams& params);
 // and of the AO image's range (ao_max, ao_fraction_above_1).
 std::vector<ColumnSpec> ao_setting_columns(bool ldm);
 std::vector<ColumnSpec> ao_range_columns();
+// An AO pass's columns(): ao_setting_columns(ldm), then `own`, then (with `range`)
+// ao_range_columns().
+std::vector<ColumnSpec> ao_pass_columns(bool ldm, const std::vector<ColumnSpec>& own, bool range);
+// An AO pass's describe(): the values of ao_setting_columns(ldm) for the effective settings
+// `ao`, then `own`.
+std::vector<std::pair<std::string, RecordValue>> ao_setting_values(
+    const AoSettings& ao, bool ldm, const std::vector<std::pair<std::string, RecordValue>>& own = {});
 
 }  // namespace ldm

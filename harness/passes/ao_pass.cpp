@@ -1,28 +1,9 @@
 #include "harness/passes/ao_pass.h"
 
-#include <cctype>
-#include <cstdio>
-
 #include "harness/gl/bindings.h"
+#include "harness/passes/ldm_trace_defines.h"
 
 namespace ldm {
-namespace {
-
-std::string upper(std::string text) {
-  for (char& c : text) c = char(std::toupper(static_cast<unsigned char>(c)));
-  return text;
-}
-
-// A GLSL float literal that round-trips the double (as a float; the constants are exact).
-std::string glsl_float(double value) {
-  char buffer[48];
-  std::snprintf(buffer, sizeof buffer, "%.9g", value);
-  std::string text = buffer;
-  if (text.find_first_of(".e") == std::string::npos) text += ".0";
-  return text;
-}
-
-}  // namespace
 
 AoPass::AoPass(const LdmStructure& structure, const BuildInputs& in, int width, int height,
                const AoSettings& settings)
@@ -45,16 +26,9 @@ void AoPass::compile() {
   const AoSettings& settings = settings_;
   generation_ = structure.storage_generation();
   ShaderDefines defines = binding_defines();
-  const ShaderDefines query = structure.query_defines();
-  defines.values.insert(defines.values.end(), query.values.begin(), query.values.end());
-  defines.set("LDM_VIEW_COUNT", std::to_string(views_.views().size()) + "u");
-  add_trace_step_defines(defines);
+  add_ldm_trace_defines(defines, structure, views_.views().size(), settings.trace);
   defines.set("AO_ATTENUATED", settings.attenuated ? 1 : 0);
   defines.set("AO_NORMALIZED", settings.estimator == AoEstimatorChoice::Normalized ? 1 : 0);
-  defines.set("LDM_TRACE", "LDM_TRACE_" + upper(ao_trace_name(settings.trace)));
-  defines.set("LDM_PLANE_TOLERANCE_CONSTANT", glsl_float(kPlaneToleranceConstant));
-  defines.set("LDM_PLANE_TOLERANCE_SLOPE", glsl_float(kPlaneToleranceSlope));
-  defines.set("LDM_PLANE_MAX_SLOPE", glsl_float(kPlaneMaxSlope));
   program_ = build_program({{GL_VERTEX_SHADER, "passes/fullscreen.vert", {}},
                             {GL_FRAGMENT_SHADER, "passes/ao.frag", structure.query_sources()}},
                            defines);

@@ -12,28 +12,12 @@ namespace {
 
 AxisSpec numeric(const char* key, AxisKind kind, double lo, double hi, const char* fallback,
                  const char* unit, const char* description) {
-  AxisSpec p;
-  p.key = key;
-  p.kind = kind;
-  p.min = lo;
-  p.max = hi;
-  p.default_value = fallback;
-  p.unit = unit;
-  p.column = std::string("gtao_") + key;
-  p.description = description;
-  return p;
+  return numeric_parameter(key, kind, lo, hi, fallback, unit, description, std::string("gtao_") + key);
 }
 
 AxisSpec choice(const char* key, std::vector<std::string> choices, const char* fallback,
                 const char* description) {
-  AxisSpec p;
-  p.key = key;
-  p.kind = AxisKind::Choice;
-  p.choices = std::move(choices);
-  p.default_value = fallback;
-  p.column = std::string("gtao_") + key;
-  p.description = description;
-  return p;
+  return choice_parameter(key, std::move(choices), fallback, description, std::string("gtao_") + key);
 }
 
 }  // namespace
@@ -67,9 +51,10 @@ std::vector<AxisSpec> Gtao::parameters() {
           ao_pass_parameter(AoAxis::DMax), ao_pass_parameter(AoAxis::Visibility)};
 }
 
+// Its own columns after the AO settings': a data table, alike in form only to the other
+// passes'.
 std::vector<ColumnSpec> Gtao::columns() {
-  std::vector<ColumnSpec> columns = ao_setting_columns(false);
-  const std::vector<ColumnSpec> own = {
+  return ao_pass_columns(false, {
       {"pass", "gtao_slices", "", "GTAO: slice planes through the view vector per pixel (--param gtao:slices=)"},
       {"pass", "gtao_steps", "", "GTAO: horizon-search samples per side of a slice (--param gtao:steps=)"},
       {"pass", "gtao_radius", "d_max", "GTAO: search radius R as a multiple of d_max (--param gtao:radius=)"},
@@ -80,12 +65,11 @@ std::vector<ColumnSpec> Gtao::columns() {
       {"pass", "gtao_estimator", "", "GTAO: mean (the paper's mean over slices) or normalized (over the slices' open hemispheres)"},
       {"pass", "gtao_attenuation", "", "GTAO: reference (each horizon rise weighted by the reference's 1 - V(r)) or binary (1 within R, faded by gtao_falloff: the engines' horizon)"},
       {"pass", "gtao_denoise", "pixels", "GTAO: radius of the cross-bilateral denoise, timed as denoise (0: none; --param gtao:denoise=)"},
-  };
-  columns.insert(columns.end(), own.begin(), own.end());
-  for (auto& c : ao_range_columns()) columns.push_back(c);
-  return columns;
+  }, true);
 }
 
+// A data table of the pass's own counters, alike in form only to the other passes' and
+// structures' (see ldm_impls/common/structure_counters.h).
 std::vector<WorkCounter> Gtao::work_counters() {
   std::vector<WorkCounter> counters = gbuffer_work_counters("gbuffer");
   const std::vector<WorkCounter> own = {
@@ -129,73 +113,32 @@ std::vector<TimedSubpass> Gtao::subpasses() const {
 }
 
 std::vector<std::pair<std::string, RecordValue>> Gtao::describe(const Scene& scene) const {
-  const AoSettings ao = settings_for(scene);
-  return {{"visibility", std::string(ao.attenuated ? "attenuated" : "unattenuated")},
-          {"d_max", double(ao.d_max)},
-          {"falloff_exponent", double(ao.falloff_exponent)},
-          {"gtao_slices", int64_t(gtao_.slices)},
-          {"gtao_steps", int64_t(gtao_.steps)},
-          {"gtao_radius", double(gtao_.radius_scale)},
-          {"gtao_falloff", double(gtao_.falloff)},
-          {"gtao_thickness", double(gtao_.thickness)},
-          {"gtao_step_power", double(gtao_.step_power)},
-          {"gtao_jitter", std::string(gtao_.jitter ? "on" : "off")},
-          {"gtao_estimator", std::string(gtao_.normalized ? "normalized" : "mean")},
-          {"gtao_attenuation", std::string(gtao_.reference_weights ? "reference" : "binary")},
-          {"gtao_denoise", int64_t(gtao_.denoise_radius)}};
+  return ao_setting_values(settings_for(scene), false, {
+      {"gtao_slices", int64_t(gtao_.slices)},
+      {"gtao_steps", int64_t(gtao_.steps)},
+      {"gtao_radius", double(gtao_.radius_scale)},
+      {"gtao_falloff", double(gtao_.falloff)},
+      {"gtao_thickness", double(gtao_.thickness)},
+      {"gtao_step_power", double(gtao_.step_power)},
+      {"gtao_jitter", std::string(gtao_.jitter ? "on" : "off")},
+      {"gtao_estimator", std::string(gtao_.normalized ? "normalized" : "mean")},
+      {"gtao_attenuation", std::string(gtao_.reference_weights ? "reference" : "binary")},
+      {"gtao_denoise", int64_t(gtao_.denoise_radius)}});
 }
 
 void Gtao::prepare(const PassInputs& in) {
-  scene_ = &in.scene;
-  gpu_scene_ = &in.gpu_scene;
-  width_ = in.width;
-  height_ = in.height;
-  gbuffer_ = std::make_unique<GBufferPass>(in.width, in.height);
-  kernel_ = std::make_unique<GtaoKernel>(gtao_, settings_for(in.scene), in.width, in.height);
+  auto kernel = std::make_unique<GtaoKernel>(gtao_, settings_for(in.scene), in.width, in.height);
   const CameraFrame frame = camera_frame(in.scene.camera, in.width, in.height);
   const float focal_pixels = 0.5f * float(in.height) / frame.tan_half_fov_y;
-  kernel_->set_camera({frame.eye, frame.forward, frame.right, frame.up, focal_pixels});
-  if (gtao_.denoise_radius > 0) {
-    denoise_ = std::make_unique<HbaoBlur>(gtao_.denoise_radius, kernel_->target());
-    denoise_->set_camera({frame.eye, frame.forward, focal_pixels});
-  }
+  kernel->set_camera({frame.eye, frame.forward, frame.right, frame.up, focal_pixels});
+  frame_.prepare(in, std::move(kernel), gtao_.denoise_radius);
 }
 
-void Gtao::render(GpuTimer* timer) {
-  gbuffer_->render(*gpu_scene_, *scene_, timer);
-  {
-    ScopedSubpass timed(timer, "gtao");
-    kernel_->run(gbuffer_->positions(), gbuffer_->normals());
-  }
-  if (denoise_) {
-    ScopedSubpass timed(timer, "denoise");
-    denoise_->run(gbuffer_->positions(), gbuffer_->normals());
-  }
-}
-
-std::vector<PassImage> Gtao::images() const {
-  return {{"ao", image_from_gl_rows(kernel_->target().read_floats(1), width_, height_, 1)}};
-}
-
-std::vector<BufferMemory> Gtao::memory() const {
-  // Render targets, every texel written each frame (allocated = used), the G-buffer included.
-  std::vector<BufferMemory> targets = gbuffer_->memory();
-  const uint64_t ao_bytes = kernel_->target().bytes();
-  targets.push_back({"gtao_ao", ao_bytes, ao_bytes});
-  if (denoise_)
-    targets.push_back({"gtao_denoise_scratch", denoise_->scratch().bytes(), denoise_->scratch().bytes()});
-  return targets;
-}
-
-Image Gtao::coverage() const { return coverage_mask(gbuffer_->read_positions()); }
-
-std::vector<std::pair<std::string, RecordValue>> Gtao::results() const {
-  const Image positions = gbuffer_->read_positions();
-  const AoRange range = ao_range(images().front().image, positions);
-  return {{"ao_max", range.max},
-          {"ao_fraction_above_1", range.fraction_above_1},
-          {"covered_pixel_fraction", covered_pixel_fraction(positions)}};
-}
+void Gtao::render(GpuTimer* timer) { frame_.render(timer); }
+std::vector<PassImage> Gtao::images() const { return frame_.images(); }
+std::vector<BufferMemory> Gtao::memory() const { return frame_.memory(); }
+Image Gtao::coverage() const { return frame_.coverage(); }
+std::vector<std::pair<std::string, RecordValue>> Gtao::results() const { return frame_.results(); }
 
 ReferenceResult Gtao::reference(const Scene& scene, int width, int height,
                                 const ReferenceSettings& settings) const {

@@ -31,12 +31,13 @@
 #include "harness/passes/gbuffer_pass.h"
 #include "harness/passes/gtao_kernel.h"
 #include "harness/passes/pass.h"
+#include "harness/passes/screen_space_ao.h"
 #include "harness/records/columns.h"
 
 namespace ldm {
 
-class HbaoBlur;
-
+// Pass's interface (LDM_PASS_DECLARATIONS) and what the pass adds: declarations alike in
+// form in every pass's header, each its own.
 class Gtao : public Pass {
  public:
   explicit Gtao(StructureParams& params);
@@ -53,12 +54,7 @@ class Gtao : public Pass {
  private:
   GtaoSettings gtao_;
   AoOverrides overrides_;
-  const Scene* scene_ = nullptr;
-  const GpuScene* gpu_scene_ = nullptr;
-  int width_ = 0, height_ = 0;
-  std::unique_ptr<GBufferPass> gbuffer_;
-  std::unique_ptr<GtaoKernel> kernel_;
-  std::unique_ptr<HbaoBlur> denoise_;  // null without denoise
+  ScreenSpaceAo<GtaoKernel> frame_{"gtao", "denoise"};
 };
 
 }  // namespace ldm

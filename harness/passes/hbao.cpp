@@ -23,56 +23,32 @@ Hbao::Hbao(StructureParams& params) {
 }
 
 std::vector<AxisSpec> Hbao::parameters() {
-  auto uint_param = [](const char* key, double lo, double hi, const char* fallback, const char* unit,
-                       const char* column, const char* description) {
-    AxisSpec p;
-    p.key = key;
-    p.kind = AxisKind::UInt;
-    p.min = lo;
-    p.max = hi;
-    p.default_value = fallback;
-    p.unit = unit;
-    p.column = column;
-    p.description = description;
-    return p;
-  };
-  AxisSpec angle_bias;
-  angle_bias.key = "angle_bias";
-  angle_bias.kind = AxisKind::Real;
-  angle_bias.min = 0.0;
-  angle_bias.max = 1.5;
-  angle_bias.default_value = "0.1";
-  angle_bias.unit = "radians";
-  angle_bias.column = "hbao_angle_bias";
-  angle_bias.description = "horizon angle bias (ignores tangent-plane occluders)";
-  AxisSpec jitter;
-  jitter.key = "jitter";
-  jitter.kind = AxisKind::Choice;
-  jitter.choices = {"off", "on"};
-  jitter.default_value = "off";
-  jitter.column = "hbao_jitter";
-  jitter.description = "per-pixel rotation of the directions";
-  return {uint_param("directions", 1, 256, "8", "directions", "hbao_directions", "directions sampled per pixel"),
-          uint_param("steps", 1, 512, "8", "steps", "hbao_steps", "ray-marching steps per direction, within d_max"),
-          angle_bias, jitter,
-          uint_param("blur", 0, 16, "0", "pixels", "hbao_blur", "cross-bilateral blur radius (0: none)"),
+  return {numeric_parameter("directions", AxisKind::UInt, 1, 256, "8", "directions", "directions sampled per pixel",
+                            "hbao_directions"),
+          numeric_parameter("steps", AxisKind::UInt, 1, 512, "8", "steps", "ray-marching steps per direction, within d_max",
+                            "hbao_steps"),
+          numeric_parameter("angle_bias", AxisKind::Real, 0.0, 1.5, "0.1", "radians",
+                            "horizon angle bias (ignores tangent-plane occluders)", "hbao_angle_bias"),
+          choice_parameter("jitter", {"off", "on"}, "off", "per-pixel rotation of the directions", "hbao_jitter"),
+          numeric_parameter("blur", AxisKind::UInt, 0, 16, "0", "pixels", "cross-bilateral blur radius (0: none)",
+                            "hbao_blur"),
           ao_pass_parameter(AoAxis::DMax), ao_pass_parameter(AoAxis::Visibility)};
 }
 
+// Its own columns after the AO settings': a data table, alike in form only to the other
+// passes'.
 std::vector<ColumnSpec> Hbao::columns() {
-  std::vector<ColumnSpec> columns = ao_setting_columns(false);
-  const std::vector<ColumnSpec> own = {
+  return ao_pass_columns(false, {
       {"pass", "hbao_directions", "", "HBAO: N_HBAO screen-space directions per pixel (--param hbao:directions=)"},
       {"pass", "hbao_steps", "", "HBAO: S_HBAO ray-marching steps per direction, out to d_max (--param hbao:steps=)"},
       {"pass", "hbao_angle_bias", "radians", "HBAO: bias added to the tangent angle (--param hbao:angle_bias=)"},
       {"pass", "hbao_jitter", "", "HBAO: off, or on (per-pixel rotation and step offset from a tiled 4x4 random table)"},
       {"pass", "hbao_blur", "pixels", "HBAO: radius of the cross-bilateral blur after the AO, timed as blur (0: none; --param hbao:blur=)"},
-  };
-  columns.insert(columns.end(), own.begin(), own.end());
-  for (auto& c : ao_range_columns()) columns.push_back(c);
-  return columns;
+  }, true);
 }
 
+// A data table of the pass's own counters, alike in form only to the other passes' and
+// structures' (see ldm_impls/common/structure_counters.h).
 std::vector<WorkCounter> Hbao::work_counters() {
   std::vector<WorkCounter> counters = gbuffer_work_counters("gbuffer");
   const std::vector<WorkCounter> own = {
@@ -117,67 +93,25 @@ std::vector<TimedSubpass> Hbao::subpasses() const {
 }
 
 std::vector<std::pair<std::string, RecordValue>> Hbao::describe(const Scene& scene) const {
-  const AoSettings ao = settings_for(scene);
-  return {{"visibility", std::string(ao.attenuated ? "attenuated" : "unattenuated")},
-          {"d_max", double(ao.d_max)},
-          {"falloff_exponent", double(ao.falloff_exponent)},
-          {"hbao_directions", int64_t(hbao_.directions)},
-          {"hbao_steps", int64_t(hbao_.steps)},
-          {"hbao_angle_bias", double(hbao_.angle_bias)},
-          {"hbao_jitter", std::string(hbao_.jitter ? "on" : "off")},
-          {"hbao_blur", int64_t(hbao_.blur_radius)}};
+  return ao_setting_values(settings_for(scene), false, {
+      {"hbao_directions", int64_t(hbao_.directions)},
+      {"hbao_steps", int64_t(hbao_.steps)},
+      {"hbao_angle_bias", double(hbao_.angle_bias)},
+      {"hbao_jitter", std::string(hbao_.jitter ? "on" : "off")},
+      {"hbao_blur", int64_t(hbao_.blur_radius)}});
 }
 
 void Hbao::prepare(const PassInputs& in) {
-  scene_ = &in.scene;
-  gpu_scene_ = &in.gpu_scene;
-  width_ = in.width;
-  height_ = in.height;
-  gbuffer_ = std::make_unique<GBufferPass>(in.width, in.height);
-  kernel_ = std::make_unique<HbaoKernel>(hbao_, settings_for(in.scene), in.width, in.height);
-  const CameraFrame frame = camera_frame(in.scene.camera, in.width, in.height);
-  const HbaoCamera camera{frame.eye, frame.forward, 0.5f * float(in.height) / frame.tan_half_fov_y};
-  kernel_->set_camera(camera);
-  if (hbao_.blur_radius > 0) {
-    blur_ = std::make_unique<HbaoBlur>(hbao_.blur_radius, kernel_->target());
-    blur_->set_camera(camera);
-  }
+  auto kernel = std::make_unique<HbaoKernel>(hbao_, settings_for(in.scene), in.width, in.height);
+  kernel->set_camera(ScreenSpaceAo<HbaoKernel>::smoothing_camera(in));
+  frame_.prepare(in, std::move(kernel), hbao_.blur_radius);
 }
 
-void Hbao::render(GpuTimer* timer) {
-  gbuffer_->render(*gpu_scene_, *scene_, timer);
-  {
-    ScopedSubpass timed(timer, "hbao");
-    kernel_->run(gbuffer_->positions(), gbuffer_->normals());
-  }
-  if (blur_) {
-    ScopedSubpass timed(timer, "blur");
-    blur_->run(gbuffer_->positions(), gbuffer_->normals());
-  }
-}
-
-std::vector<PassImage> Hbao::images() const {
-  return {{"ao", image_from_gl_rows(kernel_->target().read_floats(1), width_, height_, 1)}};
-}
-
-std::vector<BufferMemory> Hbao::memory() const {
-  // Render targets, every texel written each frame (allocated = used). The G-buffer is
-  // counted too: the LDM AO draws the same one, but its records count only its structure.
-  std::vector<BufferMemory> targets = gbuffer_->memory();
-  const uint64_t ao_bytes = kernel_->target().bytes();
-  targets.push_back({"hbao_ao", ao_bytes, ao_bytes});
-  if (blur_) targets.push_back({"hbao_blur_scratch", blur_->scratch().bytes(), blur_->scratch().bytes()});
-  return targets;
-}
-
-Image Hbao::coverage() const { return coverage_mask(gbuffer_->read_positions()); }
-
-std::vector<std::pair<std::string, RecordValue>> Hbao::results() const {
-  const AoRange range = ao_range(images().front().image, gbuffer_->read_positions());
-  return {{"ao_max", range.max},
-          {"ao_fraction_above_1", range.fraction_above_1},
-          {"covered_pixel_fraction", covered_pixel_fraction(gbuffer_->read_positions())}};
-}
+void Hbao::render(GpuTimer* timer) { frame_.render(timer); }
+std::vector<PassImage> Hbao::images() const { return frame_.images(); }
+std::vector<BufferMemory> Hbao::memory() const { return frame_.memory(); }
+Image Hbao::coverage() const { return frame_.coverage(); }
+std::vector<std::pair<std::string, RecordValue>> Hbao::results() const { return frame_.results(); }
 
 ReferenceResult Hbao::reference(const Scene& scene, int width, int height,
                                 const ReferenceSettings& settings) const {

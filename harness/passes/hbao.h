@@ -19,10 +19,13 @@
 #include "harness/passes/gbuffer_pass.h"
 #include "harness/passes/hbao_kernel.h"
 #include "harness/passes/pass.h"
+#include "harness/passes/screen_space_ao.h"
 #include "harness/records/columns.h"
 
 namespace ldm {
 
+// Pass's interface (LDM_PASS_DECLARATIONS) and what the pass adds: declarations alike in
+// form in every pass's header, each its own.
 class Hbao : public Pass {
  public:
   explicit Hbao(StructureParams& params);
@@ -40,14 +43,7 @@ class Hbao : public Pass {
  private:
   HbaoSettings hbao_;
   AoOverrides overrides_;
-  const Scene* scene_ = nullptr;
-  const GpuScene* gpu_scene_ = nullptr;
-  int width_ = 0, height_ = 0;
-  // GL objects, created by prepare(): a pass is also constructed without a GL context
-  // (argument checks, `ldmbench passes`).
-  std::unique_ptr<GBufferPass> gbuffer_;
-  std::unique_ptr<HbaoKernel> kernel_;
-  std::unique_ptr<HbaoBlur> blur_;  // null without blur
+  ScreenSpaceAo<HbaoKernel> frame_{"hbao", "blur"};
 };
 
 }  // namespace ldm

@@ -35,44 +35,24 @@ IndirectLighting::IndirectLighting(StructureParams& params) {
 std::vector<AxisSpec> IndirectLighting::parameters() {
   auto real = [](const char* key, double lo, double hi, const char* fallback, const char* note,
                  const char* unit, const char* column, const char* description) {
-    AxisSpec p;
-    p.key = key;
-    p.kind = AxisKind::Real;
-    p.min = lo;
-    p.max = hi;
-    p.default_value = fallback;
+    AxisSpec p = numeric_parameter(key, AxisKind::Real, lo, hi, fallback, unit, description, column);
     p.default_note = note;
-    p.unit = unit;
-    p.column = column;
-    p.description = description;
     return p;
   };
   const double largest = 3.4028234663852886e38;  // FLT_MAX: any finite float
-  AxisSpec r_light;
-  r_light.key = r_light.column = "r_light";
+  AxisSpec r_light = numeric_parameter("r_light", AxisKind::UInt, 1, 4096, "64", "pixels",
+                                       "the light's G-buffer is R_light x R_light: one primary photon per texel",
+                                       "r_light");
   r_light.label = "R_light";
-  r_light.kind = AxisKind::UInt;
-  r_light.min = 1;
-  r_light.max = 4096;
-  r_light.default_value = "64";
-  r_light.unit = "pixels";
-  r_light.description = "the light's G-buffer is R_light x R_light: one primary photon per texel";
-  AxisSpec capacity;
-  capacity.key = "photon_capacity";
-  capacity.kind = AxisKind::UInt;
-  capacity.min = 0;
-  capacity.max = double(uint64_t(1) << 32);
+  AxisSpec capacity = numeric_parameter(
+      "photon_capacity", AxisKind::UInt, 0, double(uint64_t(1) << 32), "", "photons",
+      "fixes the photon buffer, overriding the sizing policy (overflow counted, lossy)");
   capacity.default_note = "sized by the sizing policy";
-  capacity.unit = "photons";
-  capacity.description = "fixes the photon buffer, overriding the sizing policy (overflow counted, lossy)";
-  AxisSpec emission;
-  emission.key = emission.column = "emission";
-  emission.kind = AxisKind::Choice;
-  emission.choices = photon_emission_names();
-  emission.default_value = photon_emission_name(PhotonEmission::Thesis);
-  emission.description =
+  const AxisSpec emission = choice_parameter(
+      "emission", photon_emission_names(), photon_emission_name(PhotonEmission::Thesis),
       "how a primary photon's reflected flux is split among its secondaries: thesis (|cos| 2/N each, "
-      "a quadrature, as AO's Eq. 13) or normalized (|cos| / their sum: exactly rho Phi1)";
+      "a quadrature, as AO's Eq. 13) or normalized (|cos| / their sum: exactly rho Phi1)",
+      "emission");
   AxisSpec budget = real("photon_budget_mib", 0, 1e6, "", "the structure's budget", "MiB", "",
                          "budget policy: the photon buffer's own budget");
   budget.real_is_double = true;
@@ -89,6 +69,8 @@ std::vector<AxisSpec> IndirectLighting::parameters() {
           ao_pass_parameter(AoAxis::Visibility)};
 }
 
+// A data table of the pass's own counters, alike in form only to the other passes' and
+// structures' (see ldm_impls/common/structure_counters.h).
 std::vector<WorkCounter> IndirectLighting::work_counters() {
   std::vector<WorkCounter> counters = gbuffer_work_counters("gbuffer");
   for (WorkCounter c : gbuffer_work_counters("light_gbuffer")) counters.push_back(std::move(c));

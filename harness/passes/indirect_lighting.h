@@ -26,6 +26,8 @@
 
 namespace ldm {
 
+// Pass's interface (LDM_PASS_DECLARATIONS) and what the pass adds: declarations alike in
+// form in every pass's header, each its own.
 class IndirectLighting : public Pass {
  public:
   explicit IndirectLighting(StructureParams& params);

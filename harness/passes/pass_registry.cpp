@@ -11,6 +11,7 @@
 #include "harness/passes/rtao.h"
 #include "harness/passes/rtao_gpu.h"
 #include "harness/util/error.h"
+#include "harness/util/named_registry.h"
 
 namespace ldm {
 namespace {
@@ -29,27 +30,13 @@ std::vector<Entry>& registry() {
   return entries;
 }
 
-const Entry& entry(const std::string& name) {
-  for (const auto& e : registry())
-    if (name == e.name) return e;
-  std::string known;
-  for (const auto& n : pass_names()) known += (known.empty() ? "" : ", ") + n;
-  throw UserError("--pass: unknown pass '" + name + "' (known: " + known + ")");
-}
+const Entry& entry(const std::string& name) { return registry_entry(registry(), name, "--pass", "pass"); }
 
 }  // namespace
 
-std::vector<std::string> pass_names() {
-  std::vector<std::string> names;
-  for (const auto& e : registry()) names.emplace_back(e.name);
-  return names;
-}
+std::vector<std::string> pass_names() { return registry_names(registry()); }
 
-std::vector<AxisSpec> pass_parameters(const std::string& name) {
-  std::vector<AxisSpec> specs = entry(name).parameters();
-  for (AxisSpec& s : specs) s.owner = name;
-  return specs;
-}
+std::vector<AxisSpec> pass_parameters(const std::string& name) { return registry_parameters(entry(name)); }
 
 std::vector<ColumnSpec> pass_columns(const std::string& name) { return entry(name).columns(); }
 
@@ -67,11 +54,7 @@ void register_pass(PassRegistration registration) {
 }
 
 std::unique_ptr<Pass> make_pass(const std::string& name, StructureParams params) {
-  const Entry& e = entry(name);
-  params.declare(pass_parameters(name));
-  auto pass = e.make(params);
-  params.check("pass " + name);
-  return pass;
+  return registry_make(entry(name), std::move(params), "pass");
 }
 
 }  // namespace ldm

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "harness/gl/bindings.h"
+#include "harness/passes/ldm_trace_defines.h"
 #include "harness/scene/camera.h"
 #include "harness/util/error.h"
 
@@ -22,19 +23,6 @@ constexpr uint32_t kDrawBinding = kPassBinding0 + 3;
 constexpr uint32_t kCounterCount = 10;  // PHOTON_COUNTERS
 constexpr uint64_t kPhotonBytes = sizeof(StoredPhoton);
 constexpr float kMaxOuterAngleDeg = 89.0f;
-
-std::string glsl_float(double value) {
-  char buffer[48];
-  std::snprintf(buffer, sizeof buffer, "%.9g", value);
-  std::string text = buffer;
-  if (text.find_first_of(".e") == std::string::npos) text += ".0";
-  return text;
-}
-
-std::string upper(std::string text) {
-  for (char& c : text) c = char(std::toupper(static_cast<unsigned char>(c)));
-  return text;
-}
 
 ShaderDefines indirect_defines() {
   ShaderDefines d = binding_defines();
@@ -190,14 +178,7 @@ void PhotonLighting::allocate_photons(uint64_t capacity) {
 void PhotonLighting::compile() {
   generation_ = structure_.storage_generation();
   ShaderDefines defines = indirect_defines();
-  const ShaderDefines query = structure_.query_defines();
-  defines.values.insert(defines.values.end(), query.values.begin(), query.values.end());
-  defines.set("LDM_VIEW_COUNT", std::to_string(views_.views().size()) + "u");
-  defines.set("LDM_TRACE", "LDM_TRACE_" + upper(ao_trace_name(settings_.trace)));
-  defines.set("LDM_PLANE_TOLERANCE_CONSTANT", glsl_float(kPlaneToleranceConstant));
-  defines.set("LDM_PLANE_TOLERANCE_SLOPE", glsl_float(kPlaneToleranceSlope));
-  defines.set("LDM_PLANE_MAX_SLOPE", glsl_float(kPlaneMaxSlope));
-  add_trace_step_defines(defines);
+  add_ldm_trace_defines(defines, structure_, views_.views().size(), settings_.trace);
   trace_program_ = build_program(
       {{GL_COMPUTE_SHADER, "passes/indirect/photon_trace.comp", structure_.query_sources()}},
       defines);

@@ -42,17 +42,16 @@ std::vector<AxisSpec> Rtao::parameters() {
 }
 #pragma GCC diagnostic pop
 
+// Its own columns after the AO settings': a data table, alike in form only to the other
+// passes'.
 std::vector<ColumnSpec> Rtao::columns() {
-  std::vector<ColumnSpec> columns = ao_setting_columns(false);
-  const std::vector<ColumnSpec> own = {
+  return ao_pass_columns(false, {
       {"pass", "rtao_spp", "samples", "RTAO: AO rays per pixel of the Embree CPU tracer (--param rtao:spp=)"},
       {"pass", "rtao_seed", "", "RTAO: seed of its random stream (a pass index no reference uses: independent of the reference's halves)"},
       {"pass", "rtao_threads", "threads", "RTAO: CPU worker threads that traced (--param rtao:threads=, 0 = all cores)"},
       {"pass", "rtao_bvh_ms", "ms", "RTAO: wall time of the Embree BVH build, once before the frames (static scene; not in frame)",
        ColumnKind::Number, VariesBetweenRuns::Yes},
-  };
-  columns.insert(columns.end(), own.begin(), own.end());
-  return columns;
+  }, false);
 }
 
 Rtao::~Rtao() = default;
@@ -75,12 +74,9 @@ std::vector<TimedSubpass> Rtao::subpasses() const {
 }
 
 std::vector<std::pair<std::string, RecordValue>> Rtao::describe(const Scene& scene) const {
-  const AoSettings ao = settings_for(scene);
-  return {{"visibility", std::string(ao.attenuated ? "attenuated" : "unattenuated")},
-          {"d_max", double(ao.d_max)},
-          {"falloff_exponent", double(ao.falloff_exponent)},
-          {"rtao_spp", int64_t(spp_)},
-          {"rtao_seed", int64_t(seed_)}};
+  return ao_setting_values(settings_for(scene), false, {
+      {"rtao_spp", int64_t(spp_)},
+      {"rtao_seed", int64_t(seed_)}});
 }
 
 void Rtao::prepare(const PassInputs& in) {

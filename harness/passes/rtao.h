@@ -28,6 +28,8 @@ class EmbreeScene;
 // The pixel_stream() pass index the rtao samples use (the reference's are below 64).
 inline constexpr uint32_t kRtaoStreamPass = 0x80000000u;
 
+// Pass's interface (LDM_PASS_DECLARATIONS) and what the pass adds: declarations alike in
+// form in every pass's header, each its own.
 class Rtao : public Pass {
  public:
   explicit Rtao(StructureParams& params);

@@ -66,6 +66,19 @@ void set_uvec2(const GlProgram& program, const char* name, uint64_t value) {
   glProgramUniform2ui(program.id(), program.uniform(name), uint32_t(value), uint32_t(value >> 32));
 }
 
+// The BVH traversal's defines, shared by the AO and the primary-ray shaders: the stack
+// size, counting or not, and the BVH's and the counts' bindings.
+ShaderDefines traversal_defines(uint32_t bvh_depth, bool counting) {
+  ShaderDefines defines = binding_defines();
+  defines.set("RTAO_GPU_STACK", std::max<uint32_t>(bvh_depth, 1));
+  defines.set("RTAO_GPU_COUNT", counting ? 1 : 0);
+  defines.set("RTAO_GPU_NODES_BINDING", kNodesBinding);
+  defines.set("RTAO_GPU_TRIANGLES_BINDING", kTrianglesBinding);
+  defines.set("RTAO_GPU_SLOTS_BINDING", kSlotsBinding);
+  defines.set("RTAO_GPU_COUNTS_BINDING", kCountsBinding);
+  return defines;
+}
+
 }  // namespace
 
 RtaoGpu::RtaoGpu(StructureParams& params) {
@@ -94,9 +107,10 @@ std::vector<AxisSpec> RtaoGpu::parameters() {
 }
 #pragma GCC diagnostic pop
 
+// Its own columns after the AO settings': a data table, alike in form only to the other
+// passes'.
 std::vector<ColumnSpec> RtaoGpu::columns() {
-  std::vector<ColumnSpec> columns = ao_setting_columns(false);
-  const std::vector<ColumnSpec> own = {
+  return ao_pass_columns(false, {
       {"pass", "rtao_gpu_spp", "samples", "GPU RTAO: AO rays per pixel k (--param rtao_gpu:spp=)"},
       {"pass", "rtao_gpu_seed", "", "GPU RTAO: seed of its random stream (the CPU RTAO's numbers for the same seed; independent of the reference's halves)"},
       {"pass", "rtao_gpu_primary", "", "GPU RTAO: trace (each pixel's point from a primary ray through the BVH, as the reference finds it) or raster (the rasterised G-buffer)"},
@@ -110,15 +124,15 @@ std::vector<ColumnSpec> RtaoGpu::columns() {
       {"pass", "rtao_gpu_bvh_depth", "", "GPU RTAO: inner-node levels on the BVH's longest path (the traversal stack's size)"},
       {"pass", "rtao_gpu_steps_max", "iterations", "GPU RTAO: loop iterations of the longest AO shader invocation (nodes, triangles and ray starts of its k rays), from the counting replay; at or past loop_iteration_limit the record is invalid"},
       {"pass", "rtao_gpu_primary_steps_max", "iterations", "GPU RTAO: loop iterations of the longest primary-ray invocation (primary=trace; 0 with raster), judged as rtao_gpu_steps_max"},
-  };
-  columns.insert(columns.end(), own.begin(), own.end());
-  return columns;
+  }, false);
 }
 
 // The record's work_rtao_gpu_* columns come from the shared counting replay (the same names
 // and meaning they had when work() wrote them: per ray means and maxima, now with p50, p99
 // and totals). work() stays for what must be judged on the measured instance, also under
 // --no-work: the loop limit (problems()) and the replayed image.
+// A data table of the pass's own counters, alike in form only to the other passes' and
+// structures' (see ldm_impls/common/structure_counters.h).
 std::vector<WorkCounter> RtaoGpu::work_counters() {
   std::vector<WorkCounter> counters = gbuffer_work_counters("gbuffer");  // primary=raster
   const std::vector<WorkCounter> own = {
@@ -160,25 +174,16 @@ std::vector<TimedSubpass> RtaoGpu::subpasses() const {
 }
 
 std::vector<std::pair<std::string, RecordValue>> RtaoGpu::describe(const Scene& scene) const {
-  const AoSettings ao = settings_for(scene);
-  return {{"visibility", std::string(ao.attenuated ? "attenuated" : "unattenuated")},
-          {"d_max", double(ao.d_max)},
-          {"falloff_exponent", double(ao.falloff_exponent)},
-          {"rtao_gpu_spp", int64_t(spp_)},
-          {"rtao_gpu_seed", int64_t(seed_)},
-          {"rtao_gpu_primary", std::string(trace_primary_ ? "trace" : "raster")}};
+  return ao_setting_values(settings_for(scene), false, {
+      {"rtao_gpu_spp", int64_t(spp_)},
+      {"rtao_gpu_seed", int64_t(seed_)},
+      {"rtao_gpu_primary", std::string(trace_primary_ ? "trace" : "raster")}});
 }
 
 GlProgram RtaoGpu::build(bool counting) const {
-  ShaderDefines defines = binding_defines();
+  ShaderDefines defines = traversal_defines(bvh_.depth, counting);
   defines.set("RTAO_GPU_SPP", std::to_string(spp_) + "u");
   defines.set("RTAO_GPU_ATTENUATED", ao_.attenuated ? 1 : 0);
-  defines.set("RTAO_GPU_STACK", std::max<uint32_t>(bvh_.depth, 1));
-  defines.set("RTAO_GPU_COUNT", counting ? 1 : 0);
-  defines.set("RTAO_GPU_NODES_BINDING", kNodesBinding);
-  defines.set("RTAO_GPU_TRIANGLES_BINDING", kTrianglesBinding);
-  defines.set("RTAO_GPU_SLOTS_BINDING", kSlotsBinding);
-  defines.set("RTAO_GPU_COUNTS_BINDING", kCountsBinding);
   GlProgram program = build_program({{GL_COMPUTE_SHADER, "passes/rtao_gpu.comp", {}}}, defines);
   const glm::vec3 eye = scene_->camera.eye;
   program.set("camera_eye", eye.x, eye.y, eye.z);
@@ -192,13 +197,7 @@ GlProgram RtaoGpu::build(bool counting) const {
 }
 
 GlProgram RtaoGpu::build_primary(bool counting) const {
-  ShaderDefines defines = binding_defines();
-  defines.set("RTAO_GPU_STACK", std::max<uint32_t>(bvh_.depth, 1));
-  defines.set("RTAO_GPU_COUNT", counting ? 1 : 0);
-  defines.set("RTAO_GPU_NODES_BINDING", kNodesBinding);
-  defines.set("RTAO_GPU_TRIANGLES_BINDING", kTrianglesBinding);
-  defines.set("RTAO_GPU_SLOTS_BINDING", kSlotsBinding);
-  defines.set("RTAO_GPU_COUNTS_BINDING", kCountsBinding);
+  ShaderDefines defines = traversal_defines(bvh_.depth, counting);
   defines.set("RTAO_GPU_SCENE_NORMALS_BINDING", kSceneNormalsBinding);
   defines.set("RTAO_GPU_SCENE_INDICES_BINDING", kSceneIndicesBinding);
   GlProgram program = build_program({{GL_COMPUTE_SHADER, "passes/rtao_gpu_primary.comp", {}}}, defines);

@@ -54,6 +54,8 @@ struct RtaoGpuWork {
   bool image_matches = true; // the replay's image equals the measured frames' bit for bit
 };
 
+// Pass's interface (LDM_PASS_DECLARATIONS) and what the pass adds: declarations alike in
+// form in every pass's header, each its own.
 class RtaoGpu : public Pass {
  public:
   explicit RtaoGpu(StructureParams& params);

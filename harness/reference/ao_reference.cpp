@@ -43,16 +43,8 @@ Image render_ao_batch(const EmbreeScene& embree, const AoSettings& ao, int width
                       uint32_t spp, uint64_t seed, uint32_t pass, uint32_t first,
                       AoSampler sampler, int threads, bool progress) {
   const AoEstimator estimator(embree, ao, width, height);
-  PixelRenderSettings settings;
-  settings.width = width;
-  settings.height = height;
-  settings.spp = spp;
-  settings.seed = seed;
-  settings.pass = pass;
-  settings.threads = threads;
-  settings.progress = progress;
-  settings.label = "AO reference (seed " + std::to_string(seed) + ", pass " +
-                   std::to_string(pass) + ", " + std::to_string(spp) + " spp)";
+  const PixelRenderSettings settings =
+      reference_render_settings("AO", width, height, spp, seed, pass, threads, progress);
   if (sampler == AoSampler::Random)
     return render_pixels(settings, 1,
                          [&estimator](int x, int y, uint32_t n, Pcg32& rng, float* mean) {
@@ -137,14 +129,9 @@ ReferenceResult cached_ao_reference(const Scene& scene, const AoReferenceRequest
 
 ReferenceResult ao_reference_for_run(const Scene& scene, const AoSettings& ao, int width,
                                      int height, const ReferenceSettings& settings) {
-  AoReferenceRequest request;
-  request.width = width;
-  request.height = height;
+  auto request = reference_request<AoReferenceRequest>(width, height, settings);
   request.ao = ao;
-  request.spp = settings.spp;
-  request.seed = settings.seed;
   request.sampler = settings.ao_sampler;
-  request.progress = settings.progress;
   if (!settings.use_cache) return render_ao_reference(scene, request);
   return cached_ao_reference(
       scene, request, reference_cache_dir(settings.cache_dir));

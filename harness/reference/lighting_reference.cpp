@@ -23,17 +23,8 @@ Image render_half_with(const EmbreeScene& embree, LightingComponent component, i
                        int height, uint32_t spp, uint64_t seed, uint32_t pass, int threads,
                        bool progress, const RussianRoulette& roulette) {
   const LightingEstimator estimator(embree, component, width, height, roulette);
-  PixelRenderSettings settings;
-  settings.width = width;
-  settings.height = height;
-  settings.spp = spp;
-  settings.seed = seed;
-  settings.pass = pass;
-  settings.threads = threads;
-  settings.progress = progress;
-  settings.label = std::string(to_string(component)) + " reference (seed " +
-                   std::to_string(seed) + ", pass " + std::to_string(pass) + ", " +
-                   std::to_string(spp) + " spp)";
+  const PixelRenderSettings settings = reference_render_settings(
+      to_string(component), width, height, spp, seed, pass, threads, progress);
   return render_pixels(settings, 3,
                        [&estimator](int x, int y, uint32_t n, Pcg32& rng, float* mean) {
                          const glm::vec3 value = estimator.pixel_mean(x, y, n, rng);
@@ -149,13 +140,8 @@ ReferenceResult cached_lighting_reference(const Scene& scene,
 ReferenceResult lighting_reference_for_run(const Scene& scene, LightingComponent component,
                                            int width, int height,
                                            const ReferenceSettings& settings) {
-  LightingReferenceRequest request;
-  request.width = width;
-  request.height = height;
+  auto request = reference_request<LightingReferenceRequest>(width, height, settings);
   request.component = component;
-  request.spp = settings.spp;
-  request.seed = settings.seed;
-  request.progress = settings.progress;
   if (!settings.use_cache) return render_lighting_reference(scene, request);
   return cached_lighting_reference(
       scene, request, reference_cache_dir(settings.cache_dir));

@@ -116,4 +116,20 @@ Image render_pixels(const PixelRenderSettings& settings, int channels,
   return image;
 }
 
+PixelRenderSettings reference_render_settings(const std::string& what, int width, int height,
+                                              uint32_t spp, uint64_t seed, uint32_t pass,
+                                              int threads, bool progress) {
+  PixelRenderSettings settings;
+  settings.width = width;
+  settings.height = height;
+  settings.spp = spp;
+  settings.seed = seed;
+  settings.pass = pass;
+  settings.threads = threads;
+  settings.progress = progress;
+  settings.label = what + " reference (seed " + std::to_string(seed) + ", pass " +
+                   std::to_string(pass) + ", " + std::to_string(spp) + " spp)";
+  return settings;
+}
+
 }  // namespace ldm

@@ -24,6 +24,12 @@ struct PixelRenderSettings {
   std::string label = "render";
 };
 
+// The settings of one half or batch of a reference render, labelled
+// "<what> reference (seed S, pass P, K spp)".
+PixelRenderSettings reference_render_settings(const std::string& what, int width, int height,
+                                              uint32_t spp, uint64_t seed, uint32_t pass,
+                                              int threads, bool progress);
+
 // Called once per pixel: draws `spp` samples from `rng` and writes the per-channel mean into
 // `mean[0 .. channels)`. Per-pixel work shared by all samples (a primary ray) is done once,
 // and the samples may be traced in batches. Called concurrently from several threads.

@@ -23,4 +23,17 @@ struct ReferenceSettings {
   bool progress = true;   // progress with ETA on a terminal
 };
 
+// A reference request (AoReferenceRequest, LightingReferenceRequest) for a width x height
+// image with the settings' samples per pixel, seed and progress.
+template <typename Request>
+Request reference_request(int width, int height, const ReferenceSettings& settings) {
+  Request request;
+  request.width = width;
+  request.height = height;
+  request.spp = settings.spp;
+  request.seed = settings.seed;
+  request.progress = settings.progress;
+  return request;
+}
+
 }  // namespace ldm

@@ -1,5 +1,7 @@
 // Scenes whose ambient occlusion has a closed form (tests/ao derive and check them). Planes
 // are large compared with d_max so that, with attenuated visibility, they act as infinite.
+// Each generator reads its parameters, builds its geometry and places its camera and light:
+// alike in form, different scenes (what they share is floor_square, read_ao, set_camera).
 #include "harness/scene/generators.h"
 #include "harness/scene/mesh_builder.h"
 
@@ -18,6 +20,15 @@ void read_ao(GeneratorParams& params, Scene& scene, float default_d_max) {
   scene.ao.normal_offset_pixels = params.number("normal_offset", 0.0f, 0.0f, 100.0f);
 }
 
+// The analytic scenes' cameras: from `eye` toward `target` with -z up in the image (the
+// scenes lie along x and z, seen from above), fov_y degrees.
+void set_camera(Scene& scene, glm::vec3 eye, glm::vec3 target, float fov_y_deg) {
+  scene.camera.eye = eye;
+  scene.camera.target = target;
+  scene.camera.up = {0.0f, 0.0f, -1.0f};
+  scene.camera.fov_y_deg = fov_y_deg;
+}
+
 }  // namespace
 
 Scene make_plane_scene(GeneratorParams& params) {
@@ -26,10 +37,7 @@ Scene make_plane_scene(GeneratorParams& params) {
   const float half = params.number("half_size", 4.0f, 1e-3f, 1e6f);
   MeshBuilder b(scene);
   floor_square(b, half, 0.0f, b.material("grey", glm::vec3(0.5f)));
-  scene.camera.eye = {0.0f, 1.0f, 0.0f};
-  scene.camera.target = {0.0f, 0.0f, 0.0f};
-  scene.camera.up = {0.0f, 0.0f, -1.0f};
-  scene.camera.fov_y_deg = 60.0f;
+  set_camera(scene, {0.0f, 1.0f, 0.0f}, {0.0f, 0.0f, 0.0f}, 60.0f);
   scene.light.position = {0.0f, 3.0f, 0.0f};
   read_ao(params, scene, 1.0f);
   return scene;
@@ -46,10 +54,7 @@ Scene make_parallel_planes_scene(GeneratorParams& params) {
   // The ceiling faces down, into the gap.
   b.quad({-half, h, -half}, {half, h, -half}, {half, h, half}, {-half, h, half}, grey);
   // The camera hangs just under the ceiling and looks straight down at the floor.
-  scene.camera.eye = {0.0f, 0.9f * h, 0.0f};
-  scene.camera.target = {0.0f, 0.0f, 0.0f};
-  scene.camera.up = {0.0f, 0.0f, -1.0f};
-  scene.camera.fov_y_deg = 60.0f;
+  set_camera(scene, {0.0f, 0.9f * h, 0.0f}, {0.0f, 0.0f, 0.0f}, 60.0f);
   scene.light.position = {0.0f, 0.8f * h, 0.0f};
   read_ao(params, scene, 2.0f * h);
   return scene;
@@ -67,10 +72,7 @@ Scene make_wall_scene(GeneratorParams& params) {
   b.quad({0.0f, 0.0f, -half}, {0.0f, height, -half}, {0.0f, height, half}, {0.0f, 0.0f, half},
          grey);
   // Looking straight down at the strip 0 < x < 1 next to the wall.
-  scene.camera.eye = {0.6f, 1.2f, 0.0f};
-  scene.camera.target = {0.6f, 0.0f, 0.0f};
-  scene.camera.up = {0.0f, 0.0f, -1.0f};
-  scene.camera.fov_y_deg = 50.0f;
+  set_camera(scene, {0.6f, 1.2f, 0.0f}, {0.6f, 0.0f, 0.0f}, 50.0f);
   scene.light.position = {1.0f, 3.0f, 0.0f};
   read_ao(params, scene, 1.0f);
   return scene;
@@ -136,10 +138,7 @@ Scene make_closed_sphere_scene(GeneratorParams& params) {
   scene.light.intensity = glm::vec3(intensity);
   scene.light.inner_angle_deg = 30.0f;
   scene.light.outer_angle_deg = 45.0f;
-  scene.camera.eye = {0.0f, 0.5f * radius, 0.3f * radius};
-  scene.camera.target = {0.0f, -radius, -0.2f * radius};
-  scene.camera.up = {0.0f, 0.0f, -1.0f};
-  scene.camera.fov_y_deg = 70.0f;
+  set_camera(scene, {0.0f, 0.5f * radius, 0.3f * radius}, {0.0f, -radius, -0.2f * radius}, 70.0f);
   read_ao(params, scene, 0.2f * radius);
   return scene;
 }

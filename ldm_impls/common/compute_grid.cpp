@@ -14,6 +14,13 @@ void dispatch_linear_groups(uint64_t groups) {
   glDispatchCompute(GLuint(row), GLuint(rows), 1);
 }
 
+void run_linear_compute(const GlProgram& program, uint64_t items, uint64_t items_per_group,
+                        unsigned barriers) {
+  program.use();
+  dispatch_linear_groups(groups_for(items, items_per_group));
+  glMemoryBarrier(barriers);
+}
+
 GlProgram build_compute_program(const std::string& file, const ShaderDefines& defines) {
   ShaderDefines all = binding_defines();
   all.values.insert(all.values.end(), defines.values.begin(), defines.values.end());

@@ -25,4 +25,10 @@ inline uint64_t groups_for(uint64_t items, uint64_t items_per_group) {
   return (items + items_per_group - 1) / items_per_group;
 }
 
+// One pass of `program` over `items` (its buffers bound, its uniforms set): uses it,
+// dispatches groups_for(items, items_per_group) workgroups and waits with
+// glMemoryBarrier(barriers).
+void run_linear_compute(const GlProgram& program, uint64_t items, uint64_t items_per_group,
+                        unsigned barriers);
+
 }  // namespace ldm

@@ -19,24 +19,24 @@ ListNodePool::ListNodePool(const std::string& structure, StructureParams& params
 }
 
 AxisSpec ListNodePool::capacity_parameter() {
-  AxisSpec p;
-  p.key = "capacity";
-  p.kind = AxisKind::UInt;
-  p.min = 1;
-  p.max = double((uint64_t(1) << 31) - 1);
+  AxisSpec p = numeric_parameter(
+      "capacity", AxisKind::UInt, 1, double((uint64_t(1) << 31) - 1), "", "nodes",
+      "fixes the node pool (all views), overriding the sizing policy; what does not fit is dropped and counted");
   p.default_note = "sized by the sizing policy";
-  p.unit = "nodes";
-  p.description = "fixes the node pool (all views), overriding the sizing policy; what does not fit is dropped and counted";
   return p;
+}
+
+WorkCounter ListNodePool::nodes_visited_counter() {
+  return {"", "nodes_visited", WorkShape::Distribution, "nodes",
+          "PSPPSLL, PPSLL or DF-buffer: nodes (DF-buffer: depth-array entries) one query (an "
+          "ldm_begin or ldm_next) moved the cursor onto: 1, or 0 at the end of the list"};
 }
 
 std::vector<WorkCounter> ListNodePool::query_work_counters() {
   // A query is one ldm_begin or ldm_next; the lists are sorted whatever the order their
   // fragments arrived in, so every count is deterministic.
   return {
-      {"", "nodes_visited", WorkShape::Distribution, "nodes",
-       "PSPPSLL, PPSLL or DF-buffer: nodes (DF-buffer: depth-array entries) one query (an "
-       "ldm_begin or ldm_next) moved the cursor onto: 1, or 0 at the end of the list"},
+      nodes_visited_counter(),
       {"", "bytes_loaded_heads", WorkShape::Total, "bytes",
        "PSPPSLL or PPSLL: list heads its queries read (4 bytes per ldm_begin)"},
       {"", "bytes_loaded_nodes", WorkShape::Total, "bytes",

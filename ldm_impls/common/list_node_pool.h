@@ -30,6 +30,8 @@ class ListNodePool {
   // What the list query (shaders/ldm/common/list_query.glsl) counts in a pass's sub-pass
   // (the sub-pass filled in by the caller): PSPPSLL's and PPSLL's query_work_counters().
   static std::vector<WorkCounter> query_work_counters();
+  // Their first: the nodes a query moved onto, which the DF-buffer's ranges count alike.
+  static WorkCounter nodes_visited_counter();
 
   // Sizes the pool by the sizing plan and compiles `build_shader` (a fragment shader of the
   // LDM geometry pass) with the pool's defines and `extra_defines`.

@@ -8,6 +8,7 @@
 // GLSL side: shaders/ldm/common/post_sort.glsl.
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "ldm_impls/ldm_structure.h"
 
@@ -33,5 +34,12 @@ uint32_t sort_local_size(uint32_t requested, const SizingPlan& plan);
 
 // For sizing(): "user", "oracle_max_depth_complexity" or "default".
 std::string sort_local_policy(uint32_t requested, const SizingPlan& plan);
+
+// The sort sub-pass's compute invocations, one per pixel (also PPFLA's heap sort's).
+WorkCounter sort_invocations_counter();
+// The sort sub-pass's counters, as PPSLL and the DF-buffer declare them: its invocations, the
+// lists' lengths, the sorts' comparisons and moves, then `memory` (the structure's own loads
+// and stores), then the atomic counter increments of lists sorted in place.
+std::vector<WorkCounter> post_sort_work_counters(const std::vector<WorkCounter>& memory);
 
 }  // namespace ldm

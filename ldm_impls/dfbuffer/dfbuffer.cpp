@@ -5,7 +5,9 @@
 
 #include "harness/gl/bindings.h"
 #include "ldm_impls/common/compute_grid.h"
+#include "ldm_impls/common/list_node_pool.h"
 #include "ldm_impls/common/post_sort.h"
+#include "ldm_impls/common/structure_counters.h"
 
 namespace ldm {
 
@@ -21,12 +23,11 @@ constexpr uint64_t kUnfilledWord = 3;
 
 DfBuffer::DfBuffer(StructureParams& params) { requested_local_ = read_sort_local_param(params); }
 
+// A data table of its own counters, alike in form only to the other structures' (see
+// ldm_impls/common/structure_counters.h).
 std::vector<WorkCounter> DfBuffer::work_counters() {
-  std::vector<WorkCounter> counters;
-  for (WorkCounter c : geometry_work_counters("count")) counters.push_back(std::move(c));
-  for (WorkCounter c : geometry_work_counters("construct")) counters.push_back(std::move(c));
   constexpr WorkOrder kArrival = WorkOrder::ArrivalDependent;
-  const std::vector<WorkCounter> own = {
+  std::vector<WorkCounter> own = {
       // shaders/ldm/dfbuffer/count.frag
       {"count", "atomic_add", WorkShape::Total, "atomics", "count: DF-buffer atomicAdd on a pixel's count (one per fragment)"},
       // scan_blocks.comp and scan_add.comp, every level
@@ -49,20 +50,9 @@ std::vector<WorkCounter> DfBuffer::work_counters() {
        "construct: DF-buffer offsets read (8 bytes per fragment: the pixel's and the next)"},
       {"construct", "bytes_stored_depths", WorkShape::Total, "bytes",
        "construct: DF-buffer depths written (4 bytes per fragment stored)"},
-      // sort.comp with ldm/common/post_sort.glsl and heap_sort.glsl
-      {"sort", "invocations", WorkShape::Total, "invocations",
-       "sort: compute invocations of the sort dispatch (one per pixel, the last group's padding "
-       "included)"},
-      {"sort", "list_length", WorkShape::Distribution, "entries",
-       "sort: PPSLL or DF-buffer fragments of one pixel's list or range (one value per pixel, "
-       "empty ones included)"},
-      {"sort", "comparisons", WorkShape::Total, "comparisons",
-       "sort: depth comparisons of the sorts (insertion sort in the local array, "
-       "ldm/common/post_sort.glsl; PPSLL's merge sort in place; heap sort in place, "
-       "ldm/common/heap_sort.glsl)", kArrival},
-      {"sort", "moves", WorkShape::Total, "moves",
-       "sort: entries the sorts moved (local-array writes of the insertion sort; nodes PPSLL's "
-       "merge sort relinked; heap_store calls of the heap sort)", kArrival},
+  };
+  // sort.comp with ldm/common/post_sort.glsl and heap_sort.glsl
+  const std::vector<WorkCounter> sort = post_sort_work_counters({
       {"sort", "bytes_loaded_offsets", WorkShape::Total, "bytes", "sort: DF-buffer offsets read (8 bytes per pixel)"},
       {"sort", "bytes_loaded_depths", WorkShape::Total, "bytes",
        "sort: DF-buffer depths copied into the local array (4 bytes each; ranges of 2 up to local)"},
@@ -72,20 +62,16 @@ std::vector<WorkCounter> DfBuffer::work_counters() {
        "sort: DF-buffer depths the heap sort in place read (ranges longer than local)", kArrival},
       {"sort", "bytes_stored_depths_heap", WorkShape::Total, "bytes",
        "sort: DF-buffer depths the heap sort in place wrote", kArrival},
-      {"sort", "atomic_add", WorkShape::Total, "atomics",
-       "sort: atomic counter increments of lists sorted in place (longer than the local array)"},
-  };
-  counters.insert(counters.end(), own.begin(), own.end());
-  return counters;
+  });
+  own.insert(own.end(), sort.begin(), sort.end());
+  return with_geometry_counters({"count", "construct"}, own);
 }
 
 // shaders/ldm/dfbuffer/query.glsl: a query is one ldm_begin or ldm_next; the ranges are
 // sorted whatever the order of arrival, so every count is deterministic.
 std::vector<WorkCounter> DfBuffer::query_work_counters() {
   return {
-      {"", "nodes_visited", WorkShape::Distribution, "nodes",
-       "PSPPSLL, PPSLL or DF-buffer: nodes (DF-buffer: depth-array entries) one query (an "
-       "ldm_begin or ldm_next) moved the cursor onto: 1, or 0 at the end of the list"},
+      ListNodePool::nodes_visited_counter(),
       {"", "bytes_loaded_offsets", WorkShape::Total, "bytes",
        "DF-buffer offsets its queries read (8 bytes per ldm_begin)"},
       {"", "bytes_loaded_depths", WorkShape::Total, "bytes",
@@ -186,10 +172,9 @@ void DfBuffer::sort(GpuTimer* timer) {
   offsets_.bind_storage(kBindingOffsets);
   depths_.bind_storage(kBindingDepths);
   counters_.bind_atomic_counter(kStructureCounterBinding);
-  sort_program_.use();
-  dispatch_linear_groups(groups_for(pixels_, kPixelGroupSize));
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_ATOMIC_COUNTER_BARRIER_BIT |
-                  GL_BUFFER_UPDATE_BARRIER_BIT);
+  run_linear_compute(sort_program_, pixels_, kPixelGroupSize,
+                     GL_SHADER_STORAGE_BARRIER_BIT | GL_ATOMIC_COUNTER_BARRIER_BIT |
+                         GL_BUFFER_UPDATE_BARRIER_BIT);
 }
 
 void DfBuffer::build(const BuildInputs& in, GpuTimer* timer) {
@@ -219,9 +204,7 @@ uint64_t DfBuffer::count_unfilled_slots() const {
                             sizeof(uint32_t), GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
   counts_.bind_storage(kBindingCounts);
   counters_.bind_storage(kBindingCheck);
-  unfilled_program_.use();
-  dispatch_linear_groups(groups_for(pixels_, kPixelGroupSize));
-  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  run_linear_compute(unfilled_program_, pixels_, kPixelGroupSize, GL_BUFFER_UPDATE_BARRIER_BIT);
   uint32_t unfilled = 0;
   counters_.download(&unfilled, sizeof unfilled, kUnfilledWord * sizeof(uint32_t));
   return unfilled;

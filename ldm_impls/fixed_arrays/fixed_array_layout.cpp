@@ -8,15 +8,11 @@
 namespace ldm {
 
 AxisSpec fixed_array_k_parameter() {
-  AxisSpec p;
-  p.key = "k";
+  AxisSpec p = numeric_parameter(
+      "k", AxisKind::UInt, 0, 1u << 20, "", "entries per pixel",
+      "entries of every pixel's array; fragments beyond k are dropped and counted (lossy)");
   p.label = "k";
-  p.kind = AxisKind::UInt;
-  p.min = 0;
-  p.max = 1u << 20;
   p.default_note = "the deepest pixel, as the sizing policy knows it (0 too)";
-  p.unit = "entries per pixel";
-  p.description = "entries of every pixel's array; fragments beyond k are dropped and counted (lossy)";
   return p;
 }
 

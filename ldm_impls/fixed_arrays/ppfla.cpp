@@ -4,16 +4,19 @@
 #include <algorithm>
 
 #include "harness/gl/bindings.h"
+#include "ldm_impls/common/compute_grid.h"
+#include "ldm_impls/common/post_sort.h"
+#include "ldm_impls/common/structure_counters.h"
 
 namespace ldm {
 
 Ppfla::Ppfla(StructureParams& params) : requested_k_(read_fixed_array_k(params)) {}
 
+// A data table of its own counters, alike in form only to the other structures' (see
+// ldm_impls/common/structure_counters.h).
 std::vector<WorkCounter> Ppfla::work_counters() {
-  std::vector<WorkCounter> counters;
-  for (WorkCounter c : geometry_work_counters("construct")) counters.push_back(std::move(c));
   constexpr WorkOrder kArrival = WorkOrder::ArrivalDependent;
-  const std::vector<WorkCounter> own = {
+  return with_geometry_counters({"construct"}, {
       // shaders/ldm/fixed_arrays/ppfla_build.frag: which entry a fragment takes depends on
       // the order they arrive, how many each pixel fills does not.
       {"construct", "atomic_add", WorkShape::Total, "atomics",
@@ -29,9 +32,7 @@ std::vector<WorkCounter> Ppfla::work_counters() {
        "construct: fragments beyond their pixel's k entries, dropped (a lossy build)"},
       // shaders/ldm/fixed_arrays/ppfla_sort.comp with ldm/common/heap_sort.glsl: the heap
       // sort's steps depend on the order the construct left the entries in.
-      {"sort", "invocations", WorkShape::Total, "invocations",
-       "sort: compute invocations of the sort dispatch (one per pixel, the last group's padding "
-       "included)"},
+      sort_invocations_counter(),
       {"sort", "list_length", WorkShape::Distribution, "entries",
        "sort: entries a pixel's sort ordered (min(count, k); one value per pixel, empty ones "
        "included)"},
@@ -44,9 +45,7 @@ std::vector<WorkCounter> Ppfla::work_counters() {
        "sort: depth comparisons of the heap sort (ldm/common/heap_sort.glsl)", kArrival},
       {"sort", "moves", WorkShape::Total, "moves",
        "sort: entries the heap sort moved (ldm/common/heap_sort.glsl)", kArrival},
-  };
-  counters.insert(counters.end(), own.begin(), own.end());
-  return counters;
+  });
 }
 
 // shaders/ldm/fixed_arrays/ppfla_query.glsl; a query is one ldm_begin or ldm_next. The sorted
@@ -80,11 +79,7 @@ void Ppfla::allocate(const FixedArrayLayout& layout) {
   defines_ = fixed_array_defines(layout_);
   entries_ = GlBuffer("entries", layout_.entry_bytes());
   build_program_ = fragments_->build_program("ldm/fixed_arrays/ppfla_build.frag", defines_);
-  ShaderDefines sort_defines = binding_defines();
-  sort_defines.values.insert(sort_defines.values.end(), defines_.values.begin(),
-                             defines_.values.end());
-  sort_program_ =
-      build_program({{GL_COMPUTE_SHADER, "ldm/fixed_arrays/ppfla_sort.comp", {}}}, sort_defines);
+  sort_program_ = build_compute_program("ldm/fixed_arrays/ppfla_sort.comp", defines_);
   query_defines_changed();
 }
 
@@ -109,13 +104,10 @@ void Ppfla::bind_storage() const {
 }
 
 void Ppfla::sort_every_pixel() const {
-  sort_program_.use();
   bind_storage();
-  // One invocation per pixel in groups of 64, split over x and y (x alone caps at 65535).
-  const uint64_t groups = (layout_.pixels + 63) / 64;
-  const uint64_t gx = std::min<uint64_t>(groups, 32768), gy = (groups + gx - 1) / gx;
-  glDispatchCompute(GLuint(gx), GLuint(gy), 1);
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+  // One invocation per pixel in groups of 64 (local_size_x of ppfla_sort.comp).
+  run_linear_compute(sort_program_, layout_.pixels, 64,
+                     GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
 }
 
 void Ppfla::build(const BuildInputs& in, GpuTimer* timer) {

@@ -2,6 +2,7 @@
 #include "ldm_impls/common/sizing_strategy.h"
 
 #include "harness/gl/bindings.h"
+#include "ldm_impls/common/structure_counters.h"
 #include "ldm_impls/fixed_arrays/ppfla.h"
 
 namespace ldm {
@@ -14,14 +15,14 @@ constexpr uint32_t kEmptyEntry = 0xFFFFFFFFu;
 
 Psppfla::Psppfla(StructureParams& params) : requested_k_(read_fixed_array_k(params)) {}
 
+// A data table of its own counters, alike in form only to the other structures' (see
+// ldm_impls/common/structure_counters.h).
 std::vector<WorkCounter> Psppfla::work_counters() {
-  std::vector<WorkCounter> counters;
-  for (WorkCounter c : geometry_work_counters("construct")) counters.push_back(std::move(c));
   // shaders/ldm/fixed_arrays/psppfla_build.frag. Every walk ends at the first empty entry it
   // meets and every entry ends exactly one walk, so a pixel of c fragments takes
   // 1 + 2 + ... + min(c, k) atomicMin (plus k per fragment dropped) whatever the order; the
   // entries each fragment shifted depend on the order.
-  const std::vector<WorkCounter> own = {
+  return with_geometry_counters({"construct"}, {
       {"construct", "atomic_min", WorkShape::Total, "atomics",
        "construct: atomicMin of the insertion walks (one per entry walked)"},
       {"construct", "bytes_loaded_entries", WorkShape::Total, "bytes",
@@ -42,9 +43,7 @@ std::vector<WorkCounter> Psppfla::work_counters() {
        "construct: overflow counts written by their atomicAdd (previous_frame sizing, a lossy build)"},
       {"construct", "fragments_dropped", WorkShape::Total, "fragments",
        "construct: fragments beyond their pixel's k entries, dropped (a lossy build)"},
-  };
-  counters.insert(counters.end(), own.begin(), own.end());
-  return counters;
+  });
 }
 
 // shaders/ldm/fixed_arrays/psppfla_query.glsl; a query is one ldm_begin or ldm_next.

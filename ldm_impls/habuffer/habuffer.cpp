@@ -7,6 +7,8 @@
 
 #include "harness/gl/bindings.h"
 #include "harness/util/error.h"
+#include "ldm_impls/common/compute_grid.h"
+#include "ldm_impls/common/structure_counters.h"
 #include "ldm_impls/common/uint_reduction.h"
 
 namespace ldm {
@@ -88,14 +90,14 @@ HaBuffer::HaBuffer(StructureParams& params) {
   key_bits_request_ = params.get_choice("key_bits");
 }
 
+// A data table of its own counters, alike in form only to the other structures' (see
+// ldm_impls/common/structure_counters.h).
 std::vector<WorkCounter> HaBuffer::work_counters() {
-  std::vector<WorkCounter> counters;
-  for (WorkCounter c : geometry_work_counters("construct")) counters.push_back(std::move(c));
   // Counted by shaders/ldm/habuffer/ha_build.frag, once per fragment. Every insertion chain
   // depends on what arrived before it (which entry an atomicMax finds), so all but the
   // tickets are arrival-dependent; the table they end in is not (see query_work_counters()).
   constexpr WorkOrder kArrival = WorkOrder::ArrivalDependent;
-  const std::vector<WorkCounter> construct = {
+  return with_geometry_counters({"construct"}, {
       {"construct", "hash_probes", WorkShape::Distribution, "slots",
        "construct: slots one fragment's insertion tried (an atomicMax on the table each), "
        "evicted entries carried on included", kArrival},
@@ -129,9 +131,7 @@ std::vector<WorkCounter> HaBuffer::work_counters() {
       {"construct", "bytes_loaded_ha_offsets", WorkShape::Total, "bytes",
        "construct: offsets o_a read: one per slot tried, one per eviction (the evicted entry's pixel)",
        kArrival},
-  };
-  counters.insert(counters.end(), construct.begin(), construct.end());
-  return counters;
+  });
 }
 
 // Counted by shaders/ldm/habuffer/ha_query.glsl; a query is one ldm_begin or ldm_next. Robin
@@ -155,30 +155,17 @@ std::vector<WorkCounter> HaBuffer::query_work_counters() {
 }
 
 std::vector<AxisSpec> HaBuffer::parameters() {
-  AxisSpec load_factor;
-  load_factor.key = "load_factor";
-  load_factor.kind = AxisKind::Real;
-  load_factor.min = 0.01;
-  load_factor.max = 64.0;
+  AxisSpec load_factor = numeric_parameter("load_factor", AxisKind::Real, 0.01, 64.0, "0.75",
+                                           "fragments per entry",
+                                           "table size |H| = max(N R^2, fragments / load_factor)");
   load_factor.real_is_double = true;
-  load_factor.default_value = "0.75";
-  load_factor.unit = "fragments per entry";
-  load_factor.description = "table size |H| = max(N R^2, fragments / load_factor)";
-  AxisSpec max_age;
-  max_age.key = "max_age";
-  max_age.kind = AxisKind::UInt;
-  max_age.min = 0;
-  max_age.max = 254;
-  max_age.default_value = "254";
-  max_age.unit = "probes";
-  max_age.description = "longest probe sequence; fragments that would need more are dropped and counted";
-  AxisSpec key_bits;
-  key_bits.key = "key_bits";
-  key_bits.kind = AxisKind::Choice;
-  key_bits.choices = {"32", "64", "auto"};
+  const AxisSpec max_age = numeric_parameter(
+      "max_age", AxisKind::UInt, 0, 254, "254", "probes",
+      "longest probe sequence; fragments that would need more are dropped and counted");
   // 32 by default on every device: the records of two devices then compare the same packing.
-  key_bits.default_value = "32";
-  key_bits.description = "key packing: 32 (8-bit age, 24-bit depth), 64 (the exact float; needs 64-bit atomics), auto";
+  const AxisSpec key_bits = choice_parameter(
+      "key_bits", {"32", "64", "auto"}, "32",
+      "key packing: 32 (8-bit age, 24-bit depth), 64 (the exact float; needs 64-bit atomics), auto");
   return {load_factor, max_age, key_bits};
 }
 
@@ -326,11 +313,7 @@ void HaBuffer::allocate_table(uint64_t table_size) {
     guess_defines.set("HA_STOP_TICKET", std::to_string(stop_ticket()) + "u");
     guess_program_ = fragments_->build_program("ldm/habuffer/ha_build.frag", guess_defines);
   }
-  ShaderDefines reduce_defines = binding_defines();
-  reduce_defines.values.insert(reduce_defines.values.end(), defines_.values.begin(),
-                               defines_.values.end());
-  highest_age_program_ =
-      build_program({{GL_COMPUTE_SHADER, "ldm/habuffer/ha_highest_age.comp", {}}}, reduce_defines);
+  highest_age_program_ = build_compute_program("ldm/habuffer/ha_highest_age.comp", defines_);
   query_defines_changed();
 }
 
@@ -355,13 +338,9 @@ uint32_t HaBuffer::read_highest_age_count() const {
   // A scratch word of the read-back, not state of the structure: cleared here directly.
   const uint32_t zero = 0;
   glClearNamedBufferData(age_summary_.id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
-  highest_age_program_.use();
   age_counts_.bind_storage(kStructureBinding0 + 2);
   age_summary_.bind_storage(kStructureBinding0 + 3);
-  const uint64_t groups = (pixels_ + 255) / 256;
-  const uint64_t gx = std::min<uint64_t>(groups, 32768), gy = (groups + gx - 1) / gx;
-  glDispatchCompute(GLuint(gx), GLuint(gy), 1);
-  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  run_linear_compute(highest_age_program_, pixels_, 256, GL_BUFFER_UPDATE_BARRIER_BIT);
   uint32_t highest = 0;
   age_summary_.download(&highest, sizeof highest);
   return highest;

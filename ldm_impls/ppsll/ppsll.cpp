@@ -3,6 +3,7 @@
 #include "harness/gl/bindings.h"
 #include "ldm_impls/common/compute_grid.h"
 #include "ldm_impls/common/post_sort.h"
+#include "ldm_impls/common/structure_counters.h"
 
 namespace ldm {
 
@@ -14,11 +15,10 @@ Ppsll::Ppsll(StructureParams& params) : pool_("ppsll", params) {
   requested_local_ = read_sort_local_param(params);
 }
 
+// A data table of its own counters, alike in form only to the other structures' (see
+// ldm_impls/common/structure_counters.h).
 std::vector<WorkCounter> Ppsll::work_counters() {
-  std::vector<WorkCounter> counters;
-  for (WorkCounter c : geometry_work_counters("construct")) counters.push_back(std::move(c));
-  constexpr WorkOrder kArrival = WorkOrder::ArrivalDependent;
-  const std::vector<WorkCounter> own = {
+  std::vector<WorkCounter> own = {
       // shaders/ldm/ppsll/build.frag: every fragment allocates, stores and pushes one node.
       {"construct", "atomic_add", WorkShape::Total, "atomics",
        "construct: atomic counter increments (PSPPSLL, PPSLL: one node allocation per fragment, "
@@ -29,22 +29,11 @@ std::vector<WorkCounter> Ppsll::work_counters() {
        "construct: PSPPSLL or PPSLL node bytes written: each new node's depth and its next "
        "index (8 bytes per fragment stored; PSPPSLL's rewrites after a lost compare-and-swap "
        "apart)"},
-      // shaders/ldm/ppsll/sort.comp with ldm/common/post_sort.glsl: which nodes it reads and
-      // writes depends only on the lists' lengths; how many comparisons and moves it needs
-      // depends on the order the fragments were pushed in.
-      {"sort", "invocations", WorkShape::Total, "invocations",
-       "sort: compute invocations of the sort dispatch (one per pixel, the last group's padding "
-       "included)"},
-      {"sort", "list_length", WorkShape::Distribution, "entries",
-       "sort: PPSLL or DF-buffer fragments of one pixel's list or range (one value per pixel, "
-       "empty ones included)"},
-      {"sort", "comparisons", WorkShape::Total, "comparisons",
-       "sort: depth comparisons of the sorts (insertion sort in the local array, "
-       "ldm/common/post_sort.glsl; PPSLL's merge sort in place; heap sort in place, "
-       "ldm/common/heap_sort.glsl)", kArrival},
-      {"sort", "moves", WorkShape::Total, "moves",
-       "sort: entries the sorts moved (local-array writes of the insertion sort; nodes PPSLL's "
-       "merge sort relinked; heap_store calls of the heap sort)", kArrival},
+  };
+  // shaders/ldm/ppsll/sort.comp with ldm/common/post_sort.glsl: which nodes it reads and
+  // writes depends only on the lists' lengths; how many comparisons and moves it needs
+  // depends on the order the fragments were pushed in.
+  const std::vector<WorkCounter> sort = post_sort_work_counters({
       {"sort", "bytes_loaded_heads", WorkShape::Total, "bytes", "sort: PPSLL list heads read (4 bytes per pixel)"},
       {"sort", "bytes_stored_heads", WorkShape::Total, "bytes",
        "sort: PPSLL list heads rewritten by the merge sort in place (4 bytes per list longer than local)"},
@@ -55,12 +44,11 @@ std::vector<WorkCounter> Ppsll::work_counters() {
       {"sort", "bytes_stored_nodes", WorkShape::Total, "bytes",
        "sort: PPSLL node bytes written: depths written back, next indices the merge sort relinked"},
       {"sort", "bytes_loaded_nodes_compared", WorkShape::Total, "bytes",
-       "sort: PPSLL depths the merge sort in place read to compare (4 bytes each)", kArrival},
-      {"sort", "atomic_add", WorkShape::Total, "atomics",
-       "sort: atomic counter increments of lists sorted in place (longer than the local array)"},
-  };
-  counters.insert(counters.end(), own.begin(), own.end());
-  return counters;
+       "sort: PPSLL depths the merge sort in place read to compare (4 bytes each)",
+       WorkOrder::ArrivalDependent},
+  });
+  own.insert(own.end(), sort.begin(), sort.end());
+  return with_geometry_counters({"construct"}, own);
 }
 
 std::vector<WorkCounter> Ppsll::query_work_counters() { return ListNodePool::query_work_counters(); }
@@ -80,10 +68,9 @@ void Ppsll::prepare(const BuildInputs& in) {
 void Ppsll::sort(GpuTimer* timer) {
   ScopedSubpass timed(timer, "sort");
   pool_.bind();
-  sort_program_.use();
-  dispatch_linear_groups(groups_for(pool_.heads(), kSortGroupSize));
-  glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_ATOMIC_COUNTER_BARRIER_BIT |
-                  GL_BUFFER_UPDATE_BARRIER_BIT);
+  run_linear_compute(sort_program_, pool_.heads(), kSortGroupSize,
+                     GL_SHADER_STORAGE_BARRIER_BIT | GL_ATOMIC_COUNTER_BARRIER_BIT |
+                         GL_BUFFER_UPDATE_BARRIER_BIT);
 }
 
 void Ppsll::build(const BuildInputs& in, GpuTimer* timer) {

@@ -1,6 +1,7 @@
 #include "ldm_impls/psppsll/psppsll.h"
 
 #include "harness/util/error.h"
+#include "ldm_impls/common/structure_counters.h"
 
 namespace ldm {
 
@@ -8,13 +9,13 @@ Psppsll::Psppsll(StructureParams& params) : pool_("psppsll", params) {
   atomic_reads_ = params.get_bool("atomic_reads");
 }
 
+// A data table of its own counters, alike in form only to the other structures' (see
+// ldm_impls/common/structure_counters.h).
 std::vector<WorkCounter> Psppsll::work_counters() {
-  std::vector<WorkCounter> counters;
-  for (WorkCounter c : geometry_work_counters("construct")) counters.push_back(std::move(c));
   // shaders/ldm/psppsll/build.frag: where an insertion walks, and how often its
   // compare-and-swap loses, depends on the order the fragments arrive.
   constexpr WorkOrder kArrival = WorkOrder::ArrivalDependent;
-  const std::vector<WorkCounter> own = {
+  return with_geometry_counters({"construct"}, {
       {"construct", "atomic_add", WorkShape::Total, "atomics",
        "construct: atomic counter increments (PSPPSLL, PPSLL: one node allocation per fragment, "
        "and PSPPSLL's abandoned insertions)"},
@@ -39,9 +40,7 @@ std::vector<WorkCounter> Psppsll::work_counters() {
       {"construct", "bytes_stored_nodes_relinked", WorkShape::Total, "bytes",
        "construct: PSPPSLL next indices rewritten after a lost compare-and-swap (4 bytes each)",
        kArrival},
-  };
-  counters.insert(counters.end(), own.begin(), own.end());
-  return counters;
+  });
 }
 
 std::vector<WorkCounter> Psppsll::query_work_counters() { return ListNodePool::query_work_counters(); }

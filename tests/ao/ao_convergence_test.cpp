@@ -8,6 +8,7 @@
 #include "harness/passes/ao_pass.h"
 #include "harness/passes/gbuffer_pass.h"
 #include "harness/reference/ao_reference.h"
+#include "support/ao_reference_request.h"
 #include "support/ldm_fixture.h"
 
 namespace ldm {
@@ -65,11 +66,7 @@ double trace_mse(const test::LdmFixture& f, const LdmStructure& structure, const
 // stops falling with N. The interval and plane traces do not search for x's own surface.
 TEST(AoConvergence, IntervalAndPlaneTracesKeepConvergingWhereListing5Plateaus) {
   const Scene scene = load_scene("cornell");
-  AoReferenceRequest request;
-  request.width = request.height = 64;
-  request.spp.spp_per_half = 2048;
-  request.progress = false;
-  const ReferenceResult reference = render_ao_reference(scene, request);
+  const ReferenceResult reference = render_ao_reference(scene, test::ao_reference_request(64, 2048));
   // Listing 5 at the offset it was used with (1 px), the others at 1 px and `plane` also at its
   // default (0.5 px) and without any (it needs none, but then a band of about one LDM pixel
   // along the edges stays unresolved, so with R fixed its error falls more slowly with N: it

@@ -61,13 +61,7 @@ void declare_test_pass() {
   pass.name = "test_ao";
   pass.parameters = [] {
     std::vector<AxisSpec> specs = AmbientOcclusion::parameters();
-    AxisSpec boost;
-    boost.key = "boost";
-    boost.kind = AxisKind::UInt;
-    boost.min = 1;
-    boost.max = 8;
-    boost.default_value = "1";
-    boost.description = "a test pass's parameter";
+    AxisSpec boost = numeric_parameter("boost", AxisKind::UInt, 1, 8, "1", "", "a test pass's parameter");
     specs.push_back(boost);
     return specs;
   };

@@ -15,29 +15,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string write_file(const std::string& dir, const std::string& name, const std::string& text) {
-  const std::string path = (fs::path(dir) / name).string();
-  std::ofstream(path) << text;
-  return path;
-}
-
-// The UserError message of f(), or "" (and a failure) when nothing was thrown.
-template <typename F>
-std::string user_error(F f) {
-  try {
-    f();
-  } catch (const UserError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no UserError thrown";
-  return "";
-}
-
-void expect_contains(const std::string& message, std::initializer_list<std::string> fragments) {
-  for (const auto& fragment : fragments)
-    EXPECT_NE(message.find(fragment), std::string::npos)
-        << "message '" << message << "' lacks '" << fragment << "'";
-}
+using test::expect_contains;
+using test::user_error;
+using test::write_file;
 
 // A scene file with one mesh `name` holding `obj`.
 std::string scene_with_obj(const std::string& dir, const std::string& name, const std::string& obj,

@@ -39,28 +39,9 @@ const fs::path kModels = "/usr/share/assimp/models";
   GTEST_SKIP() << "assimp-testmodels is not installed (" << kModels                        \
                << " is missing): scripts/setup.sh installs it; these tests read its models"
 
-std::string write_file(const std::string& dir, const std::string& name, const std::string& text) {
-  const std::string path = (fs::path(dir) / name).string();
-  std::ofstream(path, std::ios::binary) << text;
-  return path;
-}
-
-template <typename F>
-std::string user_error(F f) {
-  try {
-    f();
-  } catch (const UserError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no UserError thrown";
-  return "";
-}
-
-void expect_contains(const std::string& message, std::initializer_list<std::string> fragments) {
-  for (const auto& fragment : fragments)
-    EXPECT_NE(message.find(fragment), std::string::npos)
-        << "message '" << message << "' lacks '" << fragment << "'";
-}
+using test::expect_contains;
+using test::user_error;
+using test::write_file;
 
 // What Assimp itself makes of the file with its own node-transform step
 // (aiProcess_PreTransformVertices), an independent implementation of what the converter

@@ -13,6 +13,7 @@
 #include "harness/scene/gpu_scene.h"
 #include "harness/scene/scene_loader.h"
 #include "harness/util/error.h"
+#include "support/measurement_request.h"
 #include "support/test_support.h"
 
 namespace ldm {
@@ -120,15 +121,8 @@ TEST(PassRegistry, AoIsRegisteredAndParametersAreChecked) {
 }
 
 TEST(Measurement, KeepsEveryFrameAndSplitsBuildFromThePass) {
-  test::gl_context();
-  MeasurementRequest request;
-  request.structure = "dfbuffer";
+  MeasurementRequest request = test::measurement_request("dfbuffer", 4, 32, 32, 1, 3);
   request.sizing.policy = SizingPolicy::PreviousFrame;  // its read-back is part of the build
-  request.views = 4;
-  request.resolution = 32;
-  request.width = request.height = 32;
-  request.warmup = 1;
-  request.frames = 3;
   int seen = 0;
   request.on_frame = [&](const FrameTimes&) { ++seen; };
   const Measurement m = measure(load_scene("cornell"), request);
@@ -186,13 +180,7 @@ TEST(Measurement, DerivedNormalsAreRecordedInSceneAttributes) {
   const Scene smooth = load_scene((dir / "smooth.obj").string());
   EXPECT_EQ(bare.derived_normal_triangles, bare.mesh.triangle_count());
   EXPECT_EQ(smooth.derived_normal_triangles, 0u);
-  MeasurementRequest request;
-  request.structure = "dfbuffer";
-  request.views = 2;
-  request.resolution = 16;
-  request.width = request.height = 16;
-  request.warmup = 0;
-  request.frames = 1;
+  MeasurementRequest request = test::measurement_request("dfbuffer", 2, 16, 16, 0, 1);
   const Measurement derived = measure(bare, request);
   EXPECT_EQ(derived.status, BuildStatus::Ok) << derived.status_detail;
   EXPECT_EQ(derived.scene_attributes, "position+normal(derived)");
@@ -206,14 +194,8 @@ TEST(Measurement, DerivedNormalsAreRecordedInSceneAttributes) {
 }
 
 TEST(Measurement, AnExternalLoopDecidesHowManyFramesRun) {
-  test::gl_context();
-  MeasurementRequest request;
-  request.structure = "psppsll";
-  request.views = 2;
-  request.resolution = 16;
-  request.width = request.height = 16;
-  request.warmup = 0;
-  request.frames = 100;  // ignored: the loop below decides, as Google Benchmark's does
+  // 100 frames, ignored: the loop below decides, as Google Benchmark's does.
+  MeasurementRequest request = test::measurement_request("psppsll", 2, 16, 16, 0, 100);
   int left = 2;
   request.keep_running = [&] { return left-- > 0; };
   const Measurement m = measure(load_scene("cornell"), request);

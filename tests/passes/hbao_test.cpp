@@ -8,6 +8,8 @@
 #include "harness/reference/ao_reference.h"
 #include "harness/scene/scene_loader.h"
 #include "harness/util/error.h"
+#include "support/hand_gbuffer.h"
+#include "support/pass_run.h"
 #include "support/test_support.h"
 
 namespace ldm {
@@ -17,17 +19,7 @@ constexpr int kSize = 64;
 
 // The HBAO image of `scene` (kSize x kSize) with the given parameters.
 Image hbao_image(const Scene& scene, std::map<std::string, std::string> params) {
-  test::gl_context();
-  StructureParams p(std::move(params), "hbao test");
-  p.declare(Hbao::parameters());
-  Hbao pass(p);
-  p.check("pass hbao");
-  AttributeSet attributes;
-  attributes.normals = true;
-  const GpuScene gpu_scene(scene, attributes);
-  pass.prepare({scene, gpu_scene, nullptr, nullptr, kSize, kSize});
-  pass.render(nullptr);
-  return pass.images().front().image;
+  return test::PassRun<Hbao>("hbao", scene, kSize, kSize, std::move(params)).render();
 }
 
 // Covered pixels (AO > 0: the pass writes 0 for background and at least 1 - 1 = 0 would
@@ -109,21 +101,7 @@ TEST(Hbao, FalloffOnlyLightensAndMatters) {
   EXPECT_GT(lighter, kSize * kSize / 20);
 }
 
-// A hand-made G-buffer: `width` x `height` texels of (position, covered) and normals.
-struct HandGBuffer {
-  int width, height;
-  std::vector<glm::vec4> positions, normals;
-  HandGBuffer(int w, int h) : width(w), height(h), positions(w * h), normals(w * h) {}
-  void set(int x, int y, glm::vec3 p, glm::vec3 n = {0.0f, 0.0f, 1.0f}) {
-    positions[y * width + x] = glm::vec4(p, 1.0f);
-    normals[y * width + x] = glm::vec4(n, 0.0f);
-  }
-  GlTexture2D upload(const std::vector<glm::vec4>& texels) const {
-    GlTexture2D texture(GL_RGBA32F, width, height);
-    glTextureSubImage2D(texture.id(), 0, 0, 0, width, height, GL_RGBA, GL_FLOAT, texels.data());
-    return texture;
-  }
-};
+using test::HandGBuffer;
 
 // The camera at the origin looking down -z; a floor facing it at depth 4 whose pixels are
 // `s` apart; with R = 2 and focal 8 px, R projects to 4 px at depth 4, so S = 4 steps read
@@ -207,58 +185,15 @@ TEST(Hbao, BlurSmoothsWithoutCrossingADepthEdge) {
 }
 
 TEST(Hbao, BlurIsASubpassAndItsTargetsAreCounted) {
-  test::gl_context();
-  const Scene scene = load_scene("cornell");
-  StructureParams p({{"blur", "2"}, {"jitter", "on"}}, "hbao test");
-  p.declare(Hbao::parameters());
-  Hbao pass(p);
-  ASSERT_EQ(pass.subpasses().back().name, "blur");
-  AttributeSet attributes;
-  attributes.normals = true;
-  const GpuScene gpu_scene(scene, attributes);
-  pass.prepare({scene, gpu_scene, nullptr, nullptr, kSize, kSize});
-  GpuTimer timer(TimerSource::FencedWallClock);
-  timer.begin_frame();
-  pass.render(&timer);
-  const FrameTimes times = timer.end_frame();
-  std::vector<std::string> names;
-  for (const auto& [name, ms] : times) names.push_back(name);
-  EXPECT_EQ(names, (std::vector<std::string>{"gbuffer", "hbao", "blur"}));
-  uint64_t total = 0;
-  for (const BufferMemory& b : pass.memory()) total += b.allocated;
-  // Two RGBA32F, a depth and two R32F targets: 16 + 16 + 4 + 4 + 4 bytes a pixel.
-  EXPECT_EQ(total, uint64_t(kSize) * kSize * 44);
-  // The jittered image, blurred, is smoother: covered neighbours differ less than without
-  // blur (pairs with a background pixel are left out: the blur keeps those edges).
-  const Image blurred = pass.images().front().image;
-  const Image raw = hbao_image(scene, {{"jitter", "on"}});
-  auto roughness = [](const Image& image) {
-    double sum = 0;
-    for (int y = 0; y < image.height; ++y)
-      for (int x = 1; x < image.width; ++x) {
-        if (image.at(x, y, 0) == 0.0f || image.at(x - 1, y, 0) == 0.0f) continue;
-        const double d = image.at(x, y, 0) - image.at(x - 1, y, 0);
-        sum += d * d;
-      }
-    return sum;
-  };
-  EXPECT_LT(roughness(blurred), 0.5 * roughness(raw));
+  test::expect_smoothing_subpass<Hbao>("hbao", load_scene("cornell"), kSize, "blur",
+                                       {"gbuffer", "hbao", "blur"});
 }
 
 TEST(Hbao, ParametersAreChecked) {
-  for (const auto& [key, value] : std::vector<std::pair<std::string, std::string>>{
-           {"directions", "0"}, {"steps", "513"}, {"angle_bias", "-0.1"}, {"jitter", "yes"},
-           {"d_max", "0"}, {"trace", "plane"}, {"blur", "17"}}) {
-    EXPECT_THROW(make_pass("hbao", StructureParams({{key, value}}, "--pass hbao")), UserError)
-        << key << "=" << value;
-  }
-  const auto pass = make_pass("hbao", StructureParams(std::map<std::string, std::string>{{"steps", "4"}}));
-  EXPECT_FALSE(pass->requirements().needs_structure);
-  const Scene scene = load_scene("cornell");
-  bool found = false;
-  for (const auto& [key, value] : pass->describe(scene))
-    if (key == "hbao_steps") found = std::get<int64_t>(value) == 4;
-  EXPECT_TRUE(found);
+  test::expect_parameters_checked("hbao",
+                                  {{"directions", "0"}, {"steps", "513"}, {"angle_bias", "-0.1"},
+                                   {"jitter", "yes"}, {"d_max", "0"}, {"trace", "plane"}, {"blur", "17"}},
+                                  "steps", 4, "hbao_steps", false);
 }
 
 }  // namespace

@@ -8,6 +8,8 @@
 #include "harness/reference/ao_reference.h"
 #include "harness/scene/scene_loader.h"
 #include "harness/util/error.h"
+#include "support/ao_reference_request.h"
+#include "support/pass_run.h"
 #include "support/test_support.h"
 
 namespace ldm {
@@ -15,21 +17,16 @@ namespace {
 
 // The RTAO image of `scene` (size x size) with the given parameters.
 Image rtao_image(const Scene& scene, int size, std::map<std::string, std::string> params) {
-  test::gl_context();  // the peer measurement uploads the scene; rtao itself draws nothing
-  StructureParams p(std::move(params), "rtao test");
-  p.declare(Rtao::parameters());
-  Rtao pass(p);
-  p.check("pass rtao");
-  const GpuScene gpu_scene(scene, AttributeSet{});
-  pass.prepare({scene, gpu_scene, nullptr, nullptr, size, size});
+  // The peer measurement uploads the scene; rtao itself draws nothing.
+  test::PassRun<Rtao> run("rtao", scene, size, size, std::move(params), AttributeSet{});
   GpuTimer timer(TimerSource::CpuWallClock);
   timer.begin_frame();
-  pass.render(&timer);
+  const Image image = run.render(&timer);
   const FrameTimes times = timer.end_frame();
   EXPECT_EQ(times.size(), 1u);
   EXPECT_EQ(times.front().first, "rtao");
   EXPECT_GT(times.front().second, 0.0) << "CPU wall time of the trace";
-  return pass.images().front().image;
+  return image;
 }
 
 double mean_of(const Image& image) {
@@ -76,15 +73,12 @@ TEST(Rtao, SamplesAreIndependentOfTheReferenceHalves) {
   const Scene scene = load_scene("cornell");
   const int size = 32;
   const uint32_t spp = 4;
-  AoReferenceRequest request;
-  request.width = request.height = size;
-  request.spp.spp_per_half = spp;
+  AoReferenceRequest request = test::ao_reference_request(size, spp);
   request.seed = 0x5254414f;  // RTAO's default seed
   // The reference's own random sampler, RTAO's: the ratios above assume both halves' samples
   // are independent draws of RTAO's kind (the default scrambled Sobol halves are far less
   // noisy, and cannot coincide with RTAO's random numbers).
   request.sampler = AoSampler::Random;
-  request.progress = false;
   const ReferenceResult reference = render_ao_reference(scene, request);
   const Image rtao = rtao_image(scene, size, {{"spp", std::to_string(spp)}});
   const double ratio = mean_squared_error(rtao, reference.image) / reference.noise_mse;
@@ -96,11 +90,7 @@ TEST(Rtao, SamplesAreIndependentOfTheReferenceHalves) {
 TEST(Rtao, ErrorFallsAsOneOverSpp) {
   const Scene scene = load_scene("cornell");
   const int size = 32;
-  AoReferenceRequest request;
-  request.width = request.height = size;
-  request.spp.spp_per_half = 512;
-  request.progress = false;
-  const ReferenceResult reference = render_ao_reference(scene, request);
+  const ReferenceResult reference = render_ao_reference(scene, test::ao_reference_request(size, 512));
   const double mse1 = mean_squared_error(rtao_image(scene, size, {{"spp", "1"}}), reference.image);
   const double mse4 = mean_squared_error(rtao_image(scene, size, {{"spp", "4"}}), reference.image);
   EXPECT_GT(mse1 / mse4, 3.0);
@@ -108,19 +98,10 @@ TEST(Rtao, ErrorFallsAsOneOverSpp) {
 }
 
 TEST(Rtao, ParametersAreCheckedAndItRunsOnTheCpu) {
-  for (const auto& [key, value] : std::vector<std::pair<std::string, std::string>>{
-           {"spp", "0"}, {"spp", "65537"}, {"threads", "-1"}, {"visibility", "half"},
-           {"d_max", "0"}, {"trace", "plane"}}) {
-    EXPECT_THROW(make_pass("rtao", StructureParams({{key, value}}, "--pass rtao")), UserError)
-        << key << "=" << value;
-  }
-  const auto pass = make_pass("rtao", StructureParams(std::map<std::string, std::string>{{"spp", "8"}}));
-  EXPECT_FALSE(pass->requirements().needs_structure);
-  EXPECT_TRUE(pass->requirements().runs_on_cpu);
-  bool found = false;
-  for (const auto& [key, value] : pass->describe(load_scene("cornell")))
-    if (key == "rtao_spp") found = std::get<int64_t>(value) == 8;
-  EXPECT_TRUE(found);
+  test::expect_parameters_checked("rtao",
+                                  {{"spp", "0"}, {"spp", "65537"}, {"threads", "-1"},
+                                   {"visibility", "half"}, {"d_max", "0"}, {"trace", "plane"}},
+                                  "spp", 8, "rtao_spp", true);
 }
 
 }  // namespace

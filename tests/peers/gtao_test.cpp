@@ -13,6 +13,8 @@
 #include "harness/scene/scene_loader.h"
 #include "harness/util/error.h"
 #include "support/ao_closed_forms.h"
+#include "support/hand_gbuffer.h"
+#include "support/pass_run.h"
 #include "support/test_support.h"
 
 namespace ldm {
@@ -22,17 +24,7 @@ constexpr double kPi = std::numbers::pi;
 
 // The GTAO image of `scene` (size x size) with the given parameters.
 Image gtao_image(const Scene& scene, int size, std::map<std::string, std::string> params) {
-  test::gl_context();
-  StructureParams p(std::move(params), "gtao test");
-  p.declare(Gtao::parameters());
-  Gtao pass(p);
-  p.check("pass gtao");
-  AttributeSet attributes;
-  attributes.normals = true;
-  const GpuScene gpu_scene(scene, attributes);
-  pass.prepare({scene, gpu_scene, nullptr, nullptr, size, size});
-  pass.render(nullptr);
-  return pass.images().front().image;
+  return test::PassRun<Gtao>("gtao", scene, size, size, std::move(params)).render();
 }
 
 // Where pixel (x, y)'s primary ray (y = 0 the top row) meets the floor y = 0.
@@ -186,21 +178,7 @@ TEST(Gtao, OpenPlaneIsUnoccluded) {
   EXPECT_NEAR(sum / covered, 1.0, worst / 4) << "but unbiased over the rotations";
 }
 
-// A hand-made G-buffer: `width` x `height` texels of (position, covered) and normals.
-struct HandGBuffer {
-  int width, height;
-  std::vector<glm::vec4> positions, normals;
-  HandGBuffer(int w, int h) : width(w), height(h), positions(w * h), normals(w * h) {}
-  void set(int x, int y, glm::vec3 p, glm::vec3 n = {0.0f, 0.0f, 1.0f}) {
-    positions[y * width + x] = glm::vec4(p, 1.0f);
-    normals[y * width + x] = glm::vec4(n, 0.0f);
-  }
-  GlTexture2D upload(const std::vector<glm::vec4>& texels) const {
-    GlTexture2D texture(GL_RGBA32F, width, height);
-    glTextureSubImage2D(texture.id(), 0, 0, 0, width, height, GL_RGBA, GL_FLOAT, texels.data());
-    return texture;
-  }
-};
+using test::HandGBuffer;
 
 // The camera at the origin looking down -z; x at pixel (1, 1) is the point (0, 0, -4) of a
 // floor facing the camera (n = v = +z, so gamma = 0 in every slice). One slice without
@@ -261,59 +239,17 @@ TEST(Gtao, AttenuationAndThicknessMatchAHandComputedCase) {
 }
 
 TEST(Gtao, DenoiseIsASubpassAndItsTargetsAreCounted) {
-  test::gl_context();
-  const Scene scene = load_scene("cornell");
-  StructureParams p({{"denoise", "2"}, {"jitter", "on"}}, "gtao test");
-  p.declare(Gtao::parameters());
-  Gtao pass(p);
-  ASSERT_EQ(pass.subpasses().back().name, "denoise");
-  AttributeSet attributes;
-  attributes.normals = true;
-  const GpuScene gpu_scene(scene, attributes);
-  const int size = 64;
-  pass.prepare({scene, gpu_scene, nullptr, nullptr, size, size});
-  GpuTimer timer(TimerSource::FencedWallClock);
-  timer.begin_frame();
-  pass.render(&timer);
-  const FrameTimes times = timer.end_frame();
-  std::vector<std::string> names;
-  for (const auto& [name, ms] : times) names.push_back(name);
-  EXPECT_EQ(names, (std::vector<std::string>{"gbuffer", "gtao", "denoise"}));
-  uint64_t total = 0;
-  for (const BufferMemory& b : pass.memory()) total += b.allocated;
-  // Two RGBA32F, a depth and two R32F targets: 16 + 16 + 4 + 4 + 4 bytes a pixel.
-  EXPECT_EQ(total, uint64_t(size) * size * 44);
-  // The jittered image, denoised, is smoother: covered neighbours differ less.
-  const Image denoised = pass.images().front().image;
-  const Image raw = gtao_image(scene, size, {{"jitter", "on"}});
-  auto roughness = [](const Image& image) {
-    double sum = 0;
-    for (int y = 0; y < image.height; ++y)
-      for (int x = 1; x < image.width; ++x) {
-        if (image.at(x, y, 0) == 0.0f || image.at(x - 1, y, 0) == 0.0f) continue;
-        const double d = image.at(x, y, 0) - image.at(x - 1, y, 0);
-        sum += d * d;
-      }
-    return sum;
-  };
-  EXPECT_LT(roughness(denoised), 0.5 * roughness(raw));
+  test::expect_smoothing_subpass<Gtao>("gtao", load_scene("cornell"), 64, "denoise",
+                                       {"gbuffer", "gtao", "denoise"});
 }
 
 TEST(Gtao, ParametersAreChecked) {
-  for (const auto& [key, value] : std::vector<std::pair<std::string, std::string>>{
-           {"slices", "0"}, {"steps", "129"}, {"radius", "0"}, {"falloff", "1.5"},
-           {"thickness", "-0.1"}, {"step_power", "5"}, {"jitter", "yes"}, {"estimator", "max"},
-           {"denoise", "17"}, {"attenuation", "none"}, {"d_max", "0"}, {"trace", "plane"}, {"spp", "4"}}) {
-    EXPECT_THROW(make_pass("gtao", StructureParams({{key, value}}, "--pass gtao")), UserError)
-        << key << "=" << value;
-  }
-  const auto pass = make_pass("gtao", StructureParams(std::map<std::string, std::string>{{"steps", "4"}}));
-  EXPECT_FALSE(pass->requirements().needs_structure);
-  EXPECT_FALSE(pass->requirements().runs_on_cpu);
-  bool found = false;
-  for (const auto& [key, value] : pass->describe(load_scene("cornell")))
-    if (key == "gtao_steps") found = std::get<int64_t>(value) == 4;
-  EXPECT_TRUE(found);
+  test::expect_parameters_checked(
+      "gtao",
+      {{"slices", "0"}, {"steps", "129"}, {"radius", "0"}, {"falloff", "1.5"}, {"thickness", "-0.1"},
+       {"step_power", "5"}, {"jitter", "yes"}, {"estimator", "max"}, {"denoise", "17"},
+       {"attenuation", "none"}, {"d_max", "0"}, {"trace", "plane"}, {"spp", "4"}},
+      "steps", 4, "gtao_steps", false);
 }
 
 }  // namespace

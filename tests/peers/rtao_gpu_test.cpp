@@ -19,7 +19,9 @@
 #include "harness/reference/pcg32.h"
 #include "harness/reference/embree_scene.h"
 #include "harness/scene/camera.h"
+#include "support/ao_reference_request.h"
 #include "support/ao_closed_forms.h"
+#include "support/pass_run.h"
 #include "support/test_support.h"
 
 namespace ldm {
@@ -33,28 +35,14 @@ struct GpuRun {
 };
 
 GpuRun rtao_gpu_run(const Scene& scene, int size, std::map<std::string, std::string> params) {
-  test::gl_context();
-  StructureParams p(std::move(params), "rtao_gpu test");
-  p.declare(RtaoGpu::parameters());
-  RtaoGpu pass(p);
-  p.check("pass rtao_gpu");
-  AttributeSet attributes;
-  attributes.normals = true;
-  const GpuScene gpu_scene(scene, attributes);
-  pass.prepare({scene, gpu_scene, nullptr, nullptr, size, size});
-  pass.render(nullptr);
-  return {pass.images().front().image, pass.work(), pass.problems(), pass.read_triangle_ids()};
+  test::PassRun<RtaoGpu> run("rtao_gpu", scene, size, size, std::move(params));
+  const Image image = run.render();
+  RtaoGpu& pass = *run.pass;
+  return {image, pass.work(), pass.problems(), pass.read_triangle_ids()};
 }
 
 Image rtao_cpu_image(const Scene& scene, int size, std::map<std::string, std::string> params) {
-  StructureParams p(std::move(params), "rtao test");
-  p.declare(Rtao::parameters());
-  Rtao pass(p);
-  p.check("pass rtao");
-  const GpuScene gpu_scene(scene, AttributeSet{});
-  pass.prepare({scene, gpu_scene, nullptr, nullptr, size, size});
-  pass.render(nullptr);
-  return pass.images().front().image;
+  return test::PassRun<Rtao>("rtao", scene, size, size, std::move(params), AttributeSet{}).render();
 }
 
 // The triangle each pixel's primary ray hits in Embree (the reference's and the CPU RTAO's
@@ -159,11 +147,8 @@ TEST(RtaoGpu, AgreesWithTheCpuRtaoWithinTheirNoise) {
   for (uint32_t k : {1u, 4u}) {
     const GpuRun gpu = rtao_gpu_run(scene, size, {{"spp", std::to_string(k)}});  // its own seed
     const Image cpu = rtao_cpu_image(scene, size, {{"spp", std::to_string(k)}});
-    AoReferenceRequest request;
-    request.width = request.height = size;
-    request.spp.spp_per_half = k;
+    AoReferenceRequest request = test::ao_reference_request(size, k);
     request.sampler = AoSampler::Random;
-    request.progress = false;
     const ReferenceResult halves = render_ao_reference(scene, request);
     const MeanSquare between = mean_square(gpu.image, cpu);
     const MeanSquare expected = mean_square(halves.half_a, halves.half_b);
@@ -182,11 +167,7 @@ TEST(RtaoGpu, ErrorBeyondTheReferenceNoiseFallsAsOneOverK) {
   for (const char* name : {"cornell", "atrium"}) {
     const Scene scene = load_scene(name);
     const int size = 64;
-    AoReferenceRequest request;
-    request.width = request.height = size;
-    request.spp.spp_per_half = 1024;
-    request.progress = false;
-    const ReferenceResult reference = render_ao_reference(scene, request);
+    const ReferenceResult reference = render_ao_reference(scene, test::ao_reference_request(size, 1024));
     std::vector<MeanSquare> mse;
     const std::vector<uint32_t> ks = {1, 4, 16, 64};
     for (uint32_t k : ks)
@@ -204,7 +185,9 @@ TEST(RtaoGpu, ErrorBeyondTheReferenceNoiseFallsAsOneOverK) {
 
 // The mean of n samples of V in [0, 1] lies within 5 standard errors sqrt(AO (1 - AO) / n) of
 // the exact AO in every pixel, and the mean deviation over the pixels within 5 of its own
-// (as tests/reference/ao_analytic_test.cpp checks the reference).
+// (as tests/reference/ao_analytic_test.cpp checks the reference). Not shared with that
+// check: it holds the reference to float rounding (1e-6, exact where the variance is 0),
+// this one the GPU's arithmetic to 1e-5, over at least half the pixels instead of 9 in 10.
 void expect_converged(const Image& image, uint32_t samples,
                       const std::function<std::optional<double>(int, int)>& expected) {
   double deviation = 0, variance = 0;
@@ -371,32 +354,18 @@ TEST(RtaoGpu, RefusesABvhBeyondTheStorageBlock) {
 }
 
 TEST(RtaoGpu, ParametersMemoryAndBvhColumns) {
-  for (const auto& [key, value] : std::vector<std::pair<std::string, std::string>>{
-           {"spp", "0"}, {"spp", "65537"}, {"seed", "-1"}, {"visibility", "half"},
-           {"d_max", "0"}, {"threads", "2"}, {"trace", "plane"}, {"primary", "none"}}) {
-    EXPECT_THROW(make_pass("rtao_gpu", StructureParams({{key, value}}, "--pass rtao_gpu")), UserError)
-        << key << "=" << value;
-  }
-  const auto made = make_pass("rtao_gpu", StructureParams(std::map<std::string, std::string>{{"spp", "8"}}));
-  EXPECT_FALSE(made->requirements().needs_structure);
-  EXPECT_FALSE(made->requirements().runs_on_cpu) << "timed on the GPU like every GL pass";
-  bool found = false;
-  for (const auto& [key, value] : made->describe(load_scene("cornell")))
-    if (key == "rtao_gpu_spp") found = std::get<int64_t>(value) == 8;
-  EXPECT_TRUE(found);
+  // Timed on the GPU like every GL pass (not runs_on_cpu).
+  test::expect_parameters_checked("rtao_gpu",
+                                  {{"spp", "0"}, {"spp", "65537"}, {"seed", "-1"}, {"visibility", "half"},
+                                   {"d_max", "0"}, {"threads", "2"}, {"trace", "plane"}, {"primary", "none"}},
+                                  "spp", 8, "rtao_gpu_spp", false);
 
-  test::gl_context();
   const Scene scene = load_scene("cornell");
-  StructureParams p(std::map<std::string, std::string>{{"spp", "2"}}, "rtao_gpu test");
-  p.declare(RtaoGpu::parameters());
-  RtaoGpu pass(p);
-  AttributeSet attributes;
-  attributes.normals = true;
-  const GpuScene gpu_scene(scene, attributes);
-  pass.prepare({scene, gpu_scene, nullptr, nullptr, 32, 32});
+  test::PassRun<RtaoGpu> run("rtao_gpu", scene, 32, 32, {{"spp", "2"}});
+  RtaoGpu& pass = *run.pass;
   GpuTimer timer(TimerSource::FencedWallClock);
   timer.begin_frame();
-  pass.render(&timer);
+  run.render(&timer);
   std::vector<std::string> names;
   for (const auto& [name, ms] : timer.end_frame()) names.push_back(name);
   EXPECT_EQ(names, (std::vector<std::string>{"rtao_gpu_primary", "rtao_gpu"}));

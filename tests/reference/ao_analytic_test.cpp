@@ -18,6 +18,7 @@
 #include "harness/reference/embree_scene.h"
 #include "harness/scene/generators.h"
 #include "support/ao_closed_forms.h"
+#include "support/ao_reference_request.h"
 
 namespace ldm {
 namespace {
@@ -102,11 +103,8 @@ float ray_offset(const Scene& scene) {
 }
 
 ReferenceResult render(const Scene& scene) {
-  AoReferenceRequest request;
-  request.width = request.height = kSize;
-  request.spp.spp_per_half = kSppPerHalf;
+  AoReferenceRequest request = test::ao_reference_request(kSize, kSppPerHalf);
   request.threads = 2;
-  request.progress = false;
   return render_ao_reference(scene, request);
 }
 

@@ -6,6 +6,7 @@
 #include "harness/reference/ao_reference.h"
 #include "harness/scene/generators.h"
 #include "harness/util/error.h"
+#include "support/ao_reference_request.h"
 
 namespace ldm {
 namespace {
@@ -14,13 +15,10 @@ Scene cornell() { return generate_scene("cornell", nlohmann::json::object(), "te
 
 AoReferenceRequest small_request(uint32_t spp_per_half, int threads = 2, uint64_t seed = 1,
                                  AoSampler sampler = AoSampler::Sobol) {
-  AoReferenceRequest request;
+  AoReferenceRequest request = test::ao_reference_request(32, spp_per_half);
   request.sampler = sampler;
-  request.width = request.height = 32;
-  request.spp.spp_per_half = spp_per_half;
   request.seed = seed;
   request.threads = threads;
-  request.progress = false;
   return request;
 }
 

@@ -12,11 +12,7 @@
 namespace ldm {
 namespace {
 
-std::string write_file(const std::string& dir, const std::string& name, const std::string& text) {
-  const std::string path = (std::filesystem::path(dir) / name).string();
-  std::ofstream(path) << text;
-  return path;
-}
+using test::write_file;
 
 // Runs `f`, expects a UserError whose message contains every fragment.
 template <typename F>

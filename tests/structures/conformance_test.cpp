@@ -22,6 +22,7 @@
 #include "harness/measuring/measurement.h"
 #include "ldm_impls/common/build_health.h"
 #include "structures/structure_test_support.h"
+#include "support/measurement_request.h"
 
 namespace ldm {
 namespace {
@@ -183,14 +184,7 @@ TEST_P(StructureConformance, AoEqualsAoThroughPsppsll) {
 }
 
 TEST_P(StructureConformance, TheSharedMeasurementJudgesADefaultBuildOk) {
-  test::gl_context();
-  MeasurementRequest request;
-  request.structure = structure();
-  request.views = 4;
-  request.resolution = 16;
-  request.width = request.height = 16;
-  request.warmup = 1;
-  request.frames = 2;
+  MeasurementRequest request = test::measurement_request(structure(), 4, 16, 16, 1, 2);
   const Measurement m = measure(load_scene("cornell"), request);
   EXPECT_EQ(m.status, BuildStatus::Ok) << m.status_detail;
   EXPECT_EQ(m.last_build.fragments_stored, m.census.fragments);

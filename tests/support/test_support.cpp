@@ -66,6 +66,18 @@ std::string make_temp_dir(const std::string& prefix) {
   return dir.string();
 }
 
+std::string write_file(const std::string& dir, const std::string& name, const std::string& text) {
+  const std::string path = (std::filesystem::path(dir) / name).string();
+  std::ofstream(path, std::ios::binary) << text;
+  return path;
+}
+
+void expect_contains(const std::string& message, std::initializer_list<std::string> fragments) {
+  for (const auto& fragment : fragments)
+    EXPECT_NE(message.find(fragment), std::string::npos)
+        << "message '" << message << "' lacks '" << fragment << "'";
+}
+
 Outcome run_shell(const std::string& command) {
   Outcome o;
   o.status = run_command(command, &o.output);

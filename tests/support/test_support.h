@@ -1,9 +1,13 @@
 #pragma once
 // Shared by every test suite: one headless GL context per test process, and small helpers.
+#include <initializer_list>
 #include <memory>
 #include <string>
 
+#include <gtest/gtest.h>
+
 #include "harness/gl/egl_context.h"
+#include "harness/util/error.h"
 
 namespace ldm::test {
 
@@ -28,5 +32,23 @@ std::string read_text(const std::string& path);
 
 // A fresh empty directory under the system temp dir, removed when the test process ends.
 std::string make_temp_dir(const std::string& prefix);
+
+// Writes `text` to dir/name (as bytes); returns the path.
+std::string write_file(const std::string& dir, const std::string& name, const std::string& text);
+
+// The UserError message of f(), or "" (and a failure) when nothing was thrown.
+template <typename F>
+std::string user_error(F f) {
+  try {
+    f();
+  } catch (const UserError& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no UserError thrown";
+  return "";
+}
+
+// Expects `message` to contain every fragment.
+void expect_contains(const std::string& message, std::initializer_list<std::string> fragments);
 
 }  // namespace ldm::test

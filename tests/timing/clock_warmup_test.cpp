@@ -10,6 +10,7 @@
 #include "harness/measuring/measurement.h"
 #include "harness/measure/clock_warmup.h"
 #include "harness/scene/scene_loader.h"
+#include "support/measurement_request.h"
 #include "support/test_support.h"
 
 namespace ldm {
@@ -97,14 +98,7 @@ TEST(ClockWarmup, DoesNothingWhereTheClockCannotBeReadOrWhenOff) {
 }
 
 TEST(ClockWarmup, MeasureRunsTheAddedFramesAsWarmUpAndSamplesAroundTheMeasuredOnes) {
-  test::gl_context();
-  MeasurementRequest request;
-  request.structure = "psppsll";
-  request.views = 2;
-  request.resolution = 16;
-  request.width = request.height = 16;
-  request.warmup = 1;
-  request.frames = 3;
+  MeasurementRequest request = test::measurement_request("psppsll", 2, 16, 16, 1, 3);
   std::vector<double> clocks = {345, 345, 1980};
   size_t reads = 0;
   request.read_gpu_clock = [&]() -> std::optional<GpuClockReading> {

@@ -25,11 +25,7 @@ using test::Outcome;
 const fs::path kModels = "/usr/share/assimp/models";
 const fs::path kScenes = fs::path(LDM_TEST_SOURCE_DIR) / ".." / "scenes";
 
-std::string write_file(const fs::path& dir, const std::string& name, const std::string& text) {
-  const fs::path path = dir / name;
-  std::ofstream(path, std::ios::binary) << text;
-  return path.string();
-}
+using test::write_file;
 
 // Runs `ldmbench run ARGS --out <fresh>`; returns the records (and the output on failure).
 struct RunResult {

@@ -113,6 +113,11 @@ static const char* fd_name(int fd, char* buffer, size_t size) {
 }
 
 static int is_tracked(int fd) { return fd >= 0 && fd < MAX_FD && tracked_fd[fd].load(); }
+// Whether `call` on a tracked descriptor is failed (counted and logged as fault() does).
+static int fd_fault(int fd, const char* call) {
+  char name[PATH_MAX];
+  return is_tracked(fd) && fault(call, fd_name(fd, name, sizeof name));
+}
 static void track(int fd, int on) {
   if (fd >= 0 && fd < MAX_FD) tracked_fd[fd].store(static_cast<unsigned char>(on));
 }
@@ -145,46 +150,29 @@ static int open_common(int dirfd, const char* path, int flags, mode_t mode, int 
   return fd;
 }
 
-int open(const char* path, int flags, ...) {
-  mode_t mode = 0;
-  if ((flags & O_CREAT) != 0 || (flags & O_TMPFILE) == O_TMPFILE) {
-    va_list args;
-    va_start(args, flags);
-    mode = static_cast<mode_t>(va_arg(args, int));
-    va_end(args);
-  }
-  return open_common(AT_FDCWD, path, flags, mode, 0);
+// The mode argument, which the open calls take only when they create a file.
+static mode_t creation_mode(int flags, va_list args) {
+  if ((flags & O_CREAT) == 0 && (flags & O_TMPFILE) != O_TMPFILE) return 0;
+  return static_cast<mode_t>(va_arg(args, int));
 }
-int open64(const char* path, int flags, ...) {
-  mode_t mode = 0;
-  if ((flags & O_CREAT) != 0 || (flags & O_TMPFILE) == O_TMPFILE) {
-    va_list args;
-    va_start(args, flags);
-    mode = static_cast<mode_t>(va_arg(args, int));
-    va_end(args);
-  }
+int open(const char* path, int flags, ...) {
+  va_list args;
+  va_start(args, flags);
+  const mode_t mode = creation_mode(flags, args);
+  va_end(args);
   return open_common(AT_FDCWD, path, flags, mode, 0);
 }
 int openat(int dirfd, const char* path, int flags, ...) {
-  mode_t mode = 0;
-  if ((flags & O_CREAT) != 0 || (flags & O_TMPFILE) == O_TMPFILE) {
-    va_list args;
-    va_start(args, flags);
-    mode = static_cast<mode_t>(va_arg(args, int));
-    va_end(args);
-  }
+  va_list args;
+  va_start(args, flags);
+  const mode_t mode = creation_mode(flags, args);
+  va_end(args);
   return open_common(dirfd, path, flags, mode, 1);
 }
-int openat64(int dirfd, const char* path, int flags, ...) {
-  mode_t mode = 0;
-  if ((flags & O_CREAT) != 0 || (flags & O_TMPFILE) == O_TMPFILE) {
-    va_list args;
-    va_start(args, flags);
-    mode = static_cast<mode_t>(va_arg(args, int));
-    va_end(args);
-  }
-  return open_common(dirfd, path, flags, mode, 1);
-}
+// The 64-bit names do what the plain ones do (both open through the real open and openat,
+// the same calls on a 64-bit ABI): the same functions under a second symbol.
+int open64(const char* path, int flags, ...) __attribute__((alias("open")));
+int openat64(int dirfd, const char* path, int flags, ...) __attribute__((alias("openat")));
 int creat(const char* path, mode_t mode) { return open_common(AT_FDCWD, path, O_CREAT | O_WRONLY | O_TRUNC, mode, 0); }
 int creat64(const char* path, mode_t mode) { return open_common(AT_FDCWD, path, O_CREAT | O_WRONLY | O_TRUNC, mode, 0); }
 
@@ -243,38 +231,32 @@ int fclose(FILE* f) {
 
 ssize_t write(int fd, const void* data, size_t n) {
   REAL(write);
-  char name[PATH_MAX];
-  if (is_tracked(fd) && fault("write", fd_name(fd, name, sizeof name))) return -1;
+  if (fd_fault(fd, "write")) return -1;
   return real_write(fd, data, n);
 }
 ssize_t pwrite(int fd, const void* data, size_t n, off_t offset) {
   REAL(pwrite);
-  char name[PATH_MAX];
-  if (is_tracked(fd) && fault("pwrite", fd_name(fd, name, sizeof name))) return -1;
+  if (fd_fault(fd, "pwrite")) return -1;
   return real_pwrite(fd, data, n, offset);
 }
 ssize_t pwrite64(int fd, const void* data, size_t n, off64_t offset) {
   REAL(pwrite64);
-  char name[PATH_MAX];
-  if (is_tracked(fd) && fault("pwrite", fd_name(fd, name, sizeof name))) return -1;
+  if (fd_fault(fd, "pwrite")) return -1;
   return real_pwrite64(fd, data, n, offset);
 }
 ssize_t writev(int fd, const struct iovec* iov, int count) {
   REAL(writev);
-  char name[PATH_MAX];
-  if (is_tracked(fd) && fault("writev", fd_name(fd, name, sizeof name))) return -1;
+  if (fd_fault(fd, "writev")) return -1;
   return real_writev(fd, iov, count);
 }
 int fsync(int fd) {
   REAL(fsync);
-  char name[PATH_MAX];
-  if (is_tracked(fd) && fault("fsync", fd_name(fd, name, sizeof name))) return -1;
+  if (fd_fault(fd, "fsync")) return -1;
   return real_fsync(fd);
 }
 int fdatasync(int fd) {
   REAL(fdatasync);
-  char name[PATH_MAX];
-  if (is_tracked(fd) && fault("fdatasync", fd_name(fd, name, sizeof name))) return -1;
+  if (fd_fault(fd, "fdatasync")) return -1;
   return real_fdatasync(fd);
 }
 // A disk that stays full still lets a file shrink (that frees space): once the sticky
@@ -285,22 +267,21 @@ static int shrink_passes(int fd, off64_t size) {
   if (!(sticky && fault_errno == ENOSPC && fault_at > 0 && calls.load() >= fault_at)) return 0;
   return fstat(fd, &st) == 0 && size <= st.st_size;
 }
+// Whether an ftruncate of a tracked descriptor is failed.
+static int truncate_fault(int fd, off64_t size) {
+  if (!is_tracked(fd)) return 0;
+  const int passes = shrink_passes(fd, size);
+  char name[PATH_MAX];
+  return fault("ftruncate", fd_name(fd, name, sizeof name)) && !passes;
+}
 int ftruncate(int fd, off_t size) {
   REAL(ftruncate);
-  char name[PATH_MAX];
-  if (is_tracked(fd)) {
-    const int passes = shrink_passes(fd, size);
-    if (fault("ftruncate", fd_name(fd, name, sizeof name)) && !passes) return -1;
-  }
+  if (truncate_fault(fd, size)) return -1;
   return real_ftruncate(fd, size);
 }
 int ftruncate64(int fd, off64_t size) {
   REAL(ftruncate64);
-  char name[PATH_MAX];
-  if (is_tracked(fd)) {
-    const int passes = shrink_passes(fd, size);
-    if (fault("ftruncate", fd_name(fd, name, sizeof name)) && !passes) return -1;
-  }
+  if (truncate_fault(fd, size)) return -1;
   return real_ftruncate64(fd, size);
 }
 int rename(const char* from, const char* to) {
