@@ -23,6 +23,9 @@ enum class ColumnKind { Number, Text, Flag, Mixed };
 enum class VariesBetweenRuns { No, Yes };
 // Which way is better: what the console's table and the report show beside a label (↓ ↑).
 enum class Better { Lower = -1, Neither = 0, Higher = 1 };
+// Whether a value is summed in a fixed order, or in the order that arrival decides where a
+// pass blends or adds in that order (ColumnSpec::summed_in_arrival_order).
+enum class Summation { FixedOrder, ArrivalOrder };
 
 // One column of the record schema, declared once by the code that writes it (the harness's
 // own: harness/records/harness_columns.h; a pass's: its columns()). Record::set takes the
@@ -47,7 +50,7 @@ struct ColumnSpec {
   ColumnSpec() = default;
   ColumnSpec(std::string group_, std::string name_, std::string unit_, std::string description_,
              ColumnKind kind_ = ColumnKind::Mixed, VariesBetweenRuns varies = VariesBetweenRuns::No,
-             Better better_ = Better::Neither)
+             Better better_ = Better::Neither, Summation summation = Summation::FixedOrder)
       : group(std::move(group_)),
         name(std::move(name_)),
         unit(std::move(unit_)),
@@ -55,14 +58,10 @@ struct ColumnSpec {
         kind(kind_),
         varies_between_runs(varies == VariesBetweenRuns::Yes),
         deterministic(varies == VariesBetweenRuns::No),
-        better(better_) {}
+        better(better_),
+        summed_in_arrival_order(summation == Summation::ArrivalOrder) {}
 };
 using Column = ColumnSpec;
-// `column`, declared as summed in arrival order.
-inline ColumnSpec summed_in_arrival_order(ColumnSpec column) {
-  column.summed_in_arrival_order = true;
-  return column;
-}
 const char* column_kind_name(ColumnKind kind);  // number, text, flag, mixed
 
 const std::vector<ColumnSpec>& harness_record_columns();

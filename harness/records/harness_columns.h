@@ -410,51 +410,51 @@ inline const Column kRefRayOffset{"accuracy", "ref_ray_offset", "scene units",
 inline const Column kRefRayOffsetOk{"accuracy", "ref_ray_offset_ok", "",
     "false when that offset exceeds 1e-3 of d_max or of the scene's radius (the reference may be biased)",
     ColumnKind::Flag, VariesBetweenRuns::No, Better::Neither};
-inline const Column kMse = summed_in_arrival_order({"accuracy", "mse", "",
+inline const Column kMse{"accuracy", "mse", "",
     "mean squared error against the reference, averaged over channels",
-    ColumnKind::Number, VariesBetweenRuns::No, Better::Lower});
-inline const Column kNrmse = summed_in_arrival_order({"accuracy", "nrmse", "",
+    ColumnKind::Number, VariesBetweenRuns::No, Better::Lower, Summation::ArrivalOrder};
+inline const Column kNrmse{"accuracy", "nrmse", "",
     "sqrt(MSE) over the reference's range",
-    ColumnKind::Number, VariesBetweenRuns::No, Better::Lower});
-inline const Column kPsnr = summed_in_arrival_order({"accuracy", "psnr", "dB",
+    ColumnKind::Number, VariesBetweenRuns::No, Better::Lower, Summation::ArrivalOrder};
+inline const Column kPsnr{"accuracy", "psnr", "dB",
     "peak signal-to-noise ratio with the reference's peak",
-    ColumnKind::Number, VariesBetweenRuns::No, Better::Neither});
-inline const Column kMssim = summed_in_arrival_order({"accuracy", "mssim", "",
+    ColumnKind::Number, VariesBetweenRuns::No, Better::Neither, Summation::ArrivalOrder};
+inline const Column kMssim{"accuracy", "mssim", "",
     "mean SSIM (Wang et al. 2004, skimage's Gaussian variant)",
-    ColumnKind::Number, VariesBetweenRuns::No, Better::Higher});
-inline const Column kMseCovered = summed_in_arrival_order({"accuracy", "mse_covered", "",
+    ColumnKind::Number, VariesBetweenRuns::No, Better::Higher, Summation::ArrivalOrder};
+inline const Column kMseCovered{"accuracy", "mse_covered", "",
     "mse over the covered pixels alone (covered_pixel_fraction's: where the camera sees a surface), not diluted by the background",
-    ColumnKind::Number, VariesBetweenRuns::No, Better::Lower});
-inline const Column kNrmseCovered = summed_in_arrival_order({"accuracy", "nrmse_covered", "",
+    ColumnKind::Number, VariesBetweenRuns::No, Better::Lower, Summation::ArrivalOrder};
+inline const Column kNrmseCovered{"accuracy", "nrmse_covered", "",
     "sqrt(mse_covered) over the reference's range on the covered pixels",
-    ColumnKind::Number, VariesBetweenRuns::No, Better::Lower});
-inline const Column kMssimCovered = summed_in_arrival_order({"accuracy", "mssim_covered", "",
+    ColumnKind::Number, VariesBetweenRuns::No, Better::Lower, Summation::ArrivalOrder};
+inline const Column kMssimCovered{"accuracy", "mssim_covered", "",
     "mean of the SSIM map over the covered pixels (inside mssim's 5-pixel crop)",
-    ColumnKind::Number, VariesBetweenRuns::No, Better::Higher});
+    ColumnKind::Number, VariesBetweenRuns::No, Better::Higher, Summation::ArrivalOrder};
 inline const Column kSsimExposure{"accuracy", "ssim_exposure", "",
     "exposure scale applied before SSIM (1 for AO)",
     ColumnKind::Number, VariesBetweenRuns::No, Better::Neither};
-inline const Column kMseOverNoise = summed_in_arrival_order({"accuracy", "mse_over_noise", "",
+inline const Column kMseOverNoise{"accuracy", "mse_over_noise", "",
     "mse over ref_noise_mse: how far the error stands above the reference's noise",
-    ColumnKind::Number, VariesBetweenRuns::No, Better::Lower});
-inline const Column kBias = summed_in_arrival_order({"accuracy", "bias", "",
+    ColumnKind::Number, VariesBetweenRuns::No, Better::Lower, Summation::ArrivalOrder};
+inline const Column kBias{"accuracy", "bias", "",
     "mean of image - reference over every pixel and channel (the error's systematic part; bias^2 is the MSE averaging cannot remove)",
-    ColumnKind::Number, VariesBetweenRuns::No, Better::Neither});
-inline const Column kBiasShare = summed_in_arrival_order({"accuracy", "bias_share", "",
+    ColumnKind::Number, VariesBetweenRuns::No, Better::Neither, Summation::ArrivalOrder};
+inline const Column kBiasShare{"accuracy", "bias_share", "",
     "bias^2 / mse: the share of the MSE that is the mean offset",
-    ColumnKind::Number, VariesBetweenRuns::No, Better::Neither});
-inline const Column kMeanRatio = summed_in_arrival_order({"accuracy", "mean_ratio", "",
+    ColumnKind::Number, VariesBetweenRuns::No, Better::Neither, Summation::ArrivalOrder};
+inline const Column kMeanRatio{"accuracy", "mean_ratio", "",
     "mean of the image over the mean of the reference (1: the same energy in the image)",
-    ColumnKind::Number, VariesBetweenRuns::No, Better::Neither});
-inline const Column kMeanRatioSe = summed_in_arrival_order({"accuracy", "mean_ratio_se", "",
+    ColumnKind::Number, VariesBetweenRuns::No, Better::Neither, Summation::ArrivalOrder};
+inline const Column kMeanRatioSe{"accuracy", "mean_ratio_se", "",
     "standard error of mean_ratio from the reference's noise (ref_noise_mse over the pixels and channels, as if independent)",
-    ColumnKind::Number, VariesBetweenRuns::No, Better::Neither});
+    ColumnKind::Number, VariesBetweenRuns::No, Better::Neither, Summation::ArrivalOrder};
 inline const Column kMetricsError{"accuracy", "metrics_error", "",
     "why the image was not measured (NaN or infinity)",
     ColumnKind::Text, VariesBetweenRuns::No, Better::Neither};
-inline const Column kMultiColumnPattern = summed_in_arrival_order({"accuracy", "multi_<column>", "",
+inline const Column kMultiColumnPattern{"accuracy", "multi_<column>", "",
     "indirect: each accuracy and reference-image column (ref_*, mse, nrmse, psnr, mssim, ssim_exposure, mse_over_noise, reference_exr, ssim_map_png, diff_png...) against the multi-bounce reference; the unprefixed ones are against the single-bounce reference",
-    ColumnKind::Mixed, VariesBetweenRuns::No, Better::Neither});
+    ColumnKind::Mixed, VariesBetweenRuns::No, Better::Neither, Summation::ArrivalOrder};
 inline const Column kImageExr{"images", "image_exr", "",
     "the pass's image, linear EXR (path relative to the records)",
     ColumnKind::Text, VariesBetweenRuns::No, Better::Neither};
@@ -476,8 +476,8 @@ inline const Column kSsimMapPng{"images", "ssim_map_png", "",
 inline const Column kDiffPng{"images", "diff_png", "",
     "absolute difference to the reference as a heat map (EXR beside it)",
     ColumnKind::Text, VariesBetweenRuns::No, Better::Neither};
-inline const Column kDiffPngMax = summed_in_arrival_order({"images", "diff_png_max", "",
+inline const Column kDiffPngMax{"images", "diff_png_max", "",
     "the difference that maps to the top of the heat map",
-    ColumnKind::Number, VariesBetweenRuns::No, Better::Neither});
+    ColumnKind::Number, VariesBetweenRuns::No, Better::Neither, Summation::ArrivalOrder};
 
 }  // namespace ldm::columns

@@ -222,13 +222,18 @@ TEST_F(Axes, AnAxisDeclaredInATestReachesTheRecordColumnItNames) {
 // as the axis's own column and as what the pass read, with nothing on the way naming it.
 TEST_F(Axes, AnAxisDeclaredInATestReachesThePassThatReadsItAndTheRecord) {
   test::gl_context();
-  RunSettings settings = parsed({"--test-gain", "2.5", "-N", "4", "-R", "16"});
-  settings.passes = {"test_gain_ao"};
-  settings.width = settings.height = 32;
-  settings.frames = 1;
-  settings.warmup = 0;
-  settings.reference.enabled = false;
-  settings.write_images = false;
+  // The smallest measurement of the test pass: no reference, no images, one frame.
+  const auto measured_quickly = [](std::vector<std::string> args) {
+    RunSettings settings = parsed(std::move(args));
+    settings.passes = {"test_gain_ao"};
+    settings.width = settings.height = 32;
+    settings.frames = 1;
+    settings.warmup = 0;
+    settings.reference.enabled = false;
+    settings.write_images = false;
+    return settings;
+  };
+  const RunSettings settings = measured_quickly({"--test-gain", "2.5", "-N", "4", "-R", "16"});
   const auto configs = expand_configurations(settings);
   ASSERT_EQ(configs.size(), 1u);
   const Scene scene = load_scene("cornell");
@@ -244,13 +249,7 @@ TEST_F(Axes, AnAxisDeclaredInATestReachesThePassThatReadsItAndTheRecord) {
   EXPECT_EQ(std::get<double>(*read), 2.5);
 
   // A configuration without the axis: the pass reads nothing, and writes nothing.
-  RunSettings plain = parsed({"-N", "4", "-R", "16"});
-  plain.passes = settings.passes;
-  plain.width = plain.height = 32;
-  plain.frames = 1;
-  plain.warmup = 0;
-  plain.reference.enabled = false;
-  plain.write_images = false;
+  const RunSettings plain = measured_quickly({"-N", "4", "-R", "16"});
   const auto plain_configs = expand_configurations(plain);
   ASSERT_EQ(plain_configs.size(), 1u);
   const Record without = measure_configuration(scene, plain_configs.front(), plain,
