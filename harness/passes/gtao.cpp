@@ -47,25 +47,14 @@ std::vector<AxisSpec> Gtao::parameters() {
           choice("jitter", {"off", "on"}, "on", "per-pixel slice rotation and step offset (4x4 Bayer pattern)"),
           choice("estimator", {"mean", "normalized"}, "normalized", "mean over the slices (the paper) or normalized by their open hemispheres"),
           choice("attenuation", {"reference", "binary"}, "reference", "occluder weight: the reference's 1 - V(r), or 1 within R (the engines' binary horizon, faded by falloff)"),
-          numeric("denoise", AxisKind::UInt, 0, 16, "0", "pixels", "cross-bilateral denoise radius (0: none)"),
+          numeric("denoise", AxisKind::UInt, 0, 16, "0", "pixels", "cross-bilateral denoise radius after the AO, timed as denoise (0: none)"),
           ao_pass_parameter(AoAxis::DMax), ao_pass_parameter(AoAxis::Visibility)};
 }
 
-// Its own columns after the AO settings': a data table, alike in form only to the other
-// passes'.
+// The AO settings' columns and the AO range; each of its parameters declares its own column
+// (pass_columns()).
 std::vector<ColumnSpec> Gtao::columns() {
-  return ao_pass_columns(false, {
-      {"pass", "gtao_slices", "", "GTAO: slice planes through the view vector per pixel (--param gtao:slices=)"},
-      {"pass", "gtao_steps", "", "GTAO: horizon-search samples per side of a slice (--param gtao:steps=)"},
-      {"pass", "gtao_radius", "d_max", "GTAO: search radius R as a multiple of d_max (--param gtao:radius=)"},
-      {"pass", "gtao_falloff", "", "GTAO: fraction of R over which an occluder's weight fades to 0 at R (0: none; --param gtao:falloff=)"},
-      {"pass", "gtao_thickness", "", "GTAO: thickness heuristic beta, how far a sample below the horizon pulls it back (0: height field; --param gtao:thickness=)"},
-      {"pass", "gtao_step_power", "", "GTAO: sample distances R * u^power (--param gtao:step_power=)"},
-      {"pass", "gtao_jitter", "", "GTAO: off, or on (per-pixel slice rotation and step offset, 4x4 Bayer pattern)"},
-      {"pass", "gtao_estimator", "", "GTAO: mean (the paper's mean over slices) or normalized (over the slices' open hemispheres)"},
-      {"pass", "gtao_attenuation", "", "GTAO: reference (each horizon rise weighted by the reference's 1 - V(r)) or binary (1 within R, faded by gtao_falloff: the engines' horizon)"},
-      {"pass", "gtao_denoise", "pixels", "GTAO: radius of the cross-bilateral denoise, timed as denoise (0: none; --param gtao:denoise=)"},
-  }, true);
+  return ao_pass_columns(false, {}, true);
 }
 
 // A data table of the pass's own counters, alike in form only to the other passes' and

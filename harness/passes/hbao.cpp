@@ -23,28 +23,22 @@ Hbao::Hbao(StructureParams& params) {
 }
 
 std::vector<AxisSpec> Hbao::parameters() {
-  return {numeric_parameter("directions", AxisKind::UInt, 1, 256, "8", "directions", "directions sampled per pixel",
+  return {numeric_parameter("directions", AxisKind::UInt, 1, 256, "8", "directions", "N_HBAO screen-space directions sampled per pixel",
                             "hbao_directions"),
-          numeric_parameter("steps", AxisKind::UInt, 1, 512, "8", "steps", "ray-marching steps per direction, within d_max",
+          numeric_parameter("steps", AxisKind::UInt, 1, 512, "8", "steps", "S_HBAO ray-marching steps per direction, out to d_max",
                             "hbao_steps"),
           numeric_parameter("angle_bias", AxisKind::Real, 0.0, 1.5, "0.1", "radians",
                             "horizon angle bias (ignores tangent-plane occluders)", "hbao_angle_bias"),
           choice_parameter("jitter", {"off", "on"}, "off", "per-pixel rotation of the directions", "hbao_jitter"),
-          numeric_parameter("blur", AxisKind::UInt, 0, 16, "0", "pixels", "cross-bilateral blur radius (0: none)",
+          numeric_parameter("blur", AxisKind::UInt, 0, 16, "0", "pixels", "cross-bilateral blur radius after the AO, timed as blur (0: none)",
                             "hbao_blur"),
           ao_pass_parameter(AoAxis::DMax), ao_pass_parameter(AoAxis::Visibility)};
 }
 
-// Its own columns after the AO settings': a data table, alike in form only to the other
-// passes'.
+// The AO settings' columns and the AO range; each of its parameters declares its own column
+// (pass_columns()).
 std::vector<ColumnSpec> Hbao::columns() {
-  return ao_pass_columns(false, {
-      {"pass", "hbao_directions", "", "HBAO: N_HBAO screen-space directions per pixel (--param hbao:directions=)"},
-      {"pass", "hbao_steps", "", "HBAO: S_HBAO ray-marching steps per direction, out to d_max (--param hbao:steps=)"},
-      {"pass", "hbao_angle_bias", "radians", "HBAO: bias added to the tangent angle (--param hbao:angle_bias=)"},
-      {"pass", "hbao_jitter", "", "HBAO: off, or on (per-pixel rotation and step offset from a tiled 4x4 random table)"},
-      {"pass", "hbao_blur", "pixels", "HBAO: radius of the cross-bilateral blur after the AO, timed as blur (0: none; --param hbao:blur=)"},
-  }, true);
+  return ao_pass_columns(false, {}, true);
 }
 
 // A data table of the pass's own counters, alike in form only to the other passes' and

@@ -58,9 +58,9 @@ std::vector<AxisSpec> IndirectLighting::parameters() {
   budget.real_is_double = true;
   return {real("s", 1e-6, 1e6, "4", "", "", "splat_scale", "splat footprint scale s (1: one light texel's beam)"),
           real("a", 0, 1e6, "", "a = s (the thesis's choice)", "", "topological_bias",
-               "topological bias a of the splat kernel"),
+               "topological bias a of the splat kernel: its cut off the photon's tangent plane (default: a = s)"),
           real("t_foot", 1e-30, largest, "", "off (no footprint test)", "scene units", "footprint_threshold",
-               "T_foot: photons whose footprint s |D x| exceeds it are culled"),
+               "T_foot: photons whose footprint s |D x| (max norm) exceeds it are culled (inf: off)"),
           real("depth_threshold", 0, largest, "", "3 LDM pixels", "scene units", "",
                "a photon's hit must lie within this distance of the camera G-buffer's depth to splat"),
           emission, r_light, capacity, budget,
@@ -124,11 +124,6 @@ std::vector<ColumnSpec> IndirectLighting::columns() {
   std::vector<ColumnSpec> columns = {
       {"pass", "normal_offset_pixels", "LDM pixels", "normal offset of thesis §4.4.2 (after --normal-offset)"},
       {"pass", "trace", "", "AO trace variant: listing5, interval or plane (after --trace)"},
-      {"pass", "r_light", "pixels", "indirect: R_light, the side of the light's G-buffer (one primary photon per texel in the cone; --param indirect:r_light=)"},
-      {"pass", "splat_scale", "", "indirect: s, the footprint scale (1: a splat covers one light texel's beam; --param indirect:s=)"},
-      {"pass", "topological_bias", "", "indirect: a, the kernel's cut off the photon's tangent plane (a = s unless --param indirect:a=)"},
-      {"pass", "emission", "", "indirect: how a primary photon's reflected flux is split among its N secondaries: thesis (|cos| 2/N each, a quadrature) or normalized (|cos| / their sum: exactly rho Phi1; --param indirect:emission=)"},
-      {"pass", "footprint_threshold", "scene units", "indirect: T_foot, photons whose s * D x exceeds it (max norm) are culled; inf: off (--param indirect:t_foot=)"},
       {"pass", "depth_threshold", "scene units", "indirect: tolerance of the photons' depth test against the camera G-buffer (default 3 LDM pixels; --param indirect:depth_threshold=)"},
       {"pass", "photons_primary", "photons", "indirect: light texels inside the cone that hit a surface (primary photons)"},
       {"pass", "photons_primary_degenerate", "photons", "indirect: primary photons whose transfer to the hit was degenerate (grazing), culled"},

@@ -189,8 +189,10 @@ std::vector<std::string> pass_names();
 // The parameters a pass declares (its --param PASS:KEY=VALUE and the AO axes it reads),
 // owner set; throws UserError for an unknown name.
 std::vector<AxisSpec> pass_parameters(const std::string& name);
-// The record columns a pass declares (harness/records/columns.h).
+// The record columns a pass declares (harness/records/columns.h): first its own parameters'
+// (each parameter with a column declares it: parameter_column()), then its columns().
 std::vector<ColumnSpec> pass_columns(const std::string& name);
+ColumnSpec parameter_column(const AxisSpec& parameter);
 // The work counters a pass declares (none for a pass that counts nothing).
 std::vector<WorkCounter> pass_work_counters(const std::string& name);
 // The sub-passes in which a pass reads the structure (PassRegistration::query_subpasses).

@@ -38,7 +38,29 @@ std::vector<std::string> pass_names() { return registry_names(registry()); }
 
 std::vector<AxisSpec> pass_parameters(const std::string& name) { return registry_parameters(entry(name)); }
 
-std::vector<ColumnSpec> pass_columns(const std::string& name) { return entry(name).columns(); }
+// A parameter's column, declared by the parameter itself: its unit, its description and the
+// option that sets it, so that the pass's columns() need not (and must not) repeat them.
+ColumnSpec parameter_column(const AxisSpec& parameter) {
+  const ColumnKind kind = parameter.kind == AxisKind::UInt || parameter.kind == AxisKind::Real ? ColumnKind::Number
+                          : parameter.kind == AxisKind::Bool                                   ? ColumnKind::Flag
+                                                                                                : ColumnKind::Text;
+  std::string choices;
+  for (const std::string& choice : parameter.choices) choices += (choices.empty() ? "; one of " : ", ") + choice;
+  return {"pass", parameter.column, parameter.unit,
+          parameter.owner + ": " + parameter.description + " (--param " + parameter.owner + ":" + parameter.key + "=" +
+              choices + ")",
+          kind};
+}
+
+std::vector<ColumnSpec> pass_columns(const std::string& name) {
+  std::vector<ColumnSpec> columns;
+  for (const AxisSpec& parameter : pass_parameters(name))
+    // The AO axes the AO passes share (their pass_parameter versions) are the AO settings' columns
+    // (ao_setting_columns(): the value in effect, the scene's where not given).
+    if (!parameter.column.empty() && parameter.pass_parameter.empty()) columns.push_back(parameter_column(parameter));
+  for (ColumnSpec& column : entry(name).columns()) columns.push_back(std::move(column));
+  return columns;
+}
 
 std::vector<std::string> pass_query_subpasses(const std::string& name) { return entry(name).query_subpasses; }
 

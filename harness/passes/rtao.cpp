@@ -46,9 +46,6 @@ std::vector<AxisSpec> Rtao::parameters() {
 // passes'.
 std::vector<ColumnSpec> Rtao::columns() {
   return ao_pass_columns(false, {
-      {"pass", "rtao_spp", "samples", "RTAO: AO rays per pixel of the Embree CPU tracer (--param rtao:spp=)"},
-      {"pass", "rtao_seed", "", "RTAO: seed of its random stream (a pass index no reference uses: independent of the reference's halves)"},
-      {"pass", "rtao_threads", "threads", "RTAO: CPU worker threads that traced (--param rtao:threads=, 0 = all cores)"},
       {"pass", "rtao_bvh_ms", "ms", "RTAO: wall time of the Embree BVH build, once before the frames (static scene; not in frame)",
        ColumnKind::Number, VariesBetweenRuns::Yes},
   }, false);

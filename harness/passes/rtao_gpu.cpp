@@ -111,9 +111,6 @@ std::vector<AxisSpec> RtaoGpu::parameters() {
 // passes'.
 std::vector<ColumnSpec> RtaoGpu::columns() {
   return ao_pass_columns(false, {
-      {"pass", "rtao_gpu_spp", "samples", "GPU RTAO: AO rays per pixel k (--param rtao_gpu:spp=)"},
-      {"pass", "rtao_gpu_seed", "", "GPU RTAO: seed of its random stream (the CPU RTAO's numbers for the same seed; independent of the reference's halves)"},
-      {"pass", "rtao_gpu_primary", "", "GPU RTAO: trace (each pixel's point from a primary ray through the BVH, as the reference finds it) or raster (the rasterised G-buffer)"},
       {"pass", "rtao_gpu_bvh_ms", "ms", "GPU RTAO: CPU wall time of the BVH build (Embree's rtcBuildBVH and the flattening), once before the frames (static scene; not in frame)",
        ColumnKind::Number, VariesBetweenRuns::Yes},
       {"pass", "rtao_gpu_bvh_upload_ms", "ms", "GPU RTAO: wall time of uploading the BVH to storage buffers, once before the frames (not in frame)",

@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "harness/passes/pass.h"
 #include "harness/settings/record_schema.h"
 #include "support/test_support.h"
 
@@ -81,6 +82,28 @@ TEST(Columns, PatternsMatchOnlyTheirOwnColumns) {
   EXPECT_EQ(find_column("bytes_used")->name, "bytes_used");  // exact before patterns
   EXPECT_EQ(find_column("_ms_median"), nullptr);              // the placeholder is not empty
   EXPECT_EQ(find_column("no_such_column"), nullptr);
+}
+
+// A pass parameter with a record column declares that column itself (its unit, description and
+// option): the pass's columns() must not declare it again, so that the two cannot disagree.
+TEST(Columns, APassParametersColumnIsDeclaredOnceByTheParameter) {
+  size_t parameter_columns = 0;
+  for (const std::string& pass : pass_names()) {
+    std::map<std::string, int> declared;
+    for (const ColumnSpec& c : pass_columns(pass)) ++declared[c.name];
+    for (const auto& [name, count] : declared) EXPECT_EQ(count, 1) << pass << " declares " << name << " twice";
+    for (const AxisSpec& parameter : pass_parameters(pass)) {
+      if (parameter.column.empty() || !parameter.pass_parameter.empty()) continue;  // the AO settings'
+      ++parameter_columns;
+      const ColumnSpec* column = find_column(parameter.column);
+      ASSERT_NE(column, nullptr) << parameter.column;
+      EXPECT_EQ(column->unit, parameter.unit) << parameter.column;
+      EXPECT_NE(column->description.find(parameter.description), std::string::npos) << parameter.column;
+      EXPECT_NE(column->description.find("--param " + pass + ":" + parameter.key + "="), std::string::npos)
+          << parameter.column;
+    }
+  }
+  EXPECT_GE(parameter_columns, 20u);  // HBAO's, GTAO's, both RTAOs', the indirect pass's
 }
 
 // A small sweep with a lossy configuration and the reference on: every column of its
