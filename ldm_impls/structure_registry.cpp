@@ -2,7 +2,7 @@
 #include <functional>
 
 #include "harness/util/error.h"
-#include "harness/util/named_registry.h"
+#include "harness/axes/named_registry.h"
 #include "ldm_impls/ldm_structure.h"
 #include "ldm_impls/dfbuffer/dfbuffer.h"
 #include "ldm_impls/fixed_arrays/ppfla.h"

@@ -11,7 +11,7 @@
 #include "harness/passes/rtao.h"
 #include "harness/passes/rtao_gpu.h"
 #include "harness/util/error.h"
-#include "harness/util/named_registry.h"
+#include "harness/axes/named_registry.h"
 
 namespace ldm {
 namespace {
