@@ -13,7 +13,7 @@ namespace ldm {
 using namespace columns;
 
 void append_status_detail(Record& r, const std::string& text) {
-  const RecordValue* detail = r.get("status_detail");
+  const RecordValue* detail = r.get(kStatusDetail.name);
   const std::string before = detail ? std::get<std::string>(*detail) : "";
   if (before.find(text) != std::string::npos) return;
   r.set(kStatusDetail, before.empty() ? text : before + "; " + text);
