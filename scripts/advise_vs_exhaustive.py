@@ -27,7 +27,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "advise"))
 
 from ldmadvise.measure import VERIFY, measurement_of, read_records  # noqa: E402
-from ldmadvise.search import YES, Goal, choose_best, error_tied, pareto_front, time_tied  # noqa: E402
+from ldmadvise.search import NO, YES, Goal, choose_best, error_tied, pareto_front, time_tied  # noqa: E402
 from ldmadvise.space import candidate_assignments, load_space, sweep_file  # noqa: E402
 
 STRUCTURES = ["psppsll", "ppsll", "dfbuffer", "habuffer", "ppfla", "psppfla"]
@@ -126,6 +126,45 @@ def best_within(rows, goal):
     return (choose_best(goal, within, lambda k: ok[k]) if within else None), ok
 
 
+def refutation(rows, result, goal):
+    """Why this exhaustive run refutes advise's answer, or None when it cannot.
+
+    An exhaustive run of one repetition per configuration cannot tell whether a configuration
+    whose interval straddles the budget is within it (its verdict is MAYBE): its own best is the
+    least error among those *surely* within. advise measures such configurations again with
+    repetitions (issue 34). So its answer stands against this run when the run cannot show it
+    wrong: the answer is not surely over the budgets here, and nothing surely within them has
+    less error beyond the reference's noise band. That is the run's best, a configuration tied
+    with it on error, or one better on error that the run could not place on either side of
+    the budget line (a tie across the line)."""
+    rec = result.get("recommended")
+    best, ok = best_within(rows, goal)
+    if rec is None:
+        return None if best is None else f"no answer, while {best} is surely within the budgets"
+    m = ok.get(rec)
+    if m is None:
+        return "not measured within the memory budget by this run"
+    if goal.verdict(m) == NO:
+        return f"surely over the budgets here ({m.time:.3g} ms [{m.time_low:.3g}, {m.time_high:.3g}])"
+    if best is not None and best != rec and not error_tied(m, ok[best]) and ok[best].error < m.error:
+        return f"{best} is surely within the budgets with less error ({ok[best].error:.4g} against {m.error:.4g})"
+    return None
+
+
+def how_it_stands(rows, result, goal):
+    """'best', 'tied on error', 'across the budget line' or 'refuted: why', for the table."""
+    why = refutation(rows, result, goal)
+    if why:
+        return "refuted: " + why
+    rec = result.get("recommended")
+    best, ok = best_within(rows, goal)
+    if rec == best:
+        return "best"
+    if best is not None and rec in ok and error_tied(ok[rec], ok[best]):
+        return "tied on error"
+    return "across the budget line" if rec is not None else "no answer (nothing surely within)"
+
+
 def exhaustive_runs_agree(rows, rows_again, goal):
     """Whether two exhaustive runs give the same answer: the same configuration, or two whose
     errors are tied in both runs (the error does not depend on the run; the time does)."""
@@ -172,12 +211,13 @@ def main():
              f"Space `{os.path.basename(a.space)}`, {a.image_size} images, references capped at "
              f"{a.reference_max_spp} samples per pixel per half (both sides).", "",
              "| scene | budget | exhaustive: configs, wall s | advise: measured, wall s | ratio | "
-             "recommended | on front (or tied) | = best of exhaustive run 1 (or tied) | "
-             "= best of exhaustive run 2 (or tied) | an exhaustive best advise names as a tie or "
-             "across the budget line | the two exhaustive runs agree |",
-             "|---|---|---|---|---|---|---|---|---|---|---|"]
+             "recommended | against exhaustive run 1 | against exhaustive run 2 | on front (or tied) | "
+             "= best of exhaustive run 1 (or tied) | = best of exhaustive run 2 (or tied) | an exhaustive "
+             "best advise names as a tie or across the budget line | the two exhaustive runs agree |",
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     failures = []
     agreements = []
+    strictly_best = 0
     for scene in scenes:
         base = os.path.join(a.out, label_of(scene))
         rows, ex_seconds = exhaustive(a, scene, os.path.join(base, "exhaustive"))
@@ -213,24 +253,36 @@ def main():
                      exhaustive_runs_agree=runs_agree, same_answer_either_run=same,
                      exhaustive_best_named_by_advise=named)
             entry["advise"].append(c)
-            passed = (c.get("on_front_or_tied") or c_again.get("on_front_or_tied")) and same and ratio <= 1 / 3
+            # The issue's test: the answer is the exhaustive best or tied with it, in both runs; a
+            # tie includes one across the budget line that a run of one repetition cannot resolve.
+            stands = [how_it_stands(rows, result, goal), how_it_stands(rows_again, result, goal)]
+            c.update(against_run_1=stands[0], against_run_2=stands[1])
+            strictly_best += bool(c.get("same_answer") and c_again.get("same_answer"))
+            passed = not any(x.startswith("refuted") for x in stands) and ratio <= 1 / 3
             if not passed:
                 failures.append(f"{scene} {budget}")
             btext = ", ".join(f"{k.replace('budget_', '')} {v}" for k, v in budget.items())
             front = front_text(c) if c.get("on_front_or_tied") or not c_again.get("on_front_or_tied") \
                 else "in the second run: " + front_text(c_again)
             lines.append(f"| {label_of(scene)} | {btext} | {len(rows)}, {ex_seconds:.0f} | {c['measured']}, {seconds:.0f} | "
-                         f"{ratio:.2f} | {c['recommended']} | {front} | "
+                         f"{ratio:.2f} | {c['recommended']} | {stands[0]} | {stands[1]} | {front} | "
                          f"{answer_text(c)} | {answer_text(c_again)} | {', '.join(named) or '-'} | "
                          f"{'yes' if runs_agree else 'no'} |")
         report["scenes"][label_of(scene)] = entry
     agreed = sum(agreements)
     report["exhaustive_runs_agree"] = {"questions": len(agreements), "agree": agreed}
+    report["best_of_both_runs"] = strictly_best
     lines += ["", f"The two exhaustive runs (the same sweep in two processes, minutes apart) agree on "
                   f"the best within the budgets in {agreed} of {len(agreements)} questions (the same "
-                  f"configuration, or two whose errors are tied in both runs). A question passes when "
-                  f"advise's answer is the best of either exhaustive run or tied with it, is on that "
-                  f"run's front (or tied), and costs at most a third of one exhaustive sweep.",
+                  f"configuration, or two whose errors are tied in both runs). advise's answer is the "
+                  f"best of both runs, or tied with it on error, in {strictly_best} of {len(agreements)}. "
+                  f"A question passes when neither exhaustive run refutes advise's answer and advise "
+                  f"costs at most a third of one exhaustive sweep. A run refutes it when it measured the "
+                  f"answer surely over the budgets, or a configuration surely within them with less "
+                  f"error beyond the reference's noise. Otherwise the answer is the run's best, tied "
+                  f"with it on error, or across the budget line: less error, and an interval that "
+                  f"straddles the budget in that run (one repetition cannot place it; advise measured "
+                  f"it again with repetitions and found it surely within).",
               "", "Measured counts advise's stage measurements (a configuration measured at two levels "
                   "counts twice). Ratio: advise's wall time over the first exhaustive sweep's, each one "
                   "command timed end to end with its own reference cache (the second exhaustive run "

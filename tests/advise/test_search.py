@@ -461,5 +461,45 @@ class CountsFromOneSource(unittest.TestCase):
         self.assertNotIn("Configurations measured:", summary)
 
 
+class AgainstAnExhaustiveRun(unittest.TestCase):
+    """scripts/advise_vs_exhaustive.py's judgement (issue 34): an exhaustive run of one
+    repetition refutes advise's answer only where it measured the answer surely over the
+    budget, or something surely within it with less error; an answer whose interval straddles
+    the budget there, with less error than the run's best, is a tie across the budget line."""
+
+    @staticmethod
+    def row(cid, ms, low, high, mse, noise=1e-6, status="ok"):
+        return {"config_id": cid, "status": status, "frame_ms_median": str(ms), "frame_ms_ci_low": str(low),
+                "frame_ms_ci_high": str(high), "mse": str(mse), "ref_noise_mse": str(noise),
+                "bytes_allocated": "1000", "max_depth_complexity": "4"}
+
+    def setUp(self):
+        sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
+        import advise_vs_exhaustive
+        self.judge = advise_vs_exhaustive
+        rows = [self.row("sure", 6, 5, 7, 0.004),          # surely within 10 ms: the run's best
+                self.row("straddles", 9, 7, 12, 0.002),    # less error, not placeable
+                self.row("over", 14, 11, 17, 0.001),       # surely over
+                self.row("tie", 6.5, 5.5, 7.5, 0.004)]     # the best's error
+        self.rows = {r["config_id"]: r for r in rows}
+        self.goal = Goal(budget_ms=10)
+
+    def stands(self, rec):
+        return self.judge.how_it_stands(self.rows, {"recommended": rec}, self.goal)
+
+    def test_best_error_tie_and_a_tie_across_the_budget_line_stand(self):
+        self.assertEqual(self.stands("sure"), "best")
+        self.assertEqual(self.stands("tie"), "tied on error")
+        self.assertEqual(self.stands("straddles"), "across the budget line")
+
+    def test_surely_over_or_beaten_by_a_surely_within_configuration_is_refuted(self):
+        self.assertTrue(self.stands("over").startswith("refuted: surely over"), self.stands("over"))
+        self.rows["worse"] = self.row("worse", 8, 7, 9, 0.009)
+        self.assertIn("sure is surely within the budgets with less error", self.stands("worse"))
+        self.rows["straddles"]["mse"] = "0.005"  # straddling and worse than the best: refuted
+        self.assertTrue(self.stands("straddles").startswith("refuted"))
+        self.assertTrue(self.judge.how_it_stands(self.rows, {"recommended": None}, self.goal).startswith("refuted"))
+
+
 if __name__ == "__main__":
     unittest.main(verbosity=1)
