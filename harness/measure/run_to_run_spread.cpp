@@ -47,13 +47,15 @@ std::string calibration_staleness(const RunToRunSpread& cached, int64_t now, dou
   return "";
 }
 
-double widened_log_half_width(double within, double spread, size_t repetitions, double z) {
+double widened_log_half_width(double within, double spread, size_t repetitions, double z,
+                              RepetitionProcesses processes) {
   if (!std::isfinite(spread) || spread < 0) return within;
+  const double w = std::isfinite(within) && within > 0 ? within : 0;
+  if (repetitions > 1 && processes == RepetitionProcesses::Shared) return std::max(w, z * spread);
   const double k = double(std::max<size_t>(1, repetitions));
   // One repetition: this run's offset and the other's are both in the spread.
-  // K repetitions: this run's is in the t interval already; the other run's median of K.
+  // K repetitions in K processes: this run's are in the t interval; the other run's median of K.
   const double between = repetitions <= 1 ? z * spread : z * spread / std::sqrt(2 * k);
-  const double w = std::isfinite(within) && within > 0 ? within : 0;
   return std::sqrt(w * w + between * between);
 }
 

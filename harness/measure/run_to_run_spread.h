@@ -48,13 +48,27 @@ inline constexpr int64_t kCalibrationMaxAgeSeconds = 24 * 3600;
 inline constexpr double kCalibrationMaxLoadChange = 0.5;
 std::string calibration_staleness(const RunToRunSpread& cached, int64_t now, double load_average_now);
 
+// Where a record's K repetitions ran: each in a process of its own (--isolation process), or
+// all in this one (--isolation context), where they share the process's offset from other
+// runs: repetitions in one process do not average that offset away.
+enum class RepetitionProcesses { Separate, Shared };
+
 // The half-width, relative to the median, of an interval that should hold another run's
-// median: within-run half-width `within` (relative, from the frames or the repetitions'
-// t interval) combined with the run-to-run spread, z * spread / sqrt(2 K) for the other
-// run's own K repetitions, and with one repetition the full z * spread (this run's own
-// process offset is in the spread too, and not in its frames' interval). In log space, then
-// back: the interval is [median * exp(-h), median * exp(h)].
-double widened_log_half_width(double within_log_half_width, double spread, size_t repetitions, double z);
+// median, in log space (the interval is [median * exp(-h), median * exp(h)]), from the
+// within-run half-width `within` (the frames' order-statistic interval, or the repetitions'
+// t interval) and the run-to-run spread s (the RMS log ratio between single-repetition runs
+// in separate processes: both runs' process offsets and their repetitions' noise):
+//  - one repetition: sqrt(within^2 + (z s)^2); its own process offset is in s, not in its
+//    frames' interval;
+//  - K repetitions in separate processes: sqrt(within^2 + (z s)^2 / (2K)); the t interval
+//    holds this run's offsets, and the other run's median of K varies by s^2 / (2K) (s^2 is
+//    the variance of a difference of two runs);
+//  - K repetitions in one process: max(within, z s); the t interval sees only the noise
+//    between repetitions, which s already holds, while the process offset they share is not
+//    reduced by K (measured 2026-12-04, docs/timing.md: the K / 2K form held another run's
+//    median in 64-78 % of 36 configurations when the second process ran 10-20 % faster).
+double widened_log_half_width(double within_log_half_width, double spread, size_t repetitions, double z,
+                              RepetitionProcesses processes);
 
 // A file name for the cache entry of this device, driver and host (the build that probed
 // is recorded in the entry, not keyed: the spread is the machine's).

@@ -67,7 +67,8 @@ void add_timing_columns(Record& r, const TimingOutcome& t) {
     r.set(columns::kFragmentsPerSecond, fragments / (build->median * 1e-3));
 }
 
-void widen_time_intervals(Record& r, const RunToRunSpread* spread, const std::string& source) {
+void widen_time_intervals(Record& r, const RunToRunSpread* spread, const std::string& source,
+                          RepetitionProcesses processes) {
   if (!r.get("frame_ms_median")) return;  // nothing timed (a failed record)
   r.set(columns::kTimeCalibration, source);
   if (!spread || !std::isfinite(spread->spread)) return;
@@ -87,7 +88,7 @@ void widen_time_intervals(Record& r, const RunToRunSpread* spread, const std::st
     const double low = number_of(r, sub + "_ms_ci_low"), high = number_of(r, sub + "_ms_ci_high");
     if (!(median > 0) || !(low > 0) || !(high >= median)) continue;  // a 0 ms sub-pass has no spread
     const double within = std::max(std::log(median / low), std::log(high / median));
-    const double h = widened_log_half_width(within, spread->spread, repetitions, z);
+    const double h = widened_log_half_width(within, spread->spread, repetitions, z, processes);
     r.set(sub + "_ms_ci_low", median * std::exp(-h));
     r.set(sub + "_ms_ci_high", median * std::exp(h));
   }

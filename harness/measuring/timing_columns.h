@@ -35,7 +35,8 @@ void add_timing_columns(Record& r, const TimingOutcome& timing);
 // Without a spread (calibration skipped), only time_calibration is set: the intervals stay
 // within-run, and the record says that they do.
 inline constexpr const char* kRunToRunSuffix = "+run_to_run_spread";
-void widen_time_intervals(Record& r, const RunToRunSpread* spread, const std::string& calibration_source);
+void widen_time_intervals(Record& r, const RunToRunSpread* spread, const std::string& calibration_source,
+                          RepetitionProcesses processes);
 
 // verify_share = verify_ms / frames_timed_ms, when the record has both (a structure's builds
 // were checked and frames were timed).

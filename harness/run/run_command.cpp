@@ -636,7 +636,9 @@ void ConfigurationLoop::combine(const std::string& id, const std::vector<Record>
   std::vector<std::string> combined_written;
   try {
     Record combined = combine_repetitions(reps, out_dir_, settings.precision);
-    widen_time_intervals(combined, spread_, calibration_.source);
+    widen_time_intervals(combined, spread_, calibration_.source,
+                         settings.isolation == RepetitionIsolation::Process ? RepetitionProcesses::Separate
+                                                                            : RepetitionProcesses::Shared);
     const OutputFolder samples(out_dir_, (std::filesystem::path(out_dir_) / "samples").string(), &combined_written);
     combined.set(columns::kFrameSamplesCsv,
                  samples.write_text(samples_file_name(id, {}), combined_samples_csv(reps, out_dir_)));
@@ -674,7 +676,8 @@ std::optional<ConfigurationLoop::Outcome> ConfigurationLoop::measure(const Plann
   try {
     outcome.record = measure_configuration(job_.scenes->at(config.scene), config, planned.settings, device_,
                                            config_paths, repetition);
-    if (repetitions_ == 1) widen_time_intervals(outcome.record, spread_, calibration_.source);
+    if (repetitions_ == 1)
+      widen_time_intervals(outcome.record, spread_, calibration_.source, RepetitionProcesses::Separate);
   } catch (const Interrupted& e) {
     // Abandoned cleanly: no record, no images; a rerun of the same command measures it.
     remove_files(outcome.written);

@@ -53,13 +53,22 @@ TEST(RunToRunSpread, WidensOneRepetitionByTheWholeSpreadAndKRepetitionsByTheOthe
   const double z = normal_quantile(0.975);
   EXPECT_NEAR(z, 1.959964, 1e-6);
   // One repetition: sqrt(within^2 + (z s)^2).
-  EXPECT_NEAR(widened_log_half_width(0.03, 0.2, 1, z), std::hypot(0.03, z * 0.2), 1e-12);
-  // K repetitions: the t interval holds this run's offset; the other run's median of K adds s^2/(2K).
-  EXPECT_NEAR(widened_log_half_width(0.1, 0.2, 4, z), std::hypot(0.1, z * 0.2 / std::sqrt(8.0)), 1e-12);
+  EXPECT_NEAR(widened_log_half_width(0.03, 0.2, 1, z, RepetitionProcesses::Separate), std::hypot(0.03, z * 0.2), 1e-12);
+  // K repetitions, each in its own process: the t interval holds this run's offsets; the other
+  // run's median of K adds s^2/(2K).
+  EXPECT_NEAR(widened_log_half_width(0.1, 0.2, 4, z, RepetitionProcesses::Separate),
+              std::hypot(0.1, z * 0.2 / std::sqrt(8.0)), 1e-12);
+  // K repetitions in one process share its offset: K does not shrink the spread's part, and
+  // the t interval, which holds only the noise between them, counts where it is wider.
+  EXPECT_NEAR(widened_log_half_width(0.1, 0.2, 4, z, RepetitionProcesses::Shared), z * 0.2, 1e-12);
+  EXPECT_NEAR(widened_log_half_width(0.5, 0.2, 4, z, RepetitionProcesses::Shared), 0.5, 1e-12);
+  // One repetition: where it ran does not matter.
+  EXPECT_EQ(widened_log_half_width(0.03, 0.2, 1, z, RepetitionProcesses::Shared),
+            widened_log_half_width(0.03, 0.2, 1, z, RepetitionProcesses::Separate));
   // No spread: unchanged.
-  EXPECT_EQ(widened_log_half_width(0.03, std::nan(""), 1, z), 0.03);
+  EXPECT_EQ(widened_log_half_width(0.03, std::nan(""), 1, z, RepetitionProcesses::Separate), 0.03);
   // Never narrower than either part.
-  EXPECT_GE(widened_log_half_width(0.5, 0.01, 1, z), 0.5);
+  EXPECT_GE(widened_log_half_width(0.5, 0.01, 1, z, RepetitionProcesses::Separate), 0.5);
 }
 
 TEST(RunToRunSpread, RoundTripsThroughJsonAndRefusesBadFiles) {
@@ -120,12 +129,12 @@ TEST(WidenTimeIntervals, WidensEverySubpassAndSaysSo) {
   Record r = timed_record(1);
   RunToRunSpread spread;
   spread.spread = 0.2;
-  widen_time_intervals(r, &spread, "file f.json");
+  widen_time_intervals(r, &spread, "file f.json", RepetitionProcesses::Separate);
   const double z = normal_quantile(0.975);
-  const double h = widened_log_half_width(std::log(10.0 / 9.8), 0.2, 1, z);  // the wider side
+  const double h = widened_log_half_width(std::log(10.0 / 9.8), 0.2, 1, z, RepetitionProcesses::Separate);  // the wider side
   EXPECT_NEAR(number(r, "frame_ms_ci_low"), 10.0 * std::exp(-h), 1e-9);
   EXPECT_NEAR(number(r, "frame_ms_ci_high"), 10.0 * std::exp(h), 1e-9);
-  const double hb = widened_log_half_width(std::log(4.2 / 4.0), 0.2, 1, z);  // the wider side
+  const double hb = widened_log_half_width(std::log(4.2 / 4.0), 0.2, 1, z, RepetitionProcesses::Separate);  // the wider side
   EXPECT_NEAR(number(r, "build_ms_ci_low"), 4.0 * std::exp(-hb), 1e-9);
   EXPECT_EQ(number(r, "rebuild_ms_ci_high"), 0.0);  // 0 ms stays 0 ms
   EXPECT_EQ(std::get<std::string>(*r.get("time_interval")), std::string(kFrameInterval) + kRunToRunSuffix);
@@ -135,19 +144,35 @@ TEST(WidenTimeIntervals, WidensEverySubpassAndSaysSo) {
   EXPECT_EQ(std::get<std::string>(*r.get("time_calibration")), "file f.json");
   // Twice is once: a resumed or combined record is not widened again.
   const double high = number(r, "frame_ms_ci_high");
-  widen_time_intervals(r, &spread, "file f.json");
+  widen_time_intervals(r, &spread, "file f.json", RepetitionProcesses::Separate);
   EXPECT_EQ(number(r, "frame_ms_ci_high"), high);
+}
+
+TEST(WidenTimeIntervals, RepetitionsInOneProcessKeepTheWholeSpread) {
+  RunToRunSpread spread;
+  spread.spread = 0.2;
+  const double z = normal_quantile(0.975);
+  Record shared = timed_record(3), separate = timed_record(3);
+  widen_time_intervals(shared, &spread, "file f.json", RepetitionProcesses::Shared);
+  widen_time_intervals(separate, &spread, "file f.json", RepetitionProcesses::Separate);
+  // --isolation context: the three share this process's offset, so the interval is the
+  // spread's whole z s; --isolation process: three processes' offsets average down.
+  EXPECT_NEAR(number(shared, "frame_ms_ci_high"), 10.0 * std::exp(z * 0.2), 1e-9);
+  EXPECT_LT(number(separate, "frame_ms_ci_high"), number(shared, "frame_ms_ci_high"));
+  EXPECT_NEAR(number(separate, "frame_ms_ci_high"),
+              10.0 * std::exp(std::hypot(std::log(10.0 / 9.8), z * 0.2 / std::sqrt(6.0))), 1e-9);  // the wider side
 }
 
 TEST(WidenTimeIntervals, WithoutASpreadOnlySaysWhy) {
   Record r = timed_record(1);
-  widen_time_intervals(r, nullptr, "skipped (--calibration skip): intervals are within-run only");
+  widen_time_intervals(r, nullptr, "skipped (--calibration skip): intervals are within-run only",
+                       RepetitionProcesses::Separate);
   EXPECT_EQ(number(r, "frame_ms_ci_high"), 10.2);
   EXPECT_EQ(std::get<std::string>(*r.get("time_interval")), kFrameInterval);
   EXPECT_EQ(r.get("time_run_to_run_spread"), nullptr);
   EXPECT_NE(std::get<std::string>(*r.get("time_calibration")).find("skipped"), std::string::npos);
   Record failed;  // nothing timed: nothing said
-  widen_time_intervals(failed, nullptr, "skipped");
+  widen_time_intervals(failed, nullptr, "skipped", RepetitionProcesses::Separate);
   EXPECT_EQ(failed.get("time_calibration"), nullptr);
 }
 
