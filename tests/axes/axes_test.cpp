@@ -53,22 +53,39 @@ void declare_test_gain_axis() {
   register_harness_axis(axis);
 }
 
-// A pass with a parameter of its own, declared beside the pass (here: the AO pass with one
-// more parameter it accepts).
-void declare_test_pass() {
+// The AO pass registered, once, as `name`, with `extra` parameters besides its own: declared
+// here, beside the test that reads them.
+void register_ao_pass_with(const std::string& name, std::vector<AxisSpec> extra) {
   const auto names = pass_names();
-  if (std::find(names.begin(), names.end(), "test_ao") != names.end()) return;
+  if (std::find(names.begin(), names.end(), name) != names.end()) return;
   PassRegistration pass;
-  pass.name = "test_ao";
-  pass.parameters = [] {
+  pass.name = name;
+  pass.parameters = [extra] {
     std::vector<AxisSpec> specs = AmbientOcclusion::parameters();
-    AxisSpec boost = numeric_parameter("boost", AxisKind::UInt, 1, 8, "1", "", "a test pass's parameter");
-    specs.push_back(boost);
+    specs.insert(specs.end(), extra.begin(), extra.end());
     return specs;
   };
   pass.columns = AmbientOcclusion::columns;
   pass.make = [](StructureParams& p) { return std::make_unique<AmbientOcclusion>(p); };
+  pass.work = AmbientOcclusion::work_counters;  // its shaders count them when measured
+  pass.query_subpasses = {"ao"};
   register_pass(pass);
+}
+
+// A pass with a parameter of its own, declared beside the pass (here: the AO pass with one
+// more parameter it accepts).
+void declare_test_pass() {
+  register_ao_pass_with("test_ao", {numeric_parameter("boost", AxisKind::UInt, 1, 8, "1", "", "a test pass's parameter")});
+}
+
+// A pass whose parameters have record columns of their own, declared here and nowhere else:
+// the AO pass (whose describe() knows nothing of them) with an integer, a real and a choice.
+void declare_test_columns_pass() {
+  register_ao_pass_with(
+      "test_columns_ao",
+      {numeric_parameter("strength", AxisKind::UInt, 1, 8, "3", "", "a test parameter", "test_strength"),
+       numeric_parameter("scale", AxisKind::Real, 0, 1, "0.1", "", "a test parameter", "test_scale"),
+       choice_parameter("mode", {"plain", "fancy"}, "plain", "a test parameter", "test_mode")});
 }
 
 // A pass that consumes the test axis: the AO pass, reading test_gain where every pass gets
@@ -106,27 +123,6 @@ void declare_gain_reading_pass() {
   pass.parameters = AmbientOcclusion::parameters;
   pass.columns = GainReadingAo::columns;
   pass.make = [](StructureParams& p) { return std::make_unique<GainReadingAo>(p); };
-  pass.work = AmbientOcclusion::work_counters;
-  pass.query_subpasses = {"ao"};
-  register_pass(pass);
-}
-
-// A pass whose parameters have record columns of their own, declared here and nowhere else:
-// the AO pass (whose describe() knows nothing of them) with an integer, a real and a choice.
-void declare_test_columns_pass() {
-  const auto names = pass_names();
-  if (std::find(names.begin(), names.end(), "test_columns_ao") != names.end()) return;
-  PassRegistration pass;
-  pass.name = "test_columns_ao";
-  pass.parameters = [] {
-    std::vector<AxisSpec> specs = AmbientOcclusion::parameters();
-    specs.push_back(numeric_parameter("strength", AxisKind::UInt, 1, 8, "3", "", "a test parameter", "test_strength"));
-    specs.push_back(numeric_parameter("scale", AxisKind::Real, 0, 1, "0.1", "", "a test parameter", "test_scale"));
-    specs.push_back(choice_parameter("mode", {"plain", "fancy"}, "plain", "a test parameter", "test_mode"));
-    return specs;
-  };
-  pass.columns = AmbientOcclusion::columns;
-  pass.make = [](StructureParams& p) { return std::make_unique<AmbientOcclusion>(p); };
   pass.work = AmbientOcclusion::work_counters;
   pass.query_subpasses = {"ao"};
   register_pass(pass);
