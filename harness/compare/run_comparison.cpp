@@ -18,8 +18,8 @@
 #include "harness/measure/frame_samples.h"
 #include "harness/measure/run_to_run_spread.h"
 #include "harness/gl/device_selection.h"
+#include "harness/settings/harness_axes.h"
 #include "harness/settings/record_schema.h"
-#include "harness/records/harness_columns.h"
 #include "harness/records/record_validation.h"
 #include "harness/stats/intervals.h"
 #include "harness/stats/time_tests.h"
@@ -48,15 +48,20 @@ double boost_quantile_t(double df, double p) {
 }
 double boost_quantile_normal(double p) { return boost::math::quantile(boost::math::normal(), p); }
 
-// The id fragment of an identity axis other than a structure parameter that --ignore-param
-// may leave out: N and R_LDM ("-n<N>", "-r<R>"), so that a configuration measured at two
-// view counts pairs as one (the timing calibration's genuinely slower configuration).
-std::string axis_fragment(const json& record, const std::string& axis) {
-  const auto it = record.find(axis);
+// The identity axes other than the structure parameters that --ignore-param may leave out,
+// named by their record columns: N and R_LDM (n_views, r_ldm), so that a configuration
+// measured at two view counts pairs as one (the timing calibration's genuinely slower
+// configuration).
+std::vector<const HarnessAxis*> ignorable_axes() {
+  return {find_harness_axis("views"), find_harness_axis("r_ldm")};
+}
+
+// The axis's fragment of the record's config_id ("-n16"), as its declaration makes it from
+// the value in its column; "" where the record has none.
+std::string axis_fragment(const json& record, const HarnessAxis& axis) {
+  const auto it = record.find(axis.spec.column);
   if (it == record.end() || !it->is_number_integer()) return "";
-  if (axis == columns::kNViews.name) return "-n" + std::to_string(it->get<int64_t>());
-  if (axis == columns::kRLdm.name) return "-r" + std::to_string(it->get<int64_t>());
-  return "";
+  return axis.id_fragment({{axis.spec.key, std::to_string(it->get<int64_t>())}}, false);
 }
 
 // config_id writes each structure parameter as "-key=value" with odd characters as '_'
@@ -64,8 +69,8 @@ std::string axis_fragment(const json& record, const std::string& axis) {
 std::string identity_of(const json& record, const std::set<std::string>& ignored) {
   std::string id = text(record, "config_id");
   std::vector<std::string> parts;
-  for (const std::string& axis : {columns::kNViews.name, columns::kRLdm.name})
-    if (ignored.count(axis)) parts.push_back(axis_fragment(record, axis));
+  for (const HarnessAxis* axis : ignorable_axes())
+    if (ignored.count(axis->spec.column)) parts.push_back(axis_fragment(record, *axis));
   std::stringstream params(text(record, "structure_params"));
   for (std::string item; std::getline(params, item, ';');) {
     const size_t eq = item.find('=');
@@ -106,7 +111,8 @@ std::set<std::string> parameter_keys(const json& record) {
 std::vector<PairingHint> pairing_hints(const std::vector<const json*>& missing,
                                        const std::vector<const json*>& added,
                                        const std::set<std::string>& ignored) {
-  std::set<std::string> candidates = {columns::kNViews.name, columns::kRLdm.name};
+  std::set<std::string> candidates;
+  for (const HarnessAxis* axis : ignorable_axes()) candidates.insert(axis->spec.column);
   for (const auto* side : {&missing, &added})
     for (const json* r : *side)
       for (const std::string& key : parameter_keys(*r)) candidates.insert(key);

@@ -73,11 +73,14 @@ MeasurementRequest measurement_request(const Configuration& config, const RunSet
   return request;
 }
 
-void add_measurement(Record& r, const Measurement& m, const TimePrecision& precision) {
+void add_measurement(Record& r, const Measurement& m, const AxisValues& values, const TimePrecision& precision) {
   r.set(kSceneName, m.scene_name);
   r.set(kSceneHash, m.scene_hash);
   r.set(kTriangles, m.triangles);
   for (const auto& [key, value] : m.pass_settings) r.put(key, value);
+  // Every parameter's own column, by one loop over the pass's declarations: what the
+  // configuration gives, else the declared default.
+  for (const auto& [column, value] : pass_parameter_values(m.pass, values)) r.put(column, value);
   for (const auto& [key, value] : m.pass_results) r.put(key, value);
   r.set(kSceneAttributes, m.scene_attributes);
   r.set(kSceneGpuBytes, m.scene_gpu_bytes);
@@ -160,7 +163,7 @@ Record measure_configuration(const Scene& scene, const Configuration& config,
   request.before_measured_frames = [&] { before = sample_machine_state(gpu); };
   request.after_measured_frames = [&] { after = sample_machine_state(gpu); };
   const Measurement m = measure(scene, request);
-  add_measurement(r, m, settings.precision);
+  add_measurement(r, m, config.values, settings.precision);
   set_machine_state_columns(r, before, after);
   if (m.clock_warmup.checked) {
     r.set(kClockWarmupFrames, m.clock_warmup.frames);

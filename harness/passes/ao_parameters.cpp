@@ -44,8 +44,7 @@ std::vector<ColumnSpec> ao_pass_columns(bool ldm, const std::vector<ColumnSpec>&
   return columns;
 }
 
-std::vector<std::pair<std::string, RecordValue>> ao_setting_values(
-    const AoSettings& ao, bool ldm, const std::vector<std::pair<std::string, RecordValue>>& own) {
+std::vector<std::pair<std::string, RecordValue>> ao_setting_values(const AoSettings& ao, bool ldm) {
   std::vector<std::pair<std::string, RecordValue>> values = {
       {"visibility", std::string(ao.attenuated ? "attenuated" : "unattenuated")},
       {"d_max", double(ao.d_max)},
@@ -55,7 +54,6 @@ std::vector<std::pair<std::string, RecordValue>> ao_setting_values(
     values.emplace_back("trace", ao_trace_name(ao.trace));
     values.emplace_back("ao_estimator", ao_estimator_name(ao.estimator));
   }
-  values.insert(values.end(), own.begin(), own.end());
   return values;
 }
 

@@ -33,8 +33,7 @@ std::vector<ColumnSpec> ao_range_columns();
 // ao_range_columns().
 std::vector<ColumnSpec> ao_pass_columns(bool ldm, const std::vector<ColumnSpec>& own, bool range);
 // An AO pass's describe(): the values of ao_setting_columns(ldm) for the effective settings
-// `ao`, then `own`.
-std::vector<std::pair<std::string, RecordValue>> ao_setting_values(
-    const AoSettings& ao, bool ldm, const std::vector<std::pair<std::string, RecordValue>>& own = {});
+// `ao` (its own parameters' columns are pass_parameter_values()').
+std::vector<std::pair<std::string, RecordValue>> ao_setting_values(const AoSettings& ao, bool ldm);
 
 }  // namespace ldm

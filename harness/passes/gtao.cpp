@@ -102,17 +102,7 @@ std::vector<TimedSubpass> Gtao::subpasses() const {
 }
 
 std::vector<std::pair<std::string, RecordValue>> Gtao::describe(const Scene& scene) const {
-  return ao_setting_values(settings_for(scene), false, {
-      {"gtao_slices", int64_t(gtao_.slices)},
-      {"gtao_steps", int64_t(gtao_.steps)},
-      {"gtao_radius", double(gtao_.radius_scale)},
-      {"gtao_falloff", double(gtao_.falloff)},
-      {"gtao_thickness", double(gtao_.thickness)},
-      {"gtao_step_power", double(gtao_.step_power)},
-      {"gtao_jitter", std::string(gtao_.jitter ? "on" : "off")},
-      {"gtao_estimator", std::string(gtao_.normalized ? "normalized" : "mean")},
-      {"gtao_attenuation", std::string(gtao_.reference_weights ? "reference" : "binary")},
-      {"gtao_denoise", int64_t(gtao_.denoise_radius)}});
+  return ao_setting_values(settings_for(scene), false);
 }
 
 void Gtao::prepare(const PassInputs& in) {

@@ -87,12 +87,7 @@ std::vector<TimedSubpass> Hbao::subpasses() const {
 }
 
 std::vector<std::pair<std::string, RecordValue>> Hbao::describe(const Scene& scene) const {
-  return ao_setting_values(settings_for(scene), false, {
-      {"hbao_directions", int64_t(hbao_.directions)},
-      {"hbao_steps", int64_t(hbao_.steps)},
-      {"hbao_angle_bias", double(hbao_.angle_bias)},
-      {"hbao_jitter", std::string(hbao_.jitter ? "on" : "off")},
-      {"hbao_blur", int64_t(hbao_.blur_radius)}});
+  return ao_setting_values(settings_for(scene), false);
 }
 
 void Hbao::prepare(const PassInputs& in) {

@@ -1,6 +1,7 @@
 #include "harness/passes/indirect_lighting.h"
 
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 
 #include "harness/metrics/ao_range.h"
@@ -203,13 +204,18 @@ std::vector<TimedSubpass> IndirectLighting::subpasses() const {
 std::vector<std::pair<std::string, RecordValue>> IndirectLighting::describe(
     const Scene& scene) const {
   const IndirectSettings s = settings_for(scene);
-  return {{"r_light", int64_t(s.light_resolution)},
-          {"splat_scale", double(s.splat_scale)},
-          {"topological_bias", double(s.a())},
-          {"footprint_threshold", double(s.footprint_threshold)},
-          {"emission", std::string(photon_emission_name(s.emission))},
-          {"trace", ao_trace_name(s.trace)},
-          {"normal_offset_pixels", double(s.normal_offset_pixels)}};
+  std::vector<std::pair<std::string, RecordValue>> out;
+  // The value in effect of the two parameters with no declared default, where the
+  // configuration gives none (a given value reaches the column as every parameter's does:
+  // pass_parameter_values()): a = s, as s's column holds it (the canonical value, 0.1 rather
+  // than the float's 0.10000000149011612), and T_foot off (inf, which no given value can be).
+  const auto column = [](const char* key) { return find_axis(parameters(), key)->column; };
+  if (!s.topological_bias) out.emplace_back(column("a"), std::strtod(shortest_text(s.a(), true).c_str(), nullptr));
+  if (std::isinf(s.footprint_threshold)) out.emplace_back(column("t_foot"), double(s.footprint_threshold));
+  // The AO axes it reads, in effect (the scene's normal offset where none is given).
+  out.emplace_back("trace", ao_trace_name(s.trace));
+  out.emplace_back("normal_offset_pixels", double(s.normal_offset_pixels));
+  return out;
 }
 
 void IndirectLighting::prepare(const PassInputs& in) {

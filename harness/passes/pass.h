@@ -88,8 +88,10 @@ class Pass {
   virtual std::string name() const = 0;
   virtual PassRequirements requirements() const = 0;
   virtual std::vector<TimedSubpass> subpasses() const = 0;
-  // The pass's effective settings for this scene (its parameters over the scene's
-  // defaults), as record fields, e.g. {"d_max", 1.5}.
+  // The pass's effective settings for this scene that are not its parameters' own columns
+  // (those pass_parameter_values() writes): the AO settings in effect (its parameters over
+  // the scene's defaults), e.g. {"d_max", 1.5}, and the value in effect of a parameter that
+  // has no declared default where none is given.
   virtual std::vector<std::pair<std::string, RecordValue>> describe(const Scene& scene) const = 0;
 
   // Compiles shaders and allocates targets. Throws UserError when it cannot run here.
@@ -193,6 +195,16 @@ std::vector<AxisSpec> pass_parameters(const std::string& name);
 // (each parameter with a column declares it: parameter_column()), then its columns().
 std::vector<ColumnSpec> pass_columns(const std::string& name);
 ColumnSpec parameter_column(const AxisSpec& parameter);
+bool has_parameter_column(const AxisSpec& parameter);
+// The values of a pass's parameters' own columns (those parameter_column() declares) for one
+// configuration, in declaration order: each the configuration's value (`values`, keys
+// "PASS:KEY"), else its declared default (what the pass was handed), typed as its column (an
+// integer, a real, a flag or text). measure_configuration() writes them after describe()'s
+// fields: a pass writes none of them itself, save the value in effect of a parameter with
+// no declared default and no value (the indirect pass's a = s, T_foot off), which this leaves
+// out, and a value resolved at run time (rtao's threads 0: the cores it used, its results()).
+std::vector<std::pair<std::string, RecordValue>> pass_parameter_values(const std::string& name,
+                                                                       const AxisValues& values);
 // The work counters a pass declares (none for a pass that counts nothing).
 std::vector<WorkCounter> pass_work_counters(const std::string& name);
 // The sub-passes in which a pass reads the structure (PassRegistration::query_subpasses).

@@ -1,5 +1,6 @@
 // The list of passes `--pass` accepts, each with its declared parameters and record columns.
 // A new pass adds one line here.
+#include <cstdlib>
 #include <functional>
 #include <stdexcept>
 
@@ -52,14 +53,38 @@ ColumnSpec parameter_column(const AxisSpec& parameter) {
           kind};
 }
 
+// Whether a parameter has a record column of its own. The AO axes the AO passes share (their
+// pass_parameter versions) are the AO settings' columns (ao_setting_columns(): the value in
+// effect, the scene's where not given), which the passes' describe() writes.
+bool has_parameter_column(const AxisSpec& parameter) {
+  return !parameter.column.empty() && parameter.pass_parameter.empty();
+}
+
 std::vector<ColumnSpec> pass_columns(const std::string& name) {
   std::vector<ColumnSpec> columns;
   for (const AxisSpec& parameter : pass_parameters(name))
-    // The AO axes the AO passes share (their pass_parameter versions) are the AO settings' columns
-    // (ao_setting_columns(): the value in effect, the scene's where not given).
-    if (!parameter.column.empty() && parameter.pass_parameter.empty()) columns.push_back(parameter_column(parameter));
+    if (has_parameter_column(parameter)) columns.push_back(parameter_column(parameter));
   for (ColumnSpec& column : entry(name).columns()) columns.push_back(std::move(column));
   return columns;
+}
+
+std::vector<std::pair<std::string, RecordValue>> pass_parameter_values(const std::string& name,
+                                                                       const AxisValues& values) {
+  std::vector<std::pair<std::string, RecordValue>> out;
+  for (const AxisSpec& parameter : pass_parameters(name)) {
+    if (!has_parameter_column(parameter)) continue;
+    // Canonical text: given (checked against the declaration), or the declared default,
+    // which is what StructureParams hands the pass when the configuration gives none.
+    const std::string text = axis_text(values, parameter.qualified()).value_or(parameter.default_value);
+    if (text.empty()) continue;  // no default: the value the pass derives (its describe())
+    switch (parameter.kind) {
+      case AxisKind::UInt: out.emplace_back(parameter.column, int64_t(std::strtoull(text.c_str(), nullptr, 10))); break;
+      case AxisKind::Real: out.emplace_back(parameter.column, std::strtod(text.c_str(), nullptr)); break;
+      case AxisKind::Bool: out.emplace_back(parameter.column, text == "true"); break;
+      default: out.emplace_back(parameter.column, text);
+    }
+  }
+  return out;
 }
 
 std::vector<std::string> pass_query_subpasses(const std::string& name) { return entry(name).query_subpasses; }

@@ -71,9 +71,7 @@ std::vector<TimedSubpass> Rtao::subpasses() const {
 }
 
 std::vector<std::pair<std::string, RecordValue>> Rtao::describe(const Scene& scene) const {
-  return ao_setting_values(settings_for(scene), false, {
-      {"rtao_spp", int64_t(spp_)},
-      {"rtao_seed", int64_t(seed_)}});
+  return ao_setting_values(settings_for(scene), false);
 }
 
 void Rtao::prepare(const PassInputs& in) {
@@ -96,8 +94,10 @@ void Rtao::render(GpuTimer* timer) {
 
 std::vector<PassImage> Rtao::images() const { return {{"ao", image_}}; }
 
+// The threads parameter's column holds the threads it traced with (0, every core, resolved
+// here), in place of the configuration's value (pass_parameter_values()).
 std::vector<std::pair<std::string, RecordValue>> Rtao::results() const {
-  return {{"rtao_threads", int64_t(threads_used())}, {"rtao_bvh_ms", bvh_ms_}};
+  return {{find_axis(parameters(), "threads")->column, int64_t(threads_used())}, {"rtao_bvh_ms", bvh_ms_}};
 }
 
 ReferenceResult Rtao::reference(const Scene& scene, int width, int height,

@@ -171,10 +171,7 @@ std::vector<TimedSubpass> RtaoGpu::subpasses() const {
 }
 
 std::vector<std::pair<std::string, RecordValue>> RtaoGpu::describe(const Scene& scene) const {
-  return ao_setting_values(settings_for(scene), false, {
-      {"rtao_gpu_spp", int64_t(spp_)},
-      {"rtao_gpu_seed", int64_t(seed_)},
-      {"rtao_gpu_primary", std::string(trace_primary_ ? "trace" : "raster")}});
+  return ao_setting_values(settings_for(scene), false);
 }
 
 GlProgram RtaoGpu::build(bool counting) const {

@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
+#include <map>
 #include <set>
 
 #include "harness/settings/axis_options.h"
@@ -52,22 +53,39 @@ void declare_test_gain_axis() {
   register_harness_axis(axis);
 }
 
-// A pass with a parameter of its own, declared beside the pass (here: the AO pass with one
-// more parameter it accepts).
-void declare_test_pass() {
+// The AO pass registered, once, as `name`, with `extra` parameters besides its own: declared
+// here, beside the test that reads them.
+void register_ao_pass_with(const std::string& name, std::vector<AxisSpec> extra) {
   const auto names = pass_names();
-  if (std::find(names.begin(), names.end(), "test_ao") != names.end()) return;
+  if (std::find(names.begin(), names.end(), name) != names.end()) return;
   PassRegistration pass;
-  pass.name = "test_ao";
-  pass.parameters = [] {
+  pass.name = name;
+  pass.parameters = [extra] {
     std::vector<AxisSpec> specs = AmbientOcclusion::parameters();
-    AxisSpec boost = numeric_parameter("boost", AxisKind::UInt, 1, 8, "1", "", "a test pass's parameter");
-    specs.push_back(boost);
+    specs.insert(specs.end(), extra.begin(), extra.end());
     return specs;
   };
   pass.columns = AmbientOcclusion::columns;
   pass.make = [](StructureParams& p) { return std::make_unique<AmbientOcclusion>(p); };
+  pass.work = AmbientOcclusion::work_counters;  // its shaders count them when measured
+  pass.query_subpasses = {"ao"};
   register_pass(pass);
+}
+
+// A pass with a parameter of its own, declared beside the pass (here: the AO pass with one
+// more parameter it accepts).
+void declare_test_pass() {
+  register_ao_pass_with("test_ao", {numeric_parameter("boost", AxisKind::UInt, 1, 8, "1", "", "a test pass's parameter")});
+}
+
+// A pass whose parameters have record columns of their own, declared here and nowhere else:
+// the AO pass (whose describe() knows nothing of them) with an integer, a real and a choice.
+void declare_test_columns_pass() {
+  register_ao_pass_with(
+      "test_columns_ao",
+      {numeric_parameter("strength", AxisKind::UInt, 1, 8, "3", "", "a test parameter", "test_strength"),
+       numeric_parameter("scale", AxisKind::Real, 0, 1, "0.1", "", "a test parameter", "test_scale"),
+       choice_parameter("mode", {"plain", "fancy"}, "plain", "a test parameter", "test_mode")});
 }
 
 // A pass that consumes the test axis: the AO pass, reading test_gain where every pass gets
@@ -116,6 +134,7 @@ class Axes : public ::testing::Test {
     declare_test_gain_axis();
     declare_test_pass();
     declare_gain_reading_pass();
+    declare_test_columns_pass();
   }
 };
 
@@ -217,23 +236,24 @@ TEST_F(Axes, AnAxisDeclaredInATestReachesTheRecordColumnItNames) {
   }
 }
 
+// The smallest measurement of `pass`: no reference, no images, one frame.
+RunSettings measured_quickly(std::vector<std::string> args, const std::string& pass) {
+  RunSettings settings = parsed(std::move(args));
+  settings.passes = {pass};
+  settings.width = settings.height = 32;
+  settings.frames = 1;
+  settings.warmup = 0;
+  settings.reference.enabled = false;
+  settings.write_images = false;
+  return settings;
+}
+
 // End to end, measured: the axis's value travels from the command line through the
 // configuration into measure(), reaches the pass that reads it, and lands in the record both
 // as the axis's own column and as what the pass read, with nothing on the way naming it.
 TEST_F(Axes, AnAxisDeclaredInATestReachesThePassThatReadsItAndTheRecord) {
   test::gl_context();
-  // The smallest measurement of the test pass: no reference, no images, one frame.
-  const auto measured_quickly = [](std::vector<std::string> args) {
-    RunSettings settings = parsed(std::move(args));
-    settings.passes = {"test_gain_ao"};
-    settings.width = settings.height = 32;
-    settings.frames = 1;
-    settings.warmup = 0;
-    settings.reference.enabled = false;
-    settings.write_images = false;
-    return settings;
-  };
-  const RunSettings settings = measured_quickly({"--test-gain", "2.5", "-N", "4", "-R", "16"});
+  const RunSettings settings = measured_quickly({"--test-gain", "2.5", "-N", "4", "-R", "16"}, "test_gain_ao");
   const auto configs = expand_configurations(settings);
   ASSERT_EQ(configs.size(), 1u);
   const Scene scene = load_scene("cornell");
@@ -249,12 +269,96 @@ TEST_F(Axes, AnAxisDeclaredInATestReachesThePassThatReadsItAndTheRecord) {
   EXPECT_EQ(std::get<double>(*read), 2.5);
 
   // A configuration without the axis: the pass reads nothing, and writes nothing.
-  const RunSettings plain = measured_quickly({"-N", "4", "-R", "16"});
+  const RunSettings plain = measured_quickly({"-N", "4", "-R", "16"}, "test_gain_ao");
   const auto plain_configs = expand_configurations(plain);
   ASSERT_EQ(plain_configs.size(), 1u);
   const Record without = measure_configuration(scene, plain_configs.front(), plain,
                                                test::gl_context().device(), {out, out + "/images"});
   EXPECT_EQ(without.get("test_gain_read"), nullptr);
+}
+
+// End to end, measured: a pass parameter declared in a test, with its column, reaches that
+// column typed by its kind, from the command line's value or else from its declared default,
+// though the pass's describe() (the AO pass's) has never heard of it.
+TEST_F(Axes, APassParameterDeclaredInATestReachesItsColumnWithNoDescribe) {
+  test::gl_context();
+  const RunSettings settings = measured_quickly(
+      {"--pass", "test_columns_ao", "--param", "test_columns_ao:strength=5", "--param", "test_columns_ao:mode=fancy",
+       "-N", "4", "-R", "16"},
+      "test_columns_ao");
+  const auto configs = expand_configurations(settings);
+  ASSERT_EQ(configs.size(), 1u);
+  const Scene scene = load_scene("cornell");
+  for (const auto& [column, value] : make_pass("test_columns_ao", StructureParams())->describe(scene))
+    EXPECT_TRUE(column.rfind("test_", 0) != 0) << "describe() writes " << column;
+  const std::string out = test::make_temp_dir("ldm-axes-parameter-columns");
+  const Record record = measure_configuration(scene, configs.front(), settings, test::gl_context().device(),
+                                              {out, out + "/images"});
+  EXPECT_EQ(std::get<std::string>(*record.get("status")), "ok")
+      << std::get<std::string>(*record.get("status_detail"));
+  const RecordValue* strength = record.get("test_strength");  // given
+  ASSERT_NE(strength, nullptr) << "the parameter's column is not in the record";
+  EXPECT_EQ(std::get<int64_t>(*strength), 5);
+  const RecordValue* scale = record.get("test_scale");  // its default: the canonical 0.1
+  ASSERT_NE(scale, nullptr);
+  EXPECT_EQ(std::get<double>(*scale), 0.1);
+  const RecordValue* mode = record.get("test_mode");
+  ASSERT_NE(mode, nullptr);
+  EXPECT_EQ(std::get<std::string>(*mode), "fancy");
+  // The AO settings stay the pass's own to write (describe()): the value in effect.
+  EXPECT_EQ(std::get<std::string>(*record.get("trace")), "plane");
+}
+
+// The built-in passes: describe() writes none of their parameters' own columns but the value in
+// effect of a parameter with no declared default where none is given (the indirect pass's a
+// and T_foot); pass_parameter_values() writes the others, from the configuration or the default.
+TEST_F(Axes, EveryPassParametersColumnIsWrittenOnceFromTheConfiguration) {
+  const Scene scene = load_scene("cornell");
+  size_t written = 0;
+  for (const std::string& name : pass_names()) {
+    std::map<std::string, std::string> parameter_of_column;
+    for (const AxisSpec& p : pass_parameters(name))
+      if (has_parameter_column(p)) parameter_of_column[p.column] = p.key;
+    const auto defaults = pass_parameter_values(name, {});
+    std::set<std::string> by_default;
+    for (const auto& [column, value] : defaults) by_default.insert(column);
+    written += defaults.size();
+    std::set<std::string> described;
+    for (const auto& [column, value] : make_pass(name, StructureParams())->describe(scene)) {
+      described.insert(column);
+      if (!parameter_of_column.count(column)) continue;
+      EXPECT_EQ(by_default.count(column), 0u) << name << ": " << column << " written twice";
+      const AxisSpec* p = find_axis(pass_parameters(name), parameter_of_column[column]);
+      EXPECT_TRUE(p->default_value.empty()) << name << ": describe() writes " << column;
+    }
+    for (const auto& [column, key] : parameter_of_column)
+      EXPECT_TRUE(by_default.count(column) || described.count(column)) << name << ": " << column << " unwritten";
+  }
+  EXPECT_GE(written, 20u);
+  // Typed by kind, the configuration's canonical value over the default.
+  const auto gtao = pass_parameter_values("gtao", {{"gtao:slices", "4"}, {"gtao:radius", "0.1"}, {"hbao:steps", "2"}});
+  const std::map<std::string, RecordValue> values(gtao.begin(), gtao.end());
+  EXPECT_EQ(values.size(), 10u);
+  EXPECT_EQ(std::get<int64_t>(values.at("gtao_slices")), 4);
+  EXPECT_EQ(std::get<int64_t>(values.at("gtao_steps")), 16);
+  EXPECT_EQ(std::get<double>(values.at("gtao_radius")), 0.1);  // not the float's 0.10000000149011612
+  EXPECT_EQ(std::get<std::string>(values.at("gtao_jitter")), "on");
+  // A parameter with no default: its value given, the column is the configuration's, and the
+  // pass's describe() leaves it alone; not given, the pass writes the value it derives (a = s).
+  const auto indirect = pass_parameter_values("indirect", {{"indirect:a", "2"}});
+  const std::map<std::string, RecordValue> given(indirect.begin(), indirect.end());
+  EXPECT_EQ(std::get<double>(given.at("topological_bias")), 2.0);
+  EXPECT_EQ(given.count("footprint_threshold"), 0u);
+  const auto pass = make_pass("indirect", StructureParams(std::map<std::string, std::string>{{"a", "2"}}));
+  for (const auto& [column, value] : pass->describe(scene)) EXPECT_NE(column, "topological_bias");
+  for (const auto& [column, value] : make_pass("indirect", StructureParams())->describe(scene))
+    if (column == "topological_bias") EXPECT_EQ(std::get<double>(value), 4.0);  // s's default
+  // a = s as s's column holds it: the canonical value of s's text.
+  const auto s_given = make_pass("indirect", StructureParams(std::map<std::string, std::string>{{"s", "0.1"}}));
+  bool derived = false;
+  for (const auto& [column, value] : s_given->describe(scene))
+    if (column == "topological_bias") derived = std::get<double>(value) == 0.1;
+  EXPECT_TRUE(derived);
 }
 
 TEST(AxisValues, TypedAccessorsReadCanonicalTextAndRefuseWhatIsNot) {

@@ -52,8 +52,9 @@ struct PassRun {
 };
 
 // `name` refuses each parameter value of `refused` with a UserError; with `key`=`value`
-// (an integer parameter) it needs no structure, runs on the CPU as `runs_on_cpu` says and
-// describes `column` as that value.
+// (an integer parameter) it needs no structure, runs on the CPU as `runs_on_cpu` says, and
+// the parameter's record column `column` holds that value (pass_parameter_values(), not the
+// pass's describe(), which writes none of its parameters' columns).
 inline void expect_parameters_checked(
     const std::string& name, const std::vector<std::pair<std::string, std::string>>& refused,
     const std::string& key, int64_t value, const std::string& column, bool runs_on_cpu) {
@@ -67,9 +68,12 @@ inline void expect_parameters_checked(
   EXPECT_FALSE(pass->requirements().needs_structure);
   EXPECT_EQ(pass->requirements().runs_on_cpu, runs_on_cpu);
   bool found = false;
-  for (const auto& [described, described_value] : pass->describe(load_scene("cornell")))
-    if (described == column) found = std::get<int64_t>(described_value) == value;
+  for (const auto& [written, written_value] :
+       pass_parameter_values(name, {{name + ":" + key, std::to_string(value)}}))
+    if (written == column) found = std::get<int64_t>(written_value) == value;
   EXPECT_TRUE(found) << column;
+  for (const auto& [described, described_value] : pass->describe(load_scene("cornell")))
+    EXPECT_NE(described, column) << "describe() writes a parameter's column";
 }
 
 // How rough an AO image is: the sum of squared differences of horizontal neighbours, pairs
