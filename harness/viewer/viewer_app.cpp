@@ -38,6 +38,7 @@
 #include "harness/scene/generators.h"
 #include "harness/scene/scene_loader.h"
 #include "harness/util/error.h"
+#include "harness/util/text.h"
 #include "harness/viewer/camera_control.h"
 #include "harness/viewer/key_script.h"
 #include "harness/viewer/point_cloud.h"
@@ -71,12 +72,6 @@ std::vector<T> parsed(const std::vector<std::string>& names, T (*parse)(const st
   std::vector<T> values;
   for (const auto& name : names) values.push_back(parse(name));
   return values;
-}
-
-std::string format_ms(double ms) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.4g", ms);
-  return b;
 }
 
 }  // namespace
@@ -291,7 +286,7 @@ void Viewer::print_status() const {
          << " stored=" << m.last_build.fragments_stored << " lost=" << m.last_build.fragments_lost
          << " bytes_allocated=" << m.bytes_allocated();
     for (const auto& [name, ms] : last_times_)
-      if (name == "build" || name == "frame") line << " " << name << "_ms=" << format_ms(ms);
+      if (name == "build" || name == "frame") line << " " << name << "_ms=" << format_significant(ms, 4);
   } else {
     line << " status=error error=\"" << error_ << "\"";
   }
