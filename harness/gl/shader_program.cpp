@@ -122,6 +122,21 @@ std::string preprocess_shader(const std::string& file, const ShaderDefines& defi
   return out.str();
 }
 
+namespace {
+
+// The info log of a shader or program: `get_iv` and `get_log` are glGetShaderiv and
+// glGetShaderInfoLog, or glGetProgramiv and glGetProgramInfoLog.
+template <typename GetIv, typename GetLog>
+std::string info_log(GLuint object, GetIv get_iv, GetLog get_log) {
+  GLint length = 0;
+  get_iv(object, GL_INFO_LOG_LENGTH, &length);
+  std::string log(size_t(std::max(length, 1)), '\0');
+  get_log(object, length, nullptr, log.data());
+  return log;
+}
+
+}  // namespace
+
 GlProgram build_program(const std::vector<ShaderStage>& stages, const ShaderDefines& defines) {
   GLuint program = glCreateProgram();
   GlProgram owner(program);
@@ -141,10 +156,7 @@ GlProgram build_program(const std::vector<ShaderStage>& stages, const ShaderDefi
     GLint ok = 0;
     glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
     if (!ok) {
-      GLint length = 0;
-      glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
-      std::string log(size_t(std::max(length, 1)), '\0');
-      glGetShaderInfoLog(shader, length, nullptr, log.data());
+      const std::string log = info_log(shader, glGetShaderiv, glGetShaderInfoLog);
       glDeleteShader(shader);
       for (GLuint s : shaders) glDeleteShader(s);
       throw GpuError("compiling " + stage.file + " failed:\n" + annotate_log(log, table));
@@ -162,10 +174,7 @@ GlProgram build_program(const std::vector<ShaderStage>& stages, const ShaderDefi
   GLint ok = 0;
   glGetProgramiv(program, GL_LINK_STATUS, &ok);
   if (!ok) {
-    GLint length = 0;
-    glGetProgramiv(program, GL_INFO_LOG_LENGTH, &length);
-    std::string log(size_t(std::max(length, 1)), '\0');
-    glGetProgramInfoLog(program, length, nullptr, log.data());
+    const std::string log = info_log(program, glGetProgramiv, glGetProgramInfoLog);
     throw GpuError("linking " + names + " failed:\n" + log);
   }
   return owner;

@@ -10,9 +10,8 @@
 
 namespace ldm {
 
-AmbientOcclusion::AmbientOcclusion(StructureParams& params) {
-  // An absent key keeps the scene's value.
-  overrides_ = read_ao_overrides(params);
+AmbientOcclusion::AmbientOcclusion(StructureParams& params) : AoPassBase(params) {
+  // An absent key keeps the scene's value (d_max and visibility: AoPassBase).
   if (params.has("normal_offset_pixels"))
     overrides_.normal_offset_pixels = float(params.get_double("normal_offset_pixels"));
   overrides_.trace = parse_ao_trace(params.get_choice("trace"));
@@ -40,10 +39,6 @@ std::vector<WorkCounter> AmbientOcclusion::work_counters() {
 
 std::vector<ColumnSpec> AmbientOcclusion::columns() {
   return ao_pass_columns(true, {}, true);
-}
-
-AoSettings AmbientOcclusion::settings_for(const Scene& scene) const {
-  return apply_ao_overrides(scene.ao, overrides_);
 }
 
 PassRequirements AmbientOcclusion::requirements() const {

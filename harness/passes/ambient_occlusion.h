@@ -12,6 +12,7 @@
 #include <memory>
 
 #include "harness/passes/ao_pass.h"
+#include "harness/passes/ao_pass_base.h"
 #include "harness/passes/gbuffer_pass.h"
 #include "harness/passes/pass.h"
 #include "harness/records/columns.h"
@@ -20,7 +21,7 @@ namespace ldm {
 
 // Pass's interface (LDM_PASS_DECLARATIONS) and what the pass adds: declarations alike in
 // form in every pass's header, each its own.
-class AmbientOcclusion : public Pass {
+class AmbientOcclusion : public AoPassBase {
  public:
   explicit AmbientOcclusion(StructureParams& params);
   LDM_PASS_DECLARATIONS("ao");
@@ -30,11 +31,7 @@ class AmbientOcclusion : public Pass {
   std::vector<std::string> warnings() const override;
   std::vector<std::string> problems() const override;
 
-  // The scene's AO settings with this pass's parameters applied.
-  AoSettings settings_for(const Scene& scene) const;
-
  private:
-  AoOverrides overrides_;
   const Scene* scene_ = nullptr;
   const GpuScene* gpu_scene_ = nullptr;
   std::unique_ptr<GBufferPass> gbuffer_;

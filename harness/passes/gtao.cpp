@@ -22,7 +22,7 @@ AxisSpec choice(const char* key, std::vector<std::string> choices, const char* f
 
 }  // namespace
 
-Gtao::Gtao(StructureParams& params) {
+Gtao::Gtao(StructureParams& params) : AoPassBase(params) {
   gtao_.slices = uint32_t(params.get_uint("slices"));
   gtao_.steps = uint32_t(params.get_uint("steps"));
   gtao_.radius_scale = float(params.get_double("radius"));
@@ -33,7 +33,6 @@ Gtao::Gtao(StructureParams& params) {
   gtao_.normalized = params.get_choice("estimator") == "normalized";
   gtao_.denoise_radius = uint32_t(params.get_uint("denoise"));
   gtao_.reference_weights = params.get_choice("attenuation") == "reference";
-  overrides_ = read_ao_overrides(params);
 }
 
 // The defaults are the measured optimum of docs/measured/gtao-rtao-gpu.md.
@@ -80,10 +79,6 @@ std::vector<WorkCounter> Gtao::work_counters() {
 }
 
 Gtao::~Gtao() = default;
-
-AoSettings Gtao::settings_for(const Scene& scene) const {
-  return apply_ao_overrides(scene.ao, overrides_);
-}
 
 PassRequirements Gtao::requirements() const {
   PassRequirements r;

@@ -28,6 +28,7 @@
 // scenes).
 #include <memory>
 
+#include "harness/passes/ao_pass_base.h"
 #include "harness/passes/gbuffer_pass.h"
 #include "harness/passes/gtao_kernel.h"
 #include "harness/passes/pass.h"
@@ -38,7 +39,7 @@ namespace ldm {
 
 // Pass's interface (LDM_PASS_DECLARATIONS) and what the pass adds: declarations alike in
 // form in every pass's header, each its own.
-class Gtao : public Pass {
+class Gtao : public AoPassBase {
  public:
   explicit Gtao(StructureParams& params);
   ~Gtao() override;
@@ -48,12 +49,10 @@ class Gtao : public Pass {
   Image coverage() const override;
   std::vector<BufferMemory> memory() const override;
 
-  AoSettings settings_for(const Scene& scene) const;
   const GtaoSettings& gtao() const { return gtao_; }
 
  private:
   GtaoSettings gtao_;
-  AoOverrides overrides_;
   ScreenSpaceAo<GtaoKernel> frame_{"gtao", "denoise"};
 };
 

@@ -7,19 +7,22 @@
 
 namespace ldm {
 
-GtaoKernel::GtaoKernel(const GtaoSettings& gtao, const AoSettings& ao, int width, int height)
-    : width_(width), height_(height), output_(GL_R32F, width, height) {
-  framebuffer_.attach_color(0, output_);
-  framebuffer_.check_complete("GTAO output");
+namespace {
+
+ShaderDefines gtao_defines(const GtaoSettings& gtao, const AoSettings& ao) {
   ShaderDefines defines = binding_defines();
   defines.set("GTAO_SLICES", std::to_string(gtao.slices));
   defines.set("GTAO_STEPS", std::to_string(gtao.steps));
   // The reference's V weighs the rises where it is attenuated (unattenuated, W = 1 anyway).
   defines.set("GTAO_REFERENCE_WEIGHTS", ao.attenuated && gtao.reference_weights ? 1 : 0);
   defines.set("GTAO_NORMALIZED", gtao.normalized ? 1 : 0);
-  program_ = build_program({{GL_VERTEX_SHADER, "passes/fullscreen.vert", {}},
-                            {GL_FRAGMENT_SHADER, "passes/gtao.frag", {}}},
-                           defines);
+  return defines;
+}
+
+}  // namespace
+
+GtaoKernel::GtaoKernel(const GtaoSettings& gtao, const AoSettings& ao, int width, int height)
+    : FullscreenAoKernel("GTAO", "passes/gtao.frag", gtao_defines(gtao, ao), width, height) {
   program_.set("gtao_radius", gtao.radius_scale * ao.d_max);
   program_.set("gtao_d_max", ao.d_max);
   program_.set("gtao_falloff_exponent", ao.falloff_exponent);
@@ -37,18 +40,6 @@ void GtaoKernel::set_camera(const GtaoCamera& camera) {
   program_.set("camera_right", camera.right.x, camera.right.y, camera.right.z);
   program_.set("camera_up", camera.up.x, camera.up.y, camera.up.z);
   program_.set("focal_pixels", camera.focal_pixels);
-}
-
-void GtaoKernel::run(const GlTexture2D& positions, const GlTexture2D& normals) const {
-  glBindTextureUnit(0, positions.id());
-  glBindTextureUnit(1, normals.id());
-  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
-  glViewport(0, 0, width_, height_);
-  glDisable(GL_DEPTH_TEST);
-  program_.use();
-  glBindVertexArray(empty_vao_.id());
-  glDrawArrays(GL_TRIANGLES, 0, 3);
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
 }  // namespace ldm

@@ -9,6 +9,7 @@
 #include <glm/glm.hpp>
 
 #include "harness/gl/gl_objects.h"
+#include "harness/passes/fullscreen_ao_kernel.h"
 #include "harness/scene/scene.h"
 
 namespace ldm {
@@ -41,22 +42,12 @@ struct GtaoCamera {
 // distance), so nothing but the plane itself is lost.
 inline constexpr float kGtaoTangentBias = 1e-4f;
 
-class GtaoKernel {
+// run(positions, normals) writes AO into target() (FullscreenAoKernel).
+class GtaoKernel : public FullscreenAoKernel {
  public:
   // `ao` gives d_max, the visibility model and its falloff exponent (shaders/passes/gtao.frag).
   GtaoKernel(const GtaoSettings& gtao, const AoSettings& ao, int width, int height);
   void set_camera(const GtaoCamera& camera);
-  // Writes AO into target(), width x height, 0 on background.
-  void run(const GlTexture2D& positions, const GlTexture2D& normals) const;
-  GlTexture2D& target() { return output_; }
-  const GlTexture2D& target() const { return output_; }
-
- private:
-  int width_, height_;
-  GlTexture2D output_;
-  GlFramebuffer framebuffer_;
-  GlVertexArray empty_vao_;
-  GlProgram program_;
 };
 
 }  // namespace ldm

@@ -13,13 +13,12 @@
 
 namespace ldm {
 
-Hbao::Hbao(StructureParams& params) {
+Hbao::Hbao(StructureParams& params) : AoPassBase(params) {
   hbao_.directions = uint32_t(params.get_uint("directions"));
   hbao_.steps = uint32_t(params.get_uint("steps"));
   hbao_.angle_bias = float(params.get_double("angle_bias"));
   hbao_.jitter = params.get_choice("jitter") == "on";
   hbao_.blur_radius = uint32_t(params.get_uint("blur"));
-  overrides_ = read_ao_overrides(params);
 }
 
 std::vector<AxisSpec> Hbao::parameters() {
@@ -65,10 +64,6 @@ std::vector<WorkCounter> Hbao::work_counters() {
 }
 
 Hbao::~Hbao() = default;
-
-AoSettings Hbao::settings_for(const Scene& scene) const {
-  return apply_ao_overrides(scene.ao, overrides_);
-}
 
 PassRequirements Hbao::requirements() const {
   PassRequirements r;

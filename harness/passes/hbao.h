@@ -16,6 +16,7 @@
 // Every parameter takes a comma list, a run axis (--param hbao:steps=4,8,16).
 #include <memory>
 
+#include "harness/passes/ao_pass_base.h"
 #include "harness/passes/gbuffer_pass.h"
 #include "harness/passes/hbao_kernel.h"
 #include "harness/passes/pass.h"
@@ -26,7 +27,7 @@ namespace ldm {
 
 // Pass's interface (LDM_PASS_DECLARATIONS) and what the pass adds: declarations alike in
 // form in every pass's header, each its own.
-class Hbao : public Pass {
+class Hbao : public AoPassBase {
  public:
   explicit Hbao(StructureParams& params);
   ~Hbao() override;
@@ -36,13 +37,10 @@ class Hbao : public Pass {
   Image coverage() const override;
   std::vector<BufferMemory> memory() const override;
 
-  // The scene's AO settings (d_max, visibility) with this pass's overrides applied.
-  AoSettings settings_for(const Scene& scene) const;
   const HbaoSettings& hbao() const { return hbao_; }
 
  private:
   HbaoSettings hbao_;
-  AoOverrides overrides_;
   ScreenSpaceAo<HbaoKernel> frame_{"hbao", "blur"};
 };
 

@@ -21,36 +21,24 @@ namespace {
 // The tiled random table's stream: fixed, so a jittered image is reproducible.
 constexpr uint64_t kJitterSeed = 0x4842414fu;  // "HBAO"
 
-void draw_fullscreen(GLuint framebuffer, int width, int height, const GlProgram& program,
-                     const GlVertexArray& vao) {
-  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
-  glViewport(0, 0, width, height);
-  glDisable(GL_DEPTH_TEST);
-  program.use();
-  glBindVertexArray(vao.id());
-  glDrawArrays(GL_TRIANGLES, 0, 3);
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
-}
-
 void set_camera_uniforms(const GlProgram& p, const HbaoCamera& camera) {
   p.set("camera_eye", camera.eye.x, camera.eye.y, camera.eye.z);
   p.set("camera_forward", camera.forward.x, camera.forward.y, camera.forward.z);
   p.set("focal_pixels", camera.focal_pixels);
 }
 
-}  // namespace
-
-HbaoKernel::HbaoKernel(const HbaoSettings& hbao, const AoSettings& ao, int width, int height)
-    : width_(width), height_(height), output_(GL_R32F, width, height) {
-  framebuffer_.attach_color(0, output_);
-  framebuffer_.check_complete("HBAO output");
+ShaderDefines hbao_defines(const HbaoSettings& hbao, const AoSettings& ao) {
   ShaderDefines defines = binding_defines();
   defines.set("HBAO_DIRECTIONS", std::to_string(hbao.directions));
   defines.set("HBAO_STEPS", std::to_string(hbao.steps));
   defines.set("HBAO_ATTENUATED", ao.attenuated ? 1 : 0);
-  program_ = build_program({{GL_VERTEX_SHADER, "passes/fullscreen.vert", {}},
-                            {GL_FRAGMENT_SHADER, "passes/hbao.frag", {}}},
-                           defines);
+  return defines;
+}
+
+}  // namespace
+
+HbaoKernel::HbaoKernel(const HbaoSettings& hbao, const AoSettings& ao, int width, int height)
+    : FullscreenAoKernel("HBAO", "passes/hbao.frag", hbao_defines(hbao, ao), width, height) {
   program_.set("hbao_radius", ao.d_max);
   program_.set("hbao_falloff_exponent", ao.falloff_exponent);
   program_.set("hbao_angle_bias", hbao.angle_bias);
@@ -76,12 +64,6 @@ std::array<glm::vec2, 16> HbaoKernel::jitter_table(const HbaoSettings& hbao) con
 }
 
 void HbaoKernel::set_camera(const HbaoCamera& camera) { set_camera_uniforms(program_, camera); }
-
-void HbaoKernel::run(const GlTexture2D& positions, const GlTexture2D& normals) const {
-  glBindTextureUnit(0, positions.id());
-  glBindTextureUnit(1, normals.id());
-  draw_fullscreen(framebuffer_.id(), width_, height_, program_, empty_vao_);
-}
 
 HbaoBlur::HbaoBlur(uint32_t radius, const GlTexture2D& ao)
     : ao_(ao), width_(ao.width()), height_(ao.height()), scratch_(GL_R32F, width_, height_) {

@@ -14,6 +14,7 @@
 
 #include "harness/gl/gl_objects.h"
 #include "harness/measure/work_counters.h"
+#include "harness/passes/fullscreen_ao_kernel.h"
 #include "harness/scene/scene.h"
 
 namespace ldm {
@@ -31,26 +32,17 @@ struct HbaoCamera {
   float focal_pixels = 1.0f;
 };
 
-class HbaoKernel {
+// run(positions, normals) writes AO into target() (FullscreenAoKernel).
+class HbaoKernel : public FullscreenAoKernel {
  public:
   // `ao` gives the radius R = d_max and the falloff: attenuated W = 1 - min(r/R, 1)^e (the
   // LDM AO's 1 - V), unattenuated W = 1 within R.
   HbaoKernel(const HbaoSettings& hbao, const AoSettings& ao, int width, int height);
   void set_camera(const HbaoCamera& camera);
-  // Writes AO into target(), width x height, 0 on background.
-  void run(const GlTexture2D& positions, const GlTexture2D& normals) const;
-  GlTexture2D& target() { return output_; }
-  const GlTexture2D& target() const { return output_; }
 
  private:
   // The tiled random table: per entry a rotation (radians) and a step offset in (0, 1].
   std::array<glm::vec2, 16> jitter_table(const HbaoSettings& hbao) const;
-
-  int width_, height_;
-  GlTexture2D output_;
-  GlFramebuffer framebuffer_;
-  GlVertexArray empty_vao_;
-  GlProgram program_;
 };
 
 // What hbao_blur.frag counts in the counting replay under `subpass` (HBAO's "blur", GTAO's

@@ -202,14 +202,20 @@ void PhotonLighting::compile() {
   const ShaderDefines plain = indirect_defines();
   draw_count_program_ = build_program(
       {{GL_COMPUTE_SHADER, "passes/indirect/splat_draw_count.comp", {}}}, plain);
-  splat_program_ = build_program({{GL_VERTEX_SHADER, "passes/indirect/photon_splat.vert", {}},
-                                  {GL_GEOMETRY_SHADER, "passes/indirect/photon_splat.geom", {}},
-                                  {GL_FRAGMENT_SHADER, "passes/indirect/photon_splat.frag", {}}},
-                                 plain);
-  splat_program_.use();
-  splat_program_.set("splat_scale", settings_.splat_scale);
-  splat_program_.set("topological_bias", settings_.a());
-  splat_program_.set_mat4("camera_view_projection", &camera_vp_[0][0]);
+  // The splat and its audit: the same vertex and geometry stages and uniforms, each its own
+  // fragment stage.
+  const auto build_splat = [&](const char* fragment, const ShaderDefines& defines) {
+    GlProgram program = build_program({{GL_VERTEX_SHADER, "passes/indirect/photon_splat.vert", {}},
+                                       {GL_GEOMETRY_SHADER, "passes/indirect/photon_splat.geom", {}},
+                                       {GL_FRAGMENT_SHADER, fragment, {}}},
+                                      defines);
+    program.use();
+    program.set("splat_scale", settings_.splat_scale);
+    program.set("topological_bias", settings_.a());
+    program.set_mat4("camera_view_projection", &camera_vp_[0][0]);
+    return program;
+  };
+  splat_program_ = build_splat("passes/indirect/photon_splat.frag", plain);
   direct_program_ = build_program({{GL_VERTEX_SHADER, "passes/fullscreen.vert", {}},
                                    {GL_FRAGMENT_SHADER, "passes/indirect/direct_light.frag", {}}},
                                   plain);
@@ -223,14 +229,7 @@ void PhotonLighting::compile() {
   ShaderDefines audit = indirect_defines();
   audit.set("PHOTON_SPLAT_AUDIT", 1);
   audit.set("PHOTON_SPLAT_QUAD_SCALE", glsl_float(kAuditQuadScale));
-  audit_program_ = build_program({{GL_VERTEX_SHADER, "passes/indirect/photon_splat.vert", {}},
-                                  {GL_GEOMETRY_SHADER, "passes/indirect/photon_splat.geom", {}},
-                                  {GL_FRAGMENT_SHADER, "passes/indirect/photon_splat_audit.frag", {}}},
-                                 audit);
-  audit_program_.use();
-  audit_program_.set("splat_scale", settings_.splat_scale);
-  audit_program_.set("topological_bias", settings_.a());
-  audit_program_.set_mat4("camera_view_projection", &camera_vp_[0][0]);
+  audit_program_ = build_splat("passes/indirect/photon_splat_audit.frag", audit);
   audit_program_.set("camera_eye", eye.x, eye.y, eye.z);
 }
 

@@ -15,11 +15,10 @@ constexpr uint64_t kDefaultSeed = 0x5254414fu;  // "RTAO"
 
 }  // namespace
 
-Rtao::Rtao(StructureParams& params) {
+Rtao::Rtao(StructureParams& params) : AoPassBase(params) {
   spp_ = uint32_t(params.get_uint("spp"));
   threads_ = int(params.get_uint("threads"));
   seed_ = params.get_uint("seed");
-  overrides_ = read_ao_overrides(params);
 }
 
 // Each parameter in one designated initializer (the fields in AxisSpec's order), as
@@ -52,10 +51,6 @@ std::vector<ColumnSpec> Rtao::columns() {
 }
 
 Rtao::~Rtao() = default;
-
-AoSettings Rtao::settings_for(const Scene& scene) const {
-  return apply_ao_overrides(scene.ao, overrides_);
-}
 
 int Rtao::threads_used() const { return render_worker_count(threads_, width_, height_); }
 

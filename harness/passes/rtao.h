@@ -18,6 +18,7 @@
 #include <chrono>
 #include <memory>
 
+#include "harness/passes/ao_pass_base.h"
 #include "harness/passes/pass.h"
 #include "harness/records/columns.h"
 
@@ -30,13 +31,12 @@ inline constexpr uint32_t kRtaoStreamPass = 0x80000000u;
 
 // Pass's interface (LDM_PASS_DECLARATIONS) and what the pass adds: declarations alike in
 // form in every pass's header, each its own.
-class Rtao : public Pass {
+class Rtao : public AoPassBase {
  public:
   explicit Rtao(StructureParams& params);
   ~Rtao() override;
   LDM_PASS_DECLARATIONS("rtao");
 
-  AoSettings settings_for(const Scene& scene) const;
   // The worker threads a render of the prepared size uses (the parameter, or all cores for
   // 0, at most one per tile).
   int threads_used() const;
@@ -45,7 +45,6 @@ class Rtao : public Pass {
   uint32_t spp_ = 1;
   int threads_ = 0;
   uint64_t seed_ = 0;
-  AoOverrides overrides_;
   AoSettings ao_;
   int width_ = 0, height_ = 0;
   // The scene in the reference's frame (centred on its bounding sphere) and its BVH, built

@@ -81,11 +81,10 @@ ShaderDefines traversal_defines(uint32_t bvh_depth, bool counting) {
 
 }  // namespace
 
-RtaoGpu::RtaoGpu(StructureParams& params) {
+RtaoGpu::RtaoGpu(StructureParams& params) : AoPassBase(params) {
   spp_ = uint32_t(params.get_uint("spp"));
   seed_ = params.get_uint("seed");
   trace_primary_ = params.get_choice("primary") == "trace";
-  overrides_ = read_ao_overrides(params);
 }
 
 // Each parameter in one designated initializer (the fields in AxisSpec's order), as
@@ -150,10 +149,6 @@ std::vector<WorkCounter> RtaoGpu::work_counters() {
 }
 
 RtaoGpu::~RtaoGpu() = default;
-
-AoSettings RtaoGpu::settings_for(const Scene& scene) const {
-  return apply_ao_overrides(scene.ao, overrides_);
-}
 
 PassRequirements RtaoGpu::requirements() const {
   PassRequirements r;

@@ -32,6 +32,7 @@
 #include <memory>
 #include <optional>
 
+#include "harness/passes/ao_pass_base.h"
 #include "harness/passes/gbuffer_pass.h"
 #include "harness/passes/gpu_bvh.h"
 #include "harness/passes/pass.h"
@@ -56,7 +57,7 @@ struct RtaoGpuWork {
 
 // Pass's interface (LDM_PASS_DECLARATIONS) and what the pass adds: declarations alike in
 // form in every pass's header, each its own.
-class RtaoGpu : public Pass {
+class RtaoGpu : public AoPassBase {
  public:
   explicit RtaoGpu(StructureParams& params);
   ~RtaoGpu() override;
@@ -69,7 +70,6 @@ class RtaoGpu : public Pass {
   std::vector<std::string> problems() const override;
   std::vector<BufferMemory> memory() const override;
 
-  AoSettings settings_for(const Scene& scene) const;
   const GpuBvh& bvh() const { return bvh_; }
   // The counting replay of the last render() (run once, on first use).
   const RtaoGpuWork& work() const;
@@ -92,7 +92,6 @@ class RtaoGpu : public Pass {
   uint32_t spp_ = 1;
   bool trace_primary_ = true;
   uint64_t seed_ = 0;
-  AoOverrides overrides_;
   AoSettings ao_;
   const Scene* scene_ = nullptr;
   const GpuScene* gpu_scene_ = nullptr;

@@ -7,18 +7,9 @@
 #include "harness/scene/scene_defaults.h"
 #include "harness/util/error.h"
 #include "harness/util/hash.h"
+#include "harness/util/text.h"
 
 namespace ldm {
-namespace {
-
-// %g, so that 1e-50 and 4e+38 read as given rather than as 0.000000 or 38 digits.
-std::string format_number(double x) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%g", x);
-  return buffer;
-}
-
-}  // namespace
 
 GeneratorParams::GeneratorParams(const nlohmann::json& params, std::string context)
     : params_(params), context_(std::move(context)) {
@@ -35,8 +26,8 @@ float GeneratorParams::number(const std::string& key, float fallback, float lo, 
   const double given = v.get<double>();
   const float x = float(given);
   if (!(x >= lo && x <= hi))
-    throw UserError(where(key) + " = " + format_number(given) + " is outside [" +
-                    format_number(lo) + ", " + format_number(hi) + "]");
+    throw UserError(where(key) + " = " + format_significant(given) + " is outside [" +
+                    format_significant(lo) + ", " + format_significant(hi) + "]");
   return x;
 }
 

@@ -2,6 +2,18 @@
 
 namespace ldm {
 
+namespace {
+
+// Vertex attribute `index` of `vao` read from `buffer`'s tightly packed vec3s (binding `index`).
+void attach_vec3_attribute(const GlVertexArray& vao, GLuint index, const GlBuffer& buffer) {
+  glVertexArrayVertexBuffer(vao.id(), index, buffer.id(), 0, sizeof(glm::vec3));
+  glVertexArrayAttribFormat(vao.id(), index, 3, GL_FLOAT, GL_FALSE, 0);
+  glVertexArrayAttribBinding(vao.id(), index, index);
+  glEnableVertexArrayAttrib(vao.id(), index);
+}
+
+}  // namespace
+
 std::string AttributeSet::describe(uint64_t derived_normal_triangles, uint64_t triangles) const {
   std::string s = "position";
   if (normals) s += "+normal";
@@ -23,18 +35,12 @@ GpuScene::GpuScene(const Scene& scene, AttributeSet attributes)
                         mesh.positions.data(), 0);
   indices_ = GlBuffer("scene_indices", mesh.triangles.size() * sizeof(glm::uvec3),
                       mesh.triangles.data(), 0);
-  glVertexArrayVertexBuffer(vao_.id(), 0, positions_.id(), 0, sizeof(glm::vec3));
-  glVertexArrayAttribFormat(vao_.id(), 0, 3, GL_FLOAT, GL_FALSE, 0);
-  glVertexArrayAttribBinding(vao_.id(), 0, 0);
-  glEnableVertexArrayAttrib(vao_.id(), 0);
+  attach_vec3_attribute(vao_, 0, positions_);
   glVertexArrayElementBuffer(vao_.id(), indices_.id());
   if (attributes.normals) {
     normals_ = GlBuffer("scene_normals", mesh.normals.size() * sizeof(glm::vec3),
                         mesh.normals.data(), 0);
-    glVertexArrayVertexBuffer(vao_.id(), 1, normals_.id(), 0, sizeof(glm::vec3));
-    glVertexArrayAttribFormat(vao_.id(), 1, 3, GL_FLOAT, GL_FALSE, 0);
-    glVertexArrayAttribBinding(vao_.id(), 1, 1);
-    glEnableVertexArrayAttrib(vao_.id(), 1);
+    attach_vec3_attribute(vao_, 1, normals_);
   }
   if (attributes.materials) {
     triangle_materials_ = GlBuffer("scene_triangle_materials",

@@ -38,6 +38,7 @@
 #include "harness/scene/generators.h"
 #include "harness/scene/scene_loader.h"
 #include "harness/util/error.h"
+#include "harness/util/text.h"
 #include "harness/viewer/camera_control.h"
 #include "harness/viewer/key_script.h"
 #include "harness/viewer/point_cloud.h"
@@ -65,10 +66,12 @@ T cycled(const std::vector<T>& values, const T& current, int step) {
   return values[size_t(((at + step) % n + n) % n)];
 }
 
-std::string format_ms(double ms) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.4g", ms);
-  return b;
+// The values `parse` makes of `names` (an axis's choices in the order it lists them).
+template <typename T>
+std::vector<T> parsed(const std::vector<std::string>& names, T (*parse)(const std::string&)) {
+  std::vector<T> values;
+  for (const auto& name : names) values.push_back(parse(name));
+  return values;
 }
 
 }  // namespace
@@ -283,7 +286,7 @@ void Viewer::print_status() const {
          << " stored=" << m.last_build.fragments_stored << " lost=" << m.last_build.fragments_lost
          << " bytes_allocated=" << m.bytes_allocated();
     for (const auto& [name, ms] : last_times_)
-      if (name == "build" || name == "frame") line << " " << name << "_ms=" << format_ms(ms);
+      if (name == "build" || name == "frame") line << " " << name << "_ms=" << format_significant(ms, 4);
   } else {
     line << " status=error error=\"" << error_ << "\"";
   }
@@ -327,8 +330,9 @@ void Viewer::save_run(const std::string& path) {
 
 void Viewer::on_key(int key, int mods) {
   const int step = (mods & GLFW_MOD_SHIFT) ? -1 : 1;
-  auto cycle_axis = [&](std::vector<std::string>& axis, const std::vector<std::string>& names) {
-    axis = {cycled(names, axis.front(), step)};
+  // Sets a single-valued axis to the value `step` on from its own in `values`.
+  auto cycle_axis = [&](auto& axis, const auto& values) {
+    axis = {cycled(values, axis.front(), step)};
     config_dirty_ = true;
   };
   switch (key) {
@@ -342,26 +346,15 @@ void Viewer::on_key(int key, int mods) {
       settings_.resolutions = {std::clamp(step > 0 ? settings_.resolutions.front() * 2 : settings_.resolutions.front() / 2, 1u, 8192u)};
       config_dirty_ = true;
       break;
-    case GLFW_KEY_T: {
-      std::vector<AoTrace> traces;
-      for (const auto& name : ao_trace_names()) traces.push_back(parse_ao_trace(name));
-      settings_.traces = {cycled(traces, settings_.traces.front(), step)};
-      config_dirty_ = true;
+    case GLFW_KEY_T: cycle_axis(settings_.traces, parsed(ao_trace_names(), parse_ao_trace)); break;
+    case GLFW_KEY_E:
+      cycle_axis(settings_.estimators, parsed(ao_estimator_names(), parse_ao_estimator));
       break;
-    }
-    case GLFW_KEY_E: {
-      std::vector<AoEstimatorChoice> estimators;
-      for (const auto& name : ao_estimator_names()) estimators.push_back(parse_ao_estimator(name));
-      settings_.estimators = {cycled(estimators, settings_.estimators.front(), step)};
-      config_dirty_ = true;
-      break;
-    }
     case GLFW_KEY_Z: {
       std::vector<SizingPolicy> policies = {SizingPolicy::PreviousFrame, SizingPolicy::Census,
                                             SizingPolicy::Oracle};
       if (settings_.sizing_budget_mib > 0) policies.push_back(SizingPolicy::Budget);
-      settings_.sizing = {cycled(policies, settings_.sizing.front(), step)};
-      config_dirty_ = true;
+      cycle_axis(settings_.sizing, policies);
       break;
     }
     case GLFW_KEY_1: layout_ = Layout::SideBySide; break;

@@ -7,6 +7,7 @@
 
 #include "harness/gl/bindings.h"
 #include "harness/util/error.h"
+#include "harness/util/text.h"
 #include "ldm_impls/common/compute_grid.h"
 #include "ldm_impls/common/structure_counters.h"
 #include "ldm_impls/common/uint_reduction.h"
@@ -74,12 +75,6 @@ std::vector<uint32_t> make_offsets(uint64_t table_size, uint32_t count) {
       offsets.push_back(offset);
   }
   return offsets;
-}
-
-std::string format_double(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.4g", value);
-  return buffer;
 }
 
 }  // namespace
@@ -389,13 +384,13 @@ std::vector<std::pair<std::string, std::string>> HaBuffer::sizing() const {
       {"table_policy", plan_.strategy().fixed_by_budget()
                            ? "budget / key bytes"
                            : "max(N*R_LDM^2, ceil(fragments / load_factor))"},
-      {"load_factor", format_double(load_factor_)},
-      {"load_factor_actual", format_double(double(stats().fragments_rasterized) / double(table_size_))},
+      {"load_factor", format_significant(load_factor_, 4)},
+      {"load_factor_actual", format_significant(double(stats().fragments_rasterized) / double(table_size_), 4)},
       {"max_age", std::to_string(max_age_)},
       {"key_bits", std::to_string(key_bits_)},
       {"key_bits_request", key_bits_request_}};
   if (key_bits_ == 32)
-    s.emplace_back("depth_step", format_double(std::ldexp(1.0, depth_step_log2_)));
+    s.emplace_back("depth_step", format_significant(std::ldexp(1.0, depth_step_log2_), 4));
   return s;
 }
 

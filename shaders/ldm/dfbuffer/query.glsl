@@ -4,6 +4,9 @@
 // query is one ldm_begin or ldm_next, and its nodes_visited the entries it moved the cursor
 // onto (1, or 0 past the range's end); bytes where they are read: the two offsets in
 // ldm_begin, a depth in ldm_depth.
+// Kept repetition: the cursor over one contiguous range (ldm_valid, ldm_depth, ldm_next, the
+// flush) stands again in ldm/fixed_arrays/ppfla_query.glsl over that structure's own buffers
+// and tallies; GLSL has no templates (docs/design/architecture.md, repetition kept).
 #include "common/ldm_query_api.glsl"
 #include "common/work_counters.glsl"
 #include "ldm/dfbuffer/layout.glsl"

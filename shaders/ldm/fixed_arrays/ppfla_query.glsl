@@ -4,6 +4,8 @@
 // ldm_next; its slots_scanned are the array slots it moves the cursor over to the pixel's
 // next entry (1; 0 past the last, which the count tells without reading the array). Bytes
 // are counted where they are read: the count in ldm_begin, an entry in ldm_depth.
+// Kept repetition: the same range cursor as ldm/dfbuffer/query.glsl's, over this structure's
+// own buffers and tallies; GLSL has no templates (docs/design/architecture.md).
 #include "common/ldm_query_api.glsl"
 #include "common/work_counters.glsl"
 #include "ldm/fixed_arrays/fixed_array.glsl"
