@@ -6,11 +6,9 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out="${1:-results/runs/default}"
-ldmbench="${LDMBENCH:-build/ldmbench}"
-[[ -x "$ldmbench" ]] || { echo "default-sweep.sh: $ldmbench not built (cmake --build build)" >&2; exit 2; }
-status=0
-# exit status 3: some configuration failed (recorded as failed); the sweep went on
-"$ldmbench" sweep sweeps/default.json --out "$out/ao" || { s=$?; [[ $s -eq 3 ]] || exit $s; status=3; }
-"$ldmbench" sweep sweeps/indirect.json --out "$out/indirect" || { s=$?; [[ $s -eq 3 ]] || exit $s; status=3; }
+source scripts/run-lib.sh
+require_ldmbench default-sweep.sh
+keep_failed "$ldmbench" sweep sweeps/default.json --out "$out/ao"
+keep_failed "$ldmbench" sweep sweeps/indirect.json --out "$out/indirect"
 "$ldmbench" report "$out/ao" "$out/indirect" --out "$out/report"
 exit $status

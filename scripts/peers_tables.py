@@ -77,9 +77,13 @@ def dmax(rows):
             line = f"| {scene} | {d:g} |"
             for m in methods:
                 r = cells.get((scene, d, m))
-                line += (f" {fmt(number(r, 'frame_ms_median'), '.1f')} | {fmt(number(r, 'mse'), '.2e')} |"
-                         if r else " – | – |")
+                line += time_and_mse_cells(r)
             print(line)
+
+
+def time_and_mse_cells(r):
+    """A record's frame time and MSE cells, or dashes where there is no record."""
+    return f" {fmt(number(r, 'frame_ms_median'), '.1f')} | {fmt(number(r, 'mse'), '.2e')} |" if r else " – | – |"
 
 
 def sample_counts(rows):
@@ -93,8 +97,7 @@ def sample_counts(rows):
             line = f"| {labels.get(p, p)} | {n} |"
             for s in scenes:
                 r = cells.get((p, n, s))
-                line += (f" {fmt(number(r, 'frame_ms_median'), '.1f')} | {fmt(number(r, 'mse'), '.2e')} |"
-                         if r else " – | – |")
+                line += time_and_mse_cells(r)
             print(line)
 
 

@@ -9,11 +9,10 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out="${1:-docs/measured/readme-main}"
-ldmbench="${LDMBENCH:-build/ldmbench}"
-[[ -x "$ldmbench" ]] || { echo "readme-main.sh: $ldmbench not built (cmake --build build)" >&2; exit 2; }
-status=0
-"$ldmbench" run --scene cornell,atrium --pass ao,hbao,gtao,rtao_gpu,rtao --structure all -N 32 -R 128 \
-  --param rtao_gpu:spp=1,4,16 --image-size 128x128 --repetitions 3 --no-images --out "$out" || { s=$?; [[ $s -eq 3 ]] || exit $s; status=3; }
+source scripts/run-lib.sh
+require_ldmbench readme-main.sh
+keep_failed "$ldmbench" run --scene cornell,atrium --pass ao,hbao,gtao,rtao_gpu,rtao --structure all -N 32 -R 128 \
+  --param rtao_gpu:spp=1,4,16 --image-size 128x128 --repetitions 3 --no-images --out "$out"
 "${PYTHON:-python3}" scripts/readme_table.py "$out/records.csv"  # needs numpy (scripts/setup.sh)
 echo
 "${PYTHON:-python3}" scripts/equal_time_table.py "$out/records.csv"

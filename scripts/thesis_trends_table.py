@@ -38,10 +38,17 @@ def vary(rows, column, base):
     return list(by_value.values())
 
 
+def table(rows, column, base, *headings):
+    """Prints a table's head (every column right-aligned); returns its rows: those that vary
+    `column` (vary)."""
+    print("| " + " | ".join(headings) + " |")
+    print("|" + "---:|" * len(headings))
+    return vary(rows, column, base)
+
+
 def table_n(rows):
-    rows = vary(rows, "n_views", {"r_ldm": "32", "splat_scale": "4"})
-    print("| N | fragments stored | ratio | M_lists (MiB) | ratio | thesis M_lists (MB) | thesis ratio |")
-    print("|---:|---:|---:|---:|---:|---:|---:|")
+    rows = table(rows, "n_views", {"r_ldm": "32", "splat_scale": "4"}, "N", "fragments stored", "ratio",
+                 "M_lists (MiB)", "ratio", "thesis M_lists (MB)", "thesis ratio")
     if not rows:
         return
     f0, m0 = number(rows[0], "work_construct_fragments"), number(rows[0], "bytes_allocated")
@@ -55,9 +62,8 @@ def table_n(rows):
 
 
 def table_s(rows):
-    rows = vary(rows, "splat_scale", {"n_views": "16", "r_ldm": "64"})
-    print("| s = a | photons stored | splat fragments | ratio to the s before | fragments in the kernel | ratio to the s before |")
-    print("|---:|---:|---:|---:|---:|---:|")
+    rows = table(rows, "splat_scale", {"n_views": "16", "r_ldm": "64"}, "s = a", "photons stored",
+                 "splat fragments", "ratio to the s before", "fragments in the kernel", "ratio to the s before")
     previous = None
     for r in rows:
         f, k = number(r, "work_splatting_fragments"), number(r, "work_splatting_fragments_in_kernel")
@@ -68,9 +74,8 @@ def table_s(rows):
 
 
 def table_r(rows):
-    rows = vary(rows, "r_ldm", {"n_views": "16", "splat_scale": "4"})
-    print("| R_LDM | photons traced | photons stored | stored / traced | ratio (stored) | LDM entries read per photon, mean |")
-    print("|---:|---:|---:|---:|---:|---:|")
+    rows = table(rows, "r_ldm", {"n_views": "16", "splat_scale": "4"}, "R_LDM", "photons traced", "photons stored",
+                 "stored / traced", "ratio (stored)", "LDM entries read per photon, mean")
     if not rows:
         return
     s0 = number(rows[0], "photons_stored")

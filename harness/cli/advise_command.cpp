@@ -29,13 +29,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The search and its report's plot (numpy, matplotlib).
-const PythonTool& advise_tool() {
-  static const PythonTool tool{"advise", "advise", "ldmbench_advise.py", "LDMBENCH_ADVISE_SCRIPT",
-                               {"matplotlib", "numpy"}, "python3-matplotlib python3-numpy"};
-  return tool;
-}
-
 struct AdviseOptions {
   std::string scene, pass = "ao", space, out, image_size = "128x128", cache_dir, launcher = "local";
   std::vector<std::string> structures;
@@ -123,8 +116,8 @@ Runner add_advise_command(CLI::App& app) {
   return [o]() {
     check_options(*o);
     export_gpu_option(o->gpu);  // its stages' sweeps read LDM_GPU
-    const std::string script = find_tool_script(advise_tool());
-    const std::string python = find_tool_python(advise_tool());
+    const std::string script = find_tool_script(python_tool("advise"));
+    const std::string python = find_tool_python(python_tool("advise"));
     const std::string exe = executable_path();
     if (exe.empty()) throw UserError("cannot find this ldmbench binary's path (/proc/self/exe)");
     std::string scratch = (fs::temp_directory_path() / "ldmbench-advise-XXXXXX").string();

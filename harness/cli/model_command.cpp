@@ -22,12 +22,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-const PythonTool& model_tool() {
-  static const PythonTool tool{"model", "model", "ldmbench_model.py", "LDMBENCH_MODEL_SCRIPT",
-                               {"numpy", "scipy"}, "python3-numpy python3-scipy"};
-  return tool;
-}
-
 struct ModelOptions {
   std::vector<std::string> runs, by, subpasses;
   std::string out, predict, fit, device;
@@ -97,8 +91,8 @@ Runner add_model_command(CLI::App& app) {
                 "Also fit on the driver's pipeline statistics (work_<subpass>_gl_*), which differ between drivers");
   return [o]() {
     check(*o);
-    const std::string script = find_tool_script(model_tool());
-    const std::string python = find_tool_python(model_tool());
+    const std::string script = find_tool_script(python_tool("model"));
+    const std::string python = find_tool_python(python_tool("model"));
     // The counters' units: this build's record schema, as `ldmbench columns --json`.
     std::string scratch = (fs::temp_directory_path() / "ldmbench-model-XXXXXX").string();
     if (!mkdtemp(scratch.data())) throw UserError("cannot make a temporary folder for the record schema");

@@ -2,6 +2,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <stdexcept>
 
 #include "harness/util/error.h"
 #include "harness/util/process.h"
@@ -9,6 +10,23 @@
 namespace ldm::cli {
 
 namespace fs = std::filesystem;
+
+const PythonTool& python_tool(const std::string& command) {
+  static const std::vector<PythonTool> tools = {
+      // Tables, plots and pages (pandas, matplotlib).
+      {"report", "report", "ldmbench_report.py", "LDMBENCH_REPORT_SCRIPT", {"matplotlib", "pandas", "numpy"},
+       "python3-matplotlib python3-pandas"},
+      // The search and its report's plot (numpy, matplotlib).
+      {"advise", "advise", "ldmbench_advise.py", "LDMBENCH_ADVISE_SCRIPT", {"matplotlib", "numpy"},
+       "python3-matplotlib python3-numpy"},
+      // The cost model's non-negative least squares (scipy).
+      {"model", "model", "ldmbench_model.py", "LDMBENCH_MODEL_SCRIPT", {"numpy", "scipy"},
+       "python3-numpy python3-scipy"},
+  };
+  for (const PythonTool& tool : tools)
+    if (tool.command == command) return tool;
+  throw std::logic_error("no Python tool for the subcommand '" + command + "'");
+}
 
 std::string find_tool_script(const PythonTool& tool) {
   if (const char* env = std::getenv(tool.script_env.c_str()); env && *env) {

@@ -20,6 +20,9 @@ struct PythonTool {
   std::string debian_packages;       // where they come from, for the message
 };
 
+// The tool of subcommand `command` (report, advise, model), from one table.
+const PythonTool& python_tool(const std::string& command);
+
 // $script_env, else <bin>/<folder>/<script>, <prefix>/share/ldmbench/<folder>/<script>, else
 // the source tree the binary was built from; UserError naming every place tried.
 std::string find_tool_script(const PythonTool& tool);

@@ -33,13 +33,6 @@ namespace fs = std::filesystem;
 
 constexpr const char* kManifest = "manifest.json";  // what marks a folder as a report
 
-const PythonTool& report_tool() {
-  static const PythonTool tool{"report", "report", "ldmbench_report.py", "LDMBENCH_REPORT_SCRIPT",
-                               {"matplotlib", "pandas", "numpy"},
-                               "python3-matplotlib python3-pandas"};
-  return tool;
-}
-
 struct ReportOptions {
   std::vector<std::string> runs, axes, formats;
   std::string out, title;
@@ -180,8 +173,8 @@ Runner add_report_command(CLI::App& app) {
     for (const std::string& run : o->runs) check_run(run);
     const std::string out = o->out.empty() ? default_out(o->runs) : o->out;
     check_out_folder(out, o->runs);
-    const std::string script = find_tool_script(report_tool());
-    const std::string python = find_tool_python(report_tool());
+    const std::string script = find_tool_script(python_tool("report"));
+    const std::string python = find_tool_python(python_tool("report"));
     // The axes the report groups and labels by: the registry's declarations, as JSON.
     std::string scratch = (std::filesystem::temp_directory_path() / "ldmbench-report-XXXXXX").string();
     if (!mkdtemp(scratch.data())) throw UserError("cannot make a temporary folder for the report's axis registry");

@@ -261,17 +261,20 @@ class OptimisticBriefMeasurement(unittest.TestCase):
         self.assertTrue(any(e["event"] == "revived" for e in events))
 
 
+def same_at_every_level(values):
+    """A measure that finds, at every level, each candidate's group's (time, its interval's low
+    and high, error) from values, with an error band of 0.001 and 100 bytes."""
+    def measure(cands, level, stage):
+        return {x.key: Measurement(*values[x.group], 0.001, 100) for x in cands}
+    return measure
+
+
 class UncertainAtEveryLevel(unittest.TestCase):
     def test_none_surely_within_sends_the_best_that_may_be_to_verification(self):
         """Both candidates' intervals straddle the budget at every level: the search does
         not give up; the one with less error goes to verification, which decides."""
         b, c = Candidate("b-n8-r64", "b", 8, 64), Candidate("c-n8-r64", "c", 8, 64)
-        values = {"b": (20, 0.2), "c": (21, 0.3)}
-
-        def measure(cands, level, stage):
-            return {x.key: Measurement(values[x.group][0], 15, 25, values[x.group][1], 0.001, 100)
-                    for x in cands}
-
+        measure = same_at_every_level({"b": (20, 15, 25, 0.2), "c": (21, 15, 25, 0.3)})
         outcome = Search([b, c], Goal(budget_ms=22), 2, measure).run()
         self.assertEqual(outcome.recommended, b.key)
         self.assertIn("verification", outcome.why)
@@ -283,12 +286,7 @@ class UncertainAtEveryLevel(unittest.TestCase):
         repeated verification), never dropped silently; c, worse and straddling, is not."""
         a, b, c = (Candidate("a-n8-r64", "a", 8, 64), Candidate("b-n8-r64", "b", 8, 64),
                    Candidate("c-n8-r64", "c", 8, 64))
-        values = {"a": (10, 9, 11, 0.3), "b": (19, 15, 25, 0.1), "c": (20, 16, 24, 0.5)}
-
-        def measure(cands, level, stage):
-            return {x.key: Measurement(values[x.group][0], values[x.group][1], values[x.group][2],
-                                       values[x.group][3], 0.001, 100) for x in cands}
-
+        measure = same_at_every_level({"a": (10, 9, 11, 0.3), "b": (19, 15, 25, 0.1), "c": (20, 16, 24, 0.5)})
         outcome = Search([a, b, c], Goal(budget_ms=22), 2, measure).run()
         self.assertEqual(outcome.recommended, a.key)
         self.assertEqual(outcome.uncertain, [b.key])
@@ -299,12 +297,7 @@ class UncertainAtEveryLevel(unittest.TestCase):
         verification measures the one likely to be found within before the one likely not."""
         a, b, d = (Candidate("a-n8-r64", "a", 8, 64), Candidate("b-n8-r64", "b", 8, 64),
                    Candidate("d-n8-r64", "d", 8, 64))
-        values = {"a": (10, 9, 11, 0.3), "b": (23, 18, 29, 0.1), "d": (20, 16, 24, 0.2)}
-
-        def measure(cands, level, stage):
-            return {x.key: Measurement(values[x.group][0], values[x.group][1], values[x.group][2],
-                                       values[x.group][3], 0.001, 100) for x in cands}
-
+        measure = same_at_every_level({"a": (10, 9, 11, 0.3), "b": (23, 18, 29, 0.1), "d": (20, 16, 24, 0.2)})
         outcome = Search([a, b, d], Goal(budget_ms=22), 2, measure).run()
         self.assertEqual(outcome.recommended, a.key)
         self.assertEqual(outcome.uncertain, [d.key, b.key])

@@ -26,15 +26,6 @@ Outcome ldmbench_with_env(const std::string& environment, const std::string& arg
 
 using test::read_text;
 
-// Bad input: exit status 2, a message naming the culprit, and nothing written.
-void expect_rejected(const std::string& args, const std::string& culprit) {
-  const fs::path out = fs::path(test::make_temp_dir("ldm-cli")) / "out";
-  const Outcome o = ldmbench("run " + args + " --out " + out.string());
-  EXPECT_EQ(o.status, 2) << args << "\n" << o.output;
-  EXPECT_NE(o.output.find(culprit), std::string::npos) << args << "\n" << o.output;
-  EXPECT_FALSE(fs::exists(out)) << args << ": an output folder was created";
-}
-
 TEST(Cli, MainJobWritesRecordsAndImages) {
   const fs::path out = fs::path(test::make_temp_dir("ldm-cli")) / "run";
   const std::string cache = test::make_temp_dir("ldm-cache");
@@ -189,29 +180,29 @@ TEST(Cli, RecordsSayWhatTheBuildChecksAndBaselinesCost) {
 TEST(Cli, BadInputIsRejectedBeforeAnythingIsWritten) {
   const std::string dir = test::make_temp_dir("ldm-cli");
   const std::string missing = (fs::path(dir) / "nothere.json").string();
-  expect_rejected("--scene " + missing, "nothere.json");
+  test::expect_run_rejected("--scene " + missing, "nothere.json");
   std::ofstream(fs::path(dir) / "broken.json") << "{\n \"generator\": {\"type\": \"cornell\"\n";
-  expect_rejected("--scene " + (fs::path(dir) / "broken.json").string(), "broken.json");
-  expect_rejected("--scene cornell -N 0", "--views");
-  expect_rejected("--scene cornell -R 0", "--r-ldm");
-  expect_rejected("--scene cornell --width 5", "--width");
-  expect_rejected("--scene cornell --frames 0", "--frames");
-  expect_rejected("--scene cornell --d-max -1", "--d-max");
-  expect_rejected("--scene cornell --structure linkedlist", "linkedlist");
-  expect_rejected("--scene cornell --pass gi", "gi");
-  expect_rejected("--scene cornell --param psppsll", "STRUCTURE:KEY=VALUE");
-  expect_rejected("--scene cornell --param psppsll:pool=huge", "pool");
-  expect_rejected("--scene cornell --sizing guess", "--sizing");
-  expect_rejected("--scene cornell --sizing oracle,,census", "--sizing");
-  expect_rejected("--scene cornell --sizing budget", "--sizing-budget-mib");
-  expect_rejected("--scene cornell --sizing census --sizing-budget-mib 4", "--sizing-budget-mib");
-  expect_rejected("--scene cornell --param psppsll:colour=red", "colour");
-  expect_rejected("--scene cornell --visibility sometimes", "--visibility");
-  expect_rejected("--scene nosuchscene", "nosuchscene");
-  expect_rejected("--scene cornell --trace nearest", "--trace");
-  expect_rejected("--scene cornell --ao-estimator mean", "--ao-estimator");
+  test::expect_run_rejected("--scene " + (fs::path(dir) / "broken.json").string(), "broken.json");
+  test::expect_run_rejected("--scene cornell -N 0", "--views");
+  test::expect_run_rejected("--scene cornell -R 0", "--r-ldm");
+  test::expect_run_rejected("--scene cornell --width 5", "--width");
+  test::expect_run_rejected("--scene cornell --frames 0", "--frames");
+  test::expect_run_rejected("--scene cornell --d-max -1", "--d-max");
+  test::expect_run_rejected("--scene cornell --structure linkedlist", "linkedlist");
+  test::expect_run_rejected("--scene cornell --pass gi", "gi");
+  test::expect_run_rejected("--scene cornell --param psppsll", "STRUCTURE:KEY=VALUE");
+  test::expect_run_rejected("--scene cornell --param psppsll:pool=huge", "pool");
+  test::expect_run_rejected("--scene cornell --sizing guess", "--sizing");
+  test::expect_run_rejected("--scene cornell --sizing oracle,,census", "--sizing");
+  test::expect_run_rejected("--scene cornell --sizing budget", "--sizing-budget-mib");
+  test::expect_run_rejected("--scene cornell --sizing census --sizing-budget-mib 4", "--sizing-budget-mib");
+  test::expect_run_rejected("--scene cornell --param psppsll:colour=red", "colour");
+  test::expect_run_rejected("--scene cornell --visibility sometimes", "--visibility");
+  test::expect_run_rejected("--scene nosuchscene", "nosuchscene");
+  test::expect_run_rejected("--scene cornell --trace nearest", "--trace");
+  test::expect_run_rejected("--scene cornell --ao-estimator mean", "--ao-estimator");
   // Every unknown name of a list at once, not only the first (issue 37).
-  expect_rejected("--scene cornell --structure ppsll,foo,bar", "unknown structures 'foo', 'bar'");
+  test::expect_run_rejected("--scene cornell --structure ppsll,foo,bar", "unknown structures 'foo', 'bar'");
 }
 
 // --gpu and LDM_GPU (issue 31): a bad value names its source, a GPU no device answers lists
@@ -219,10 +210,10 @@ TEST(Cli, BadInputIsRejectedBeforeAnythingIsWritten) {
 // lists the EGL devices and says which it chose.
 TEST(Cli, GpuChoiceIsCheckedAndListed) {
   const std::string run = "--scene cornell --structure ppfla -N 4 -R 32";
-  expect_rejected(run + " --gpu x", "--gpu 'x': expected a GPU index");
-  expect_rejected(run + " --gpu -1", "--gpu");
-  expect_rejected(run + " --gpu 7", "--gpu 7: ");
-  expect_rejected(run + " --gpu 7", "the EGL devices (`ldmbench info`):\n  0: ");
+  test::expect_run_rejected(run + " --gpu x", "--gpu 'x': expected a GPU index");
+  test::expect_run_rejected(run + " --gpu -1", "--gpu");
+  test::expect_run_rejected(run + " --gpu 7", "--gpu 7: ");
+  test::expect_run_rejected(run + " --gpu 7", "the EGL devices (`ldmbench info`):\n  0: ");
   const fs::path out = fs::path(test::make_temp_dir("ldm-cli")) / "out";
   Outcome o = ldmbench("run " + run + " --out " + out.string(), "LDM_GPU=two");
   EXPECT_EQ(o.status, 2) << o.output;
@@ -238,12 +229,7 @@ TEST(Cli, GpuChoiceIsCheckedAndListed) {
   EXPECT_FALSE(fs::exists(out));
   o = ldmbench("info --gpu 0", "LDM_GPU=9");  // the option wins
   ASSERT_EQ(o.status, 0) << o.output;
-  EXPECT_NE(o.output.find("egl devices: "), std::string::npos) << o.output;
-  EXPECT_NE(o.output.find("\n  0: "), std::string::npos) << o.output;
-  EXPECT_NE(o.output.find("chosen: "), std::string::npos) << o.output;
-  EXPECT_NE(o.output.find("(--gpu)"), std::string::npos) << o.output;
-  EXPECT_NE(o.output.find("gl driver: "), std::string::npos) << o.output;
-  EXPECT_NE(o.output.find("device id: "), std::string::npos) << o.output;
+  test::expect_contains(o.output, {"egl devices: ", "\n  0: ", "chosen: ", "(--gpu)", "gl driver: ", "device id: "});
   o = ldmbench("interleave a b --out x --gpu x -- run --scene cornell");
   EXPECT_EQ(o.status, 2) << o.output;
   EXPECT_NE(o.output.find("--gpu 'x'"), std::string::npos) << o.output;
@@ -330,18 +316,23 @@ TEST(Cli, ReferenceAndCompareImages) {
 }
 
 #ifdef LDM_GBENCH_PATH
+// ldmbench_gbench ARGS writing its JSON (--benchmark_out); a run that does not exit 0 fails
+// the test and gives null.
+nlohmann::json gbench_json(const std::string& args) {
+  const std::string json = (fs::path(test::make_temp_dir("ldm-gbench")) / "out.json").string();
+  const Outcome o = test::run_shell(std::string(LDM_GBENCH_PATH) + " " + args +
+                                    " --benchmark_out_format=json --benchmark_out=" + json);
+  EXPECT_EQ(o.status, 0) << o.output;
+  return o.status == 0 ? nlohmann::json::parse(read_text(json)) : nlohmann::json();
+}
+
 // The Google Benchmark binary runs every structure and writes JSON that compare.py reads:
 // one benchmark per configuration and pass (unique names), fixed iterations (the frames),
 // every sub-pass a counter, repetitions aggregated the Google Benchmark way.
 TEST(Gbench, OneBenchmarkPerConfigurationWithEverySubpassAsACounter) {
-  const std::string json = (fs::path(test::make_temp_dir("ldm-gbench")) / "out.json").string();
-  std::string output;
-  const int status = test::run_command(
-      std::string(LDM_GBENCH_PATH) + " --ldm_scenes=cornell --ldm_passes=all --ldm_views=4 --ldm_r_ldm=32 "
-      "--ldm_image_size=32x32 --ldm_frames=3 --ldm_warmup=1 --benchmark_repetitions=2 "
-      "--benchmark_out_format=json --benchmark_out=" + json, &output);
-  ASSERT_EQ(status, 0) << output;
-  const auto j = nlohmann::json::parse(read_text(json));
+  const nlohmann::json j = gbench_json("--ldm_scenes=cornell --ldm_passes=all --ldm_views=4 --ldm_r_ldm=32 "
+                                      "--ldm_image_size=32x32 --ldm_frames=3 --ldm_warmup=1 --benchmark_repetitions=2");
+  ASSERT_FALSE(j.is_null());
   EXPECT_FALSE(j["context"]["gl_renderer"].get<std::string>().empty());
   EXPECT_FALSE(j["context"]["git_commit"].get<std::string>().empty());
   EXPECT_EQ(j["context"]["ldm_frames"], "3");
@@ -377,9 +368,8 @@ TEST(Gbench, OneBenchmarkPerConfigurationWithEverySubpassAsACounter) {
   EXPECT_GE(aggregates, 4 * names.size());  // mean, median, stddev, cv
   EXPECT_TRUE(names.count("ao/cornell/dfbuffer/N:4/R:32/iterations:3/manual_time"));
   EXPECT_TRUE(names.count("indirect/cornell/psppsll/N:4/R:32/iterations:3/manual_time"));
-  const Outcome bad = {test::run_command(std::string(LDM_GBENCH_PATH) + " --ldm_views=0", &output), output};
-  EXPECT_EQ(bad.status, 2);
-  const Outcome help = {test::run_command(std::string(LDM_GBENCH_PATH) + " --help", &output), output};
+  EXPECT_EQ(test::run_shell(std::string(LDM_GBENCH_PATH) + " --ldm_views=0").status, 2);
+  const Outcome help = test::run_shell(std::string(LDM_GBENCH_PATH) + " --help");
   EXPECT_NE(help.output.find("--ldm_frames"), std::string::npos) << help.output;
   // One line per --ldm_* flag, before Google Benchmark's own, with the version.
   for (const char* line : {"\n  --ldm_structures=LIST               structure psppsll|ppsll|dfbuffer|habuffer|ppfla|psppfla|all",
@@ -394,24 +384,15 @@ TEST(Gbench, OneBenchmarkPerConfigurationWithEverySubpassAsACounter) {
 // configuration, which run records as "lossy" and measures, is timed with its loss counted,
 // not refused; bad parameters are usage errors.
 TEST(Gbench, LossyBuildsAreTimedLikeRunMeasuresThem) {
-  const std::string json = (fs::path(test::make_temp_dir("ldm-gbench")) / "out.json").string();
-  std::string output;
-  const int status = test::run_command(
-      std::string(LDM_GBENCH_PATH) + " --ldm_scenes=cornell --ldm_structures=ppfla --ldm_passes=ao "
-      "--ldm_views=4 --ldm_r_ldm=32 --ldm_image_size=16x16 --ldm_param=ppfla:k=1 --ldm_frames=2 "
-      "--benchmark_out_format=json "
-      "--benchmark_out=" + json, &output);
-  ASSERT_EQ(status, 0) << output;
-  const auto j = nlohmann::json::parse(read_text(json));
-  ASSERT_EQ(j["benchmarks"].size(), 1u) << output;
+  const nlohmann::json j = gbench_json("--ldm_scenes=cornell --ldm_structures=ppfla --ldm_passes=ao --ldm_views=4 "
+                                      "--ldm_r_ldm=32 --ldm_image_size=16x16 --ldm_param=ppfla:k=1 --ldm_frames=2");
+  ASSERT_FALSE(j.is_null());
+  ASSERT_EQ(j["benchmarks"].size(), 1u) << j.dump();
   const auto& b = j["benchmarks"][0];
   EXPECT_FALSE(b.contains("error_occurred") && b["error_occurred"].get<bool>()) << b.dump();
   EXPECT_GT(b["fragments_lost"].get<double>(), 0.0) << b.dump();
   EXPECT_GT(b["real_time"].get<double>(), 0.0);
-  const Outcome bad = {test::run_command(std::string(LDM_GBENCH_PATH) +
-                                             " --ldm_structures=ppfla --ldm_param=ppfla:kk=1",
-                                         &output),
-                       output};
+  const Outcome bad = test::run_shell(std::string(LDM_GBENCH_PATH) + " --ldm_structures=ppfla --ldm_param=ppfla:kk=1");
   EXPECT_EQ(bad.status, 2) << bad.output;
   EXPECT_NE(bad.output.find("has no parameter 'kk'"), std::string::npos) << bad.output;
 }

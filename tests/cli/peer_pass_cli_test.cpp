@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "support/test_support.h"
+#include "support/run_records.h"
 
 namespace ldm {
 namespace {
@@ -16,20 +16,13 @@ namespace {
 namespace fs = std::filesystem;
 
 TEST(PeerPassCli, HbaoRecordIsCompleteAndScored) {
-  const fs::path out = fs::path(test::make_temp_dir("ldm-peer")) / "run";
-  const std::string cache = test::make_temp_dir("ldm-peer-cache");
-  std::string output;
-  const int status = test::run_command(
-      std::string(LDM_BINARY_PATH) +
-          " run --scene cornell --structure psppsll,dfbuffer --pass hbao --param hbao:steps=4 "
-          "--param hbao:blur=0,2 --width 32 --height 32 --frames 2 --warmup 1 --reference-spp 16 "
-          "--cache-dir " + cache + " --out " + out.string() + " 2>&1",
-      &output);
-  ASSERT_EQ(status, 0) << output;
-  const auto json = nlohmann::json::parse(test::read_text(out / "records.json"));
-  ASSERT_EQ(json["records"].size(), 2u) << "one configuration per blur, not one per structure";
+  const nlohmann::json records =
+      test::run_records("peer", "--scene cornell --structure psppsll,dfbuffer --pass hbao --param hbao:steps=4 "
+                                "--param hbao:blur=0,2 --width 32 --height 32 --frames 2 --warmup 1 --reference-spp 16")
+          .records;
+  ASSERT_EQ(records.size(), 2u) << "one configuration per blur, not one per structure";
   for (size_t i = 0; i < 2; ++i) {
-    const auto& r = json["records"][i];
+    const auto& r = records[i];
     EXPECT_EQ(r["status"], "ok") << r["status_detail"];
     EXPECT_EQ(r["structure"], "none");
     EXPECT_EQ(r["pass"], "hbao");
@@ -50,20 +43,13 @@ TEST(PeerPassCli, HbaoRecordIsCompleteAndScored) {
 
 // A comma list in --param is an axis; rtao's time is CPU wall time on the CPU.
 TEST(PeerPassCli, RtaoSppAxisRecordsCpuTime) {
-  const fs::path out = fs::path(test::make_temp_dir("ldm-peer-rtao")) / "run";
-  const std::string cache = test::make_temp_dir("ldm-peer-rtao-cache");
-  std::string output;
-  const int status = test::run_command(
-      std::string(LDM_BINARY_PATH) +
-          " run --scene cornell --pass rtao --param rtao:spp=1,4 --param rtao:threads=1 "
-          "--width 32 --height 32 --frames 2 --warmup 0 --reference-spp 64 --cache-dir " +
-          cache + " --out " + out.string() + " 2>&1",
-      &output);
-  ASSERT_EQ(status, 0) << output;
-  const auto json = nlohmann::json::parse(test::read_text(out / "records.json"));
-  ASSERT_EQ(json["records"].size(), 2u) << "one configuration per spp";
+  const nlohmann::json records =
+      test::run_records("peer-rtao", "--scene cornell --pass rtao --param rtao:spp=1,4 --param rtao:threads=1 "
+                                     "--width 32 --height 32 --frames 2 --warmup 0 --reference-spp 64")
+          .records;
+  ASSERT_EQ(records.size(), 2u) << "one configuration per spp";
   for (size_t i = 0; i < 2; ++i) {
-    const auto& r = json["records"][i];
+    const auto& r = records[i];
     EXPECT_EQ(r["status"], "ok") << r["status_detail"];
     EXPECT_EQ(r["config_id"], i == 0 ? "cornell-none-rtao-spp=1-threads=1" : "cornell-none-rtao-spp=4-threads=1");
     EXPECT_EQ(r["rtao_spp"], i == 0 ? 1 : 4);
@@ -74,27 +60,15 @@ TEST(PeerPassCli, RtaoSppAxisRecordsCpuTime) {
       EXPECT_TRUE(r.contains(key) && r[key].is_number()) << key;
     EXPECT_FALSE(r.contains("gbuffer_ms_median")) << "nothing is drawn";
   }
-  EXPECT_LT(json["records"][1]["mse"].get<double>(), json["records"][0]["mse"].get<double>());
+  EXPECT_LT(records[1]["mse"].get<double>(), records[0]["mse"].get<double>());
 }
 
 TEST(PeerPassCli, EmptyItemInAParameterListIsRejected) {
-  std::string output;
-  const int status = test::run_command(std::string(LDM_BINARY_PATH) +
-                                           " run --scene cornell --pass hbao --param hbao:steps=4,,8 "
-                                           "--out /nonexistent/never 2>&1",
-                                       &output);
-  EXPECT_EQ(status, 2) << output;
-  EXPECT_NE(output.find("hbao:steps=4,,8"), std::string::npos) << output;
+  test::expect_contains(test::refused_run("--scene cornell --pass hbao --param hbao:steps=4,,8"), {"hbao:steps=4,,8"});
 }
 
 TEST(PeerPassCli, UnknownHbaoParameterIsRejected) {
-  std::string output;
-  const int status = test::run_command(std::string(LDM_BINARY_PATH) +
-                                           " run --scene cornell --pass hbao --param hbao:radius=2 "
-                                           "--out /nonexistent/never 2>&1",
-                                       &output);
-  EXPECT_EQ(status, 2) << output;
-  EXPECT_NE(output.find("radius"), std::string::npos) << output;
+  test::expect_contains(test::refused_run("--scene cornell --pass hbao --param hbao:radius=2"), {"radius"});
 }
 
 }  // namespace

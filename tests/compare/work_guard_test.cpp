@@ -51,9 +51,12 @@ Outcome guard_with_shaders(const fs::path& shaders) {
                          " " + script.string());
 }
 
-// The guard's summary says how many configurations regressed in work; the table names the
-// counters that grew (the first three of each configuration; `counter` may be a prefix).
-void expect_work_regression(const Outcome& o, const std::string& counter) {
+// The guard over the shaders with `file`'s `from` patched to `to`: its summary says how many
+// configurations regressed in work; the table names the counters that grew (the first three
+// of each configuration; `counter` may be a prefix).
+void expect_work_regression(const std::string& file, const std::string& from, const std::string& to,
+                            const std::string& counter) {
+  const Outcome o = guard_with_shaders(patched_shaders(file, from, to));
   EXPECT_EQ(o.status, 1) << o.output;
   EXPECT_NE(o.output.find("MORE work_"), std::string::npos) << o.output;
   EXPECT_NE(o.output.find(counter), std::string::npos) << o.output;
@@ -71,31 +74,30 @@ TEST(WorkGuard, AnUnpatchedCopyOfTheShadersPasses) {
 // 1. The AO trace no longer stops at the first occluder ahead (the plane trace, the default,
 // walks with ldm_walk_interval): the nearest one is kept, the walk reads the whole list.
 TEST(WorkGuard, ATraceThatNoLongerStopsEarlyFails) {
-  const fs::path shaders = patched_shaders(
-      "passes/ldm_trace.glsl",
-      "      result.ahead = depth - depth_x;   // the first one above x\n      break;\n",
-      "      if (isinf(result.ahead)) result.ahead = depth - depth_x;  // slowdown: no early stop\n");
-  expect_work_regression(guard_with_shaders(shaders), "work_ao_entries_read");
+  expect_work_regression(
+      "passes/ldm_trace.glsl", "      result.ahead = depth - depth_x;   // the first one above x\n      break;\n",
+      "      if (isinf(result.ahead)) result.ahead = depth - depth_x;  // slowdown: no early stop\n",
+      "work_ao_entries_read");
 }
 
 // 2. PPSLL's sort walks every list once more after sorting it locally (through the sort's
 // own node accessor, whose loads are counted).
 TEST(WorkGuard, OneMorePassOverEveryListInTheSortFails) {
-  const fs::path shaders = patched_shaders(
+  expect_work_regression(
       "ldm/ppsll/sort.comp", "  insertion_sort_local(count);\n",
       "  insertion_sort_local(count);\n"
-      "  for (uint again = head; again != 0u; again = next_node(again)) {}  // slowdown: one more pass\n");
-  expect_work_regression(guard_with_shaders(shaders), "work_sort_bytes_loaded_nodes");
+      "  for (uint again = head; again != 0u; again = next_node(again)) {}  // slowdown: one more pass\n",
+      "work_sort_bytes_loaded_nodes");
 }
 
 // 3. The HA-buffer's query probes one slot more before its probe sequence (the key it reads
 // is ignored): every query's probe count grows by one, its result stays.
 TEST(WorkGuard, AHashProbeSequenceOneStepLongerFails) {
-  const fs::path shaders = patched_shaders(
+  expect_work_regression(
       "ldm/habuffer/ha_query.glsl", "  for (; c.age < c.end; ++c.age) {\n",
       "  if (c.age < c.end) ha_probe(c.pixel, c.age);  // slowdown: one probe more, its key ignored\n"
-      "  for (; c.age < c.end; ++c.age) {\n");
-  expect_work_regression(guard_with_shaders(shaders), "work_ao_hash_probes");
+      "  for (; c.age < c.end; ++c.age) {\n",
+      "work_ao_hash_probes");
 }
 
 }  // namespace

@@ -8,30 +8,30 @@
 namespace ldm {
 namespace {
 
-EglDeviceSummary nvidia(int index, int ordinal) {
+// Device `index`, which names `renderer` where it makes a context (else no renderer).
+EglDeviceSummary device(int index, bool makes_context, const std::string& renderer) {
   EglDeviceSummary d;
   d.index = index;
+  d.makes_context = makes_context;
+  d.renderer = makes_context ? renderer : "";
+  return d;
+}
+
+EglDeviceSummary nvidia(int index, int ordinal) {
+  EglDeviceSummary d = device(index, true, "NVIDIA A100-SXM4-80GB/PCIe/SSE2");
   d.cuda_ordinal = ordinal;
-  d.renderer = "NVIDIA A100-SXM4-80GB/PCIe/SSE2";
-  d.makes_context = true;
   return d;
 }
 
 EglDeviceSummary software(int index, bool makes_context = true) {
-  EglDeviceSummary d;
-  d.index = index;
+  EglDeviceSummary d = device(index, makes_context, "llvmpipe (LLVM 15.0.6, 256 bits)");
   d.software = true;
-  d.makes_context = makes_context;
-  d.renderer = makes_context ? "llvmpipe (LLVM 15.0.6, 256 bits)" : "";
   return d;
 }
 
 EglDeviceSummary drm(int index, const std::string& node, bool makes_context) {
-  EglDeviceSummary d;
-  d.index = index;
+  EglDeviceSummary d = device(index, makes_context, "AMD Radeon RX 6800 (navi21, LLVM 15.0.6, DRM 3.49)");
   d.drm_node = node;
-  d.makes_context = makes_context;
-  d.renderer = makes_context ? "AMD Radeon RX 6800 (navi21, LLVM 15.0.6, DRM 3.49)" : "";
   return d;
 }
 

@@ -38,11 +38,20 @@ std::string driver_environment(GlDriver driver) {
          runtime_dir;
 }
 
-const CrossDriverRun& ldmbench_on_both_drivers(const std::string& args) {
+namespace {
+
+// make(key) once per key (the tests that share a run ask for it again); later calls return
+// the first one's result.
+template <typename T, typename Make>
+const T& once_per_key(const std::string& key, Make make) {
   static std::mutex mutex;
-  static std::map<std::string, CrossDriverRun> runs;
+  static std::map<std::string, T> done;
   const std::lock_guard<std::mutex> lock(mutex);
-  if (auto found = runs.find(args); found != runs.end()) return found->second;
+  if (auto found = done.find(key); found != done.end()) return found->second;
+  return done.emplace(key, make(key)).first->second;
+}
+
+CrossDriverRun run_on_both_drivers(const std::string& args) {
   CrossDriverRun run;
   const std::string dir = make_temp_dir("ldm-cross-driver");
   for (GlDriver driver : kDrivers) {
@@ -62,14 +71,10 @@ const CrossDriverRun& ldmbench_on_both_drivers(const std::string& args) {
     EXPECT_TRUE(renderer_is(driver, side.renderer))
         << "asked for " << gl_driver_name(driver) << ", ran on '" << side.renderer << "'";
   }
-  return runs.emplace(args, std::move(run)).first->second;
+  return run;
 }
 
-const CrossDriverFolders& child_test_on_both_drivers(const std::string& name) {
-  static std::mutex mutex;
-  static std::map<std::string, CrossDriverFolders> done;
-  const std::lock_guard<std::mutex> lock(mutex);
-  if (auto found = done.find(name); found != done.end()) return found->second;
+CrossDriverFolders child_test_folders(const std::string& name) {
   CrossDriverFolders folders;
   const std::string dir = make_temp_dir("ldm-cross-driver-child");
   for (GlDriver driver : kDrivers) {
@@ -82,7 +87,17 @@ const CrossDriverFolders& child_test_on_both_drivers(const std::string& name) {
     EXPECT_NE(o.output.find("[  PASSED  ] 1 test"), std::string::npos)
         << gl_driver_name(driver) << ": " << name << " did not run\n" << o.output;
   }
-  return done.emplace(name, std::move(folders)).first->second;
+  return folders;
+}
+
+}  // namespace
+
+const CrossDriverRun& ldmbench_on_both_drivers(const std::string& args) {
+  return once_per_key<CrossDriverRun>(args, run_on_both_drivers);
+}
+
+const CrossDriverFolders& child_test_on_both_drivers(const std::string& name) {
+  return once_per_key<CrossDriverFolders>(name, child_test_folders);
 }
 
 std::string cross_driver_child_out() {

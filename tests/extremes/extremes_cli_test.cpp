@@ -38,6 +38,14 @@ Tables tables(const fs::path& out) {
           nlohmann::json::parse(read_text(out / "records.json"))["records"].size()};
 }
 
+// Every view of the run folder holds `n` records.
+void expect_records(const fs::path& out, size_t n) {
+  const Tables t = tables(out);
+  EXPECT_EQ(t.journal_records, n);
+  EXPECT_EQ(t.csv_rows, n);
+  EXPECT_EQ(t.json_records, n);
+}
+
 std::vector<std::string> hidden_files(const fs::path& dir) {
   std::vector<std::string> names;
   for (const auto& entry : fs::recursive_directory_iterator(dir))
@@ -45,41 +53,33 @@ std::vector<std::string> hidden_files(const fs::path& dir) {
   return names;
 }
 
-void expect_rejected(const std::string& args, const std::string& culprit) {
-  const fs::path out = fs::path(test::make_temp_dir("ldm-extremes")) / "out";
-  const Outcome o = ldmbench("run " + args + " --out " + out.string());
-  EXPECT_EQ(o.status, 2) << args << "\n" << o.output;
-  EXPECT_NE(o.output.find(culprit), std::string::npos) << args << "\n" << o.output;
-  EXPECT_FALSE(fs::exists(out)) << args << ": an output folder was created";
-}
-
 const std::string kFast = "-R 8 --width 16 --height 16 --frames 1 --warmup 0 ";
 
 TEST(ExtremesCli, NumbersAreCheckedAsTheFloatsTheRunUses) {
   // Each used to reach the GPU: failed records, exit 3, orphan images (or with
   // --no-reference an ok record of an inf/0/NaN d_max); --normal-offset nan was ignored.
-  expect_rejected(kFast + "--d-max nan", "--d-max");
-  expect_rejected(kFast + "--d-max 1e-50", "--d-max");
-  expect_rejected(kFast + "--d-max 1e39", "--d-max");
-  expect_rejected(kFast + "--normal-offset nan", "--normal-offset");
-  expect_rejected(kFast + "--reference-noise nan", "--reference-noise");
-  expect_rejected(kFast + "--reference-spp 8192", "--reference-max-spp");
+  test::expect_run_rejected(kFast + "--d-max nan", "--d-max");
+  test::expect_run_rejected(kFast + "--d-max 1e-50", "--d-max");
+  test::expect_run_rejected(kFast + "--d-max 1e39", "--d-max");
+  test::expect_run_rejected(kFast + "--normal-offset nan", "--normal-offset");
+  test::expect_run_rejected(kFast + "--reference-noise nan", "--reference-noise");
+  test::expect_run_rejected(kFast + "--reference-spp 8192", "--reference-max-spp");
   // A doubled comma was dropped without a word.
-  expect_rejected(kFast + "-N 4,,8", "empty item");
-  expect_rejected(kFast + "--scene cornell,", "empty item");
+  test::expect_run_rejected(kFast + "-N 4,,8", "empty item");
+  test::expect_run_rejected(kFast + "--scene cornell,", "empty item");
   // A JSON number beyond double: exit 2 (was 1) with the file and line.
   const std::string dir = test::make_temp_dir("ldm-extremes");
   const std::string scene = (fs::path(dir) / "e400.json").string();
   std::ofstream(scene) << "{\"generator\": {\"type\": \"cornell\"},\n\"ao\": {\"d_max\": 1e400}}\n";
-  expect_rejected(kFast + "--scene " + scene, "e400.json: malformed JSON at line 2");
+  test::expect_run_rejected(kFast + "--scene " + scene, "e400.json: malformed JSON at line 2");
 }
 
 TEST(ExtremesCli, CacheDirThatIsAFileIsRejectedUpFront) {
   const std::string dir = test::make_temp_dir("ldm-extremes");
   const std::string file = (fs::path(dir) / "cache").string();
   std::ofstream(file) << "not a folder\n";
-  expect_rejected(kFast + "--cache-dir " + file, "--cache-dir");
-  expect_rejected(kFast + "--cache-dir " + file + "/below", "is not a folder");
+  test::expect_run_rejected(kFast + "--cache-dir " + file, "--cache-dir");
+  test::expect_run_rejected(kFast + "--cache-dir " + file + "/below", "is not a folder");
 }
 
 TEST(ExtremesCli, NoFragmentInViewIsNeverOk) {
@@ -110,10 +110,7 @@ TEST(ExtremesCli, RerunResumesTheSameSweepAndRefusesAnother) {
   EXPECT_EQ(again.status, 0) << again.output;
   EXPECT_NE(again.output.find("resuming: 2"), std::string::npos) << again.output;
   EXPECT_EQ(again.output.find("[1/2]"), std::string::npos) << again.output;
-  const Tables t = tables(out);
-  EXPECT_EQ(t.journal_records, 2u);
-  EXPECT_EQ(t.csv_rows, 2u);
-  EXPECT_EQ(t.json_records, 2u);
+  expect_records(out, 2);
   // Another sweep into the same folder is refused and changes nothing ...
   const std::string before = read_text(out / "records.jsonl");
   const Outcome other = ldmbench("run -N 8 " + kFast + "--no-reference --out " + out.string());
@@ -149,10 +146,7 @@ TEST(ExtremesCli, AKilledRunIsRepairedFromItsJournal) {
   EXPECT_EQ(resumed.status, 0) << resumed.output;
   EXPECT_NE(resumed.output.find("resuming: 2"), std::string::npos) << resumed.output;
   EXPECT_NE(resumed.output.find("[3/3]"), std::string::npos) << resumed.output;
-  const Tables t = tables(out);
-  EXPECT_EQ(t.journal_records, 3u);
-  EXPECT_EQ(t.csv_rows, 3u);
-  EXPECT_EQ(t.json_records, 3u);
+  expect_records(out, 3);
   EXPECT_TRUE(hidden_files(out).empty()) << hidden_files(out).front();
   // Every journal line is whole JSON again.
   std::istringstream lines(read_text(out / "records.jsonl"));
@@ -177,10 +171,7 @@ TEST(ExtremesCli, SigtermAbandonsTheConfigurationInFlightAndExitsDistinctly) {
   EXPECT_NE(output.find("exit=143"), std::string::npos) << output << logged;
   EXPECT_NE(logged.find("abandoned"), std::string::npos) << logged;
   EXPECT_NE(logged.find("interrupted by signal 15"), std::string::npos) << logged;
-  const Tables t = tables(out);
-  EXPECT_EQ(t.journal_records, 0u);
-  EXPECT_EQ(t.csv_rows + 1, 1u);  // a header-only (or empty) table
-  EXPECT_EQ(t.json_records, 0u);
+  expect_records(out, 0);  // the CSV: its header alone
   for (const auto& entry : fs::directory_iterator(out / "images"))
     ADD_FAILURE() << "orphan image " << entry.path();
   EXPECT_TRUE(hidden_files(out).empty());

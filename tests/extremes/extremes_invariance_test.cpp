@@ -78,29 +78,23 @@ const std::vector<Placement> kScales = {{"origin", 1, 0}, {"scale1e-4", 1e-4, 0}
 using Table = std::vector<std::map<std::string, std::string>>;
 Table read_csv(const fs::path& path) {
   std::istringstream in(test::read_text(path));
-  auto split = [](const std::string& line) {
-    std::vector<std::string> cells;
-    std::string cell;
-    bool quoted = false;
-    for (char c : line) {
-      if (c == '"') quoted = !quoted;
-      else if (c == ',' && !quoted) cells.push_back(cell), cell.clear();
-      else cell += c;
-    }
-    cells.push_back(cell);
-    return cells;
-  };
   std::string line;
   std::getline(in, line);
-  const auto header = split(line);
+  const auto header = test::split_csv_line(line);
   Table rows;
   while (std::getline(in, line)) {
-    const auto cells = split(line);
+    const auto cells = test::split_csv_line(line);
     std::map<std::string, std::string> row;
     for (size_t i = 0; i < header.size() && i < cells.size(); ++i) row[header[i]] = cells[i];
     rows.push_back(row);
   }
   return rows;
+}
+
+// `ldmbench run --scene SCENES ARGS` at 16x16 pixels, one frame, no reference, into `out`.
+test::Outcome run_small(const std::string& scenes, const std::string& args, const fs::path& out) {
+  return test::ldmbench("run --scene " + scenes + " " + args +
+                        " --width 16 --height 16 --frames 1 --warmup 0 --no-reference --out " + out.string());
 }
 
 std::string cell(const std::map<std::string, std::string>& row, const std::string& column) {
@@ -225,9 +219,7 @@ TEST(ExtremesInvariance, DetailTheMeshFileItselfCannotHoldIsCountedAndFlagged) {
   EXPECT_NE(scene.warnings[0].find("far_file_vertices"), std::string::npos) << scene.warnings[0];
 
   const fs::path out = dir / "out";
-  const test::Outcome o = test::ldmbench("run --scene " + (dir / "geo.json").string() +
-                                         " -N 4 -R 16 --width 16 --height 16 --frames 1 "
-                                         "--warmup 0 --no-reference --out " + out.string());
+  const test::Outcome o = run_small((dir / "geo.json").string(), "-N 4 -R 16", out);
   ASSERT_EQ(o.status, 0) << o.output;
   const Table rows = read_csv(out / "records.csv");
   ASSERT_EQ(rows.size(), 1u);
@@ -257,9 +249,7 @@ TEST(ExtremesInvariance, DetailBelowTheFloatSpacingWhereItLiesIsCountedAndFlagge
   ASSERT_EQ(scene.warnings.size(), 1u);
   EXPECT_NE(scene.warnings[0].find("collapsed_triangles"), std::string::npos) << scene.warnings[0];
   const fs::path out = dir / "out";
-  const test::Outcome o = test::ldmbench("run --scene " + (dir / "apart.json").string() +
-                                         " -N 4 -R 16 --width 16 --height 16 --frames 1 "
-                                         "--warmup 0 --no-reference --out " + out.string());
+  const test::Outcome o = run_small((dir / "apart.json").string(), "-N 4 -R 16", out);
   // Exit 3: at R_LDM 16 over an extent of 1e4 the floor covers no LDM pixel centre (invalid,
   // saying so); the record is written all the same.
   ASSERT_TRUE(o.status == 0 || o.status == 3) << o.output;
@@ -292,10 +282,7 @@ TEST(ExtremesInvariance, QuantisedDepthCollisionsAreCountedAndFlaggedInTheRecord
   std::ofstream(dir / "layers.json")
       << R"({"meshes": [{"file": "layers.obj"}], "camera": {"eye": [0.3, 3, 1], "target": [0, 0, 0]}})";
   const fs::path out = dir / "out";
-  const test::Outcome o = test::ldmbench("run --scene " + (dir / "layers.json").string() +
-                                         " --structure psppsll,habuffer -N 1 -R 16 --width 16 "
-                                         "--height 16 --frames 1 --warmup 0 --no-reference --out " +
-                                         out.string());
+  const test::Outcome o = run_small((dir / "layers.json").string(), "--structure psppsll,habuffer -N 1 -R 16", out);
   ASSERT_EQ(o.status, 0) << o.output;
   const Table rows = read_csv(out / "records.csv");
   ASSERT_EQ(rows.size(), 2u);
@@ -351,9 +338,7 @@ TEST(ExtremesInvariance, PhotonsTooFineForTheirPositionAreCountedAndFlaggedInThe
     scenes += (scenes.empty() ? "" : ",") + (dir / (name + ".json")).string();
   }
   const fs::path out = dir / "out";
-  const test::Outcome o = test::ldmbench("run --scene " + scenes +
-                                         " --pass indirect -N 4 -R 32 --width 16 --height 16 "
-                                         "--frames 1 --warmup 0 --no-reference --out " + out.string());
+  const test::Outcome o = run_small(scenes, "--pass indirect -N 4 -R 32", out);
   ASSERT_EQ(o.status, 0) << o.output;
   const Table rows = read_csv(out / "records.csv");
   ASSERT_EQ(rows.size(), 2u);

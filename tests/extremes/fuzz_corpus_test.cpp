@@ -11,6 +11,7 @@
 #include "harness/scene/scene_defaults.h"
 #include "harness/scene/scene_loader.h"
 #include "harness/util/error.h"
+#include "support/fuzz_inputs.h"
 #include "tests/fuzz/targets/import_formats.h"
 
 namespace ldm {
@@ -18,81 +19,43 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::vector<fs::path> inputs(const std::string& target) {
-  std::vector<fs::path> files;
-  const fs::path root = fs::path(LDM_TEST_SOURCE_DIR) / "fuzz";
-  for (const char* kind : {"corpus", "crashes"}) {
-    const fs::path dir = root / kind / target;
-    if (!fs::is_directory(dir)) continue;
-    for (const auto& entry : fs::directory_iterator(dir))
-      if (entry.is_regular_file() && entry.path().filename().string().front() != '.')
-        files.push_back(entry.path());
-  }
-  return files;
-}
-
-std::string read_bytes(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 TEST(FuzzCorpus, SceneJsonInputsLoadOrAreRefused) {
-  const auto files = inputs("scene_json");
-  EXPECT_GE(files.size(), 3u);
-  for (const auto& file : files) {
-    try {
-      parse_scene_file(read_bytes(file), "/nonexistent-fuzz-dir/scene.json").validate();
-    } catch (const UserError&) {
-    } catch (const std::exception& e) {
-      ADD_FAILURE() << file << ": " << e.what();
-    }
-  }
+  const test::FuzzReplay replay = test::replay_fuzz_inputs("scene_json", [](const fs::path&, const std::string& bytes) {
+    parse_scene_file(bytes, "/nonexistent-fuzz-dir/scene.json").validate();
+  });
+  EXPECT_GE(replay.inputs, 3u);
 }
 
 TEST(FuzzCorpus, ObjInputsLoadOrAreRefused) {
-  const auto files = inputs("obj");
-  EXPECT_GE(files.size(), 3u);
-  for (const auto& file : files) {
+  const test::FuzzReplay replay = test::replay_fuzz_inputs("obj", [](const fs::path& file, const std::string&) {
     Scene scene;
     scene.name = "fuzz";
     scene.origin = file.string();
-    try {
-      import_mesh_into(scene, file.string(), {}, "fuzz");
-      scene.validate();
-    } catch (const UserError&) {
-    } catch (const std::exception& e) {
-      ADD_FAILURE() << file << ": " << e.what();
-    }
-  }
+    import_mesh_into(scene, file.string(), {}, "fuzz");
+    scene.validate();
+  });
+  EXPECT_GE(replay.inputs, 3u);
 }
 
 // Mesh files (tests/fuzz/targets/fuzz_import.cpp): the first byte picks the format. Every seed
 // is a real model (assimp-testmodels) and must load; the mutants the fuzzer kept must load
 // or be refused, never crash ldmbench (Assimp runs in a child process).
 TEST(FuzzCorpus, ImportInputsLoadOrAreRefused) {
-  const auto files = inputs("import");
-  EXPECT_GE(files.size(), 9u);
   size_t loaded = 0;
-  for (const auto& file : files) {
-    const std::string bytes = read_bytes(file);
-    if (bytes.empty()) continue;
-    const std::string extension = fuzz_import_format(uint8_t(bytes[0]));
+  const auto import = [&](const fs::path& file, const std::string& bytes) {
+    if (bytes.empty()) return;
     Scene scene;
     scene.name = "fuzz";
     scene.origin = file.string();
-    try {
-      // The fuzzer's limit: one input (assimp-hangs.ply) makes Assimp loop.
-      import_mesh_bytes_into(scene, bytes.substr(1), extension, file.filename().string(), 5.0, "fuzz");
-      derive_size_defaults(scene, {});
-      scene.validate();
-      ++loaded;
-    } catch (const UserError&) {
-    } catch (const std::exception& e) {
-      ADD_FAILURE() << file << ": " << e.what();
-    }
-  }
+    // The fuzzer's limit: one input (assimp-hangs.ply) makes Assimp loop.
+    import_mesh_bytes_into(scene, bytes.substr(1), fuzz_import_format(uint8_t(bytes[0])), file.filename().string(), 5.0,
+                           "fuzz");
+    derive_size_defaults(scene, {});
+    scene.validate();
+    ++loaded;
+  };
+  const test::FuzzReplay replay = test::replay_fuzz_inputs("import", import);
+  EXPECT_GE(replay.inputs, 9u);
   // The seeds are valid models (BoxWithInfinites is refused for its infinite coordinates).
   EXPECT_GE(loaded, 9u);
 }

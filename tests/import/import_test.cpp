@@ -460,12 +460,7 @@ TEST(ImportIsolation, AFileAssimpCrashesOrHangsOnIsARefusalNamingTheFile) {
 TEST(MeshScene, DefaultsFollowTheScenesSize) {
   // A unit cube scaled to millimetres (the engine's unit): d_max, camera and light scale.
   const std::string dir = test::make_temp_dir("ldm-import");
-  std::string off = "OFF\n8 6 0\n";
-  for (int i = 0; i < 8; ++i)
-    off += std::to_string((i & 1) * 400) + " " + std::to_string((i >> 1 & 1) * 400) + " " +
-           std::to_string((i >> 2 & 1) * 400) + "\n";
-  off += "4 0 2 3 1\n4 4 5 7 6\n4 0 1 5 4\n4 2 6 7 3\n4 0 4 6 2\n4 1 3 7 5\n";
-  const std::string path = write_file(dir, "box.off", off);
+  const std::string path = write_file(dir, "box.off", test::cube_off(400));
   const Scene scene = load_scene(path);
   EXPECT_EQ(scene.mesh.triangle_count(), 12u);
   const BoundingSphere sphere = scene.bounding_sphere();

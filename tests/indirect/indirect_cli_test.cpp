@@ -10,7 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "harness/settings/record_schema.h"
-#include "support/test_support.h"
+#include "support/run_records.h"
 
 namespace ldm {
 namespace {
@@ -18,20 +18,12 @@ namespace {
 namespace fs = std::filesystem;
 
 TEST(IndirectCli, RecordsAreCompleteAndScoredTwice) {
-  const fs::path out = fs::path(test::make_temp_dir("ldm-indirect")) / "run";
-  const std::string cache = test::make_temp_dir("ldm-indirect-cache");
-  std::string output;
-  const int status = test::run_command(
-      std::string(LDM_BINARY_PATH) +
-          " run --scene cornell --structure psppsll,dfbuffer --pass indirect -N 4 -R 32 "
-          "--param indirect:s=2,6 --param indirect:r_light=16 --width 24 --height 24 --frames 1 "
-          "--warmup 1 --reference-spp 8 --cache-dir " + cache + " --out " + out.string() + " 2>&1",
-      &output);
-  ASSERT_EQ(status, 0) << output;
-  const auto json = nlohmann::json::parse(test::read_text(out / "records.json"));
-  ASSERT_EQ(json["records"].size(), 4u) << "2 structures x 2 values of s";
+  const test::RunRecords run = test::run_records(
+      "indirect", "--scene cornell --structure psppsll,dfbuffer --pass indirect -N 4 -R 32 --param indirect:s=2,6 "
+                  "--param indirect:r_light=16 --width 24 --height 24 --frames 1 --warmup 1 --reference-spp 8");
+  ASSERT_EQ(run.records.size(), 4u) << "2 structures x 2 values of s";
   std::set<std::string> ids;
-  for (const auto& r : json["records"]) {
+  for (const auto& r : run.records) {
     EXPECT_EQ(r["status"], "ok") << r["status_detail"];
     ids.insert(r["config_id"].get<std::string>());
     for (const char* key :
@@ -46,23 +38,17 @@ TEST(IndirectCli, RecordsAreCompleteAndScoredTwice) {
     EXPECT_NE(r["ref_cache_key"], r["multi_ref_cache_key"]);
     for (const char* image : {"image_exr", "image_direct_exr", "image_sum_png", "reference_exr",
                               "multi_reference_exr"})
-      EXPECT_TRUE(fs::exists(out / r[image].get<std::string>())) << image;
+      EXPECT_TRUE(fs::exists(run.out / r[image].get<std::string>())) << image;
     for (const auto& [key, value] : r.items()) EXPECT_NE(find_column(key), nullptr) << key;
   }
   EXPECT_EQ(ids.size(), 4u);
-  EXPECT_EQ(json["records"][0]["splat_scale"], 2.0);
+  EXPECT_EQ(run.records[0]["splat_scale"], 2.0);
 }
 
 TEST(IndirectCli, BadParametersAreRejectedBeforeAnyWork) {
   for (const char* bad : {"--param indirect:s=0", "--param indirect:r_light=1,,2",
-                          "--param indirect:shape=round", "--d-max 2"}) {
-    std::string output;
-    const int status = test::run_command(std::string(LDM_BINARY_PATH) +
-                                             " run --scene cornell --pass indirect " + bad +
-                                             " --out /nonexistent/never 2>&1",
-                                         &output);
-    EXPECT_EQ(status, 2) << bad << ": " << output;
-  }
+                          "--param indirect:shape=round", "--d-max 2"})
+    test::refused_run("--scene cornell --pass indirect " + std::string(bad));
 }
 
 }  // namespace

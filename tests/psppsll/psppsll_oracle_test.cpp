@@ -218,24 +218,12 @@ TEST(Psppsll, RepeatedBuildsGiveIdenticalLists) {
 // A fixed pool that is too small: the overflow is flagged and the loss counted exactly;
 // what was stored is still a sorted subset of every list.
 TEST(Psppsll, FixedPoolOverflowIsDetectedAndCountedExactly) {
-  const test::LdmFixture f("cornell", 8, 48);
-  const uint64_t capacity = f.census.total_fragments / 2;
-  auto s = f.build("psppsll", {{"capacity", std::to_string(capacity)}});
-  const BuildStats stats = s->stats();
-  EXPECT_TRUE(stats.overflow);
-  EXPECT_EQ(stats.fragments_stored, capacity);
-  EXPECT_EQ(stats.fragments_lost, f.census.total_fragments - capacity);
-  const LdmIntegrity integrity = LdmInspector(*s, *f.inputs).check();
-  EXPECT_EQ(integrity.fragments, capacity);
-  EXPECT_EQ(integrity.unsorted_pixels, 0u);
+  test::expect_fixed_pool_overflow_counted(test::LdmFixture("cornell", 8, 48), "psppsll");
 }
 
 TEST(Psppsll, RejectsBadParameters) {
-  test::gl_context();
-  EXPECT_THROW(make_structure("psppsll", StructureParams(Params{{"pool", "huge"}})), UserError);
-  EXPECT_THROW(make_structure("psppsll", StructureParams(Params{{"pol", "grow"}})), UserError);
-  EXPECT_THROW(make_structure("psppsll", StructureParams(Params{{"pool", "fixed"}})), UserError);
-  EXPECT_THROW(make_structure("psppsll", StructureParams(Params{{"capacity", "0"}})), UserError);
+  test::expect_params_checked("psppsll",
+                              {{{"pool", "huge"}}, {{"pol", "grow"}}, {{"pool", "fixed"}}, {{"capacity", "0"}}});
   EXPECT_THROW(make_structure("nosuch", StructureParams()), UserError);
 }
 

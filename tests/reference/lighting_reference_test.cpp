@@ -137,6 +137,18 @@ TEST(SpotLight, PhotonsThroughTheLightsTexelsCarryItsFlux) {
 
 // The floor y = 0 of the `plane` scene under a coloured spot whose soft edge lies in view,
 // and, optionally, a small square occluder at height `occluder_y` between light and floor.
+// A w x h request of `component` at `spp_per_half` samples per half, without progress output.
+LightingReferenceRequest quiet_request(int w, int h, LightingComponent component,
+                                       uint32_t spp_per_half = LightingReferenceRequest{}.spp.spp_per_half) {
+  LightingReferenceRequest request;
+  request.width = w;
+  request.height = h;
+  request.component = component;
+  request.spp.spp_per_half = spp_per_half;
+  request.progress = false;
+  return request;
+}
+
 Scene lit_plane(bool occluder) {
   Scene scene = generate_scene("plane", {{"half_size", 4.0}}, "test");
   scene.materials[0].albedo = {0.7f, 0.5f, 0.3f};
@@ -181,11 +193,7 @@ TEST(LightingReference, DirectLightOnAPlaneIsTheClosedFormPerPixel) {
   constexpr int kW = 32, kH = 32;
   for (bool occluder : {false, true}) {
     const Scene scene = lit_plane(occluder);
-    LightingReferenceRequest request;
-    request.width = kW;
-    request.height = kH;
-    request.component = LightingComponent::direct;
-    request.progress = false;
+    const LightingReferenceRequest request = quiet_request(kW, kH, LightingComponent::direct);
     const ReferenceResult result = render_lighting_reference(scene, request);
     EXPECT_EQ(result.noise_mse, 0.0);  // deterministic: the halves are identical
     EXPECT_EQ(result.spp_per_half, 1u);
@@ -268,12 +276,7 @@ TEST(LightingReference, SingleBounceOnAWallMatchesAnIndependentQuadrature) {
   const double floor_albedo = 0.8, wall_albedo = 0.6;
   const Scene scene = generate_scene(
       "spot-bounce", {{"floor_albedo", floor_albedo}, {"wall_albedo", wall_albedo}}, "test");
-  LightingReferenceRequest request;
-  request.width = kW;
-  request.height = kH;
-  request.component = LightingComponent::single_bounce;
-  request.spp.spp_per_half = 512;
-  request.progress = false;
+  const LightingReferenceRequest request = quiet_request(kW, kH, LightingComponent::single_bounce, 512);
   const ReferenceResult result = render_lighting_reference(scene, request);
 
   std::vector<double> reference, quadrature, noise;
@@ -376,12 +379,7 @@ TEST(LightingReference, IntegratingSphereSingleBounceMatchesTheTessellatedClosed
   constexpr int kW = 24, kH = 24;
   const double rho = 0.5, radius = 1.0;
   const Scene scene = generate_scene("closed-sphere", {{"albedo", rho}, {"radius", radius}}, "test");
-  LightingReferenceRequest request;
-  request.width = kW;
-  request.height = kH;
-  request.component = LightingComponent::single_bounce;
-  request.spp.spp_per_half = 256;
-  request.progress = false;
+  const LightingReferenceRequest request = quiet_request(kW, kH, LightingComponent::single_bounce, 256);
   const ReferenceResult result = render_lighting_reference(scene, request);
   const Image closed = convex_single_bounce_image(scene, kW, kH);
   // The quadrature itself is converged far below the reference's noise: halving its parts
@@ -446,13 +444,7 @@ TEST(LightingReference, IntegratingSphereSingleAndMultiBounceMatchTheClosedForm)
                      "test");
   const double single_expected = ideal_single_bounce(scene, rho, radius);
   auto render = [&](LightingComponent component) {
-    LightingReferenceRequest request;
-    request.width = 24;
-    request.height = 24;
-    request.component = component;
-    request.spp.spp_per_half = 64;
-    request.progress = false;
-    return render_lighting_reference(scene, request);
+    return render_lighting_reference(scene, quiet_request(24, 24, component, 64));
   };
   const ReferenceResult single = render(LightingComponent::single_bounce);
   const ReferenceResult multi = render(LightingComponent::multi_bounce);
@@ -552,12 +544,7 @@ TEST(LightingReference, CacheKeyNamesComponentLightMaterialsCameraAndSize) {
 TEST(LightingReference, CachedReferenceRoundTrips) {
   const std::string dir = test::make_temp_dir("ldm-lighting-cache");
   const Scene scene = generate_scene("spot-bounce", {}, "test");
-  LightingReferenceRequest request;
-  request.width = 8;
-  request.height = 6;
-  request.component = LightingComponent::single_bounce;
-  request.spp.spp_per_half = 8;
-  request.progress = false;
+  LightingReferenceRequest request = quiet_request(8, 6, LightingComponent::single_bounce, 8);
   const ReferenceResult first = cached_lighting_reference(scene, request, dir);
   EXPECT_FALSE(first.from_cache);
   const ReferenceResult second = cached_lighting_reference(scene, request, dir);

@@ -25,6 +25,12 @@ declare_axes({"axes": [
 style.apply()
 
 
+def collections(fig, kind):
+    """The figure's collections of this matplotlib class ("PathCollection": scatter points,
+    "LineCollection": error bars), every axes'."""
+    return [c for ax in fig.axes for c in ax.collections if type(c).__name__ == kind]
+
+
 class Inspecting(figures.Canvas):
     """A canvas that keeps, per figure, what the tests look at before the figure closes."""
 
@@ -40,11 +46,9 @@ class Inspecting(figures.Canvas):
             "legend": [t.get_text() for ax in fig.axes if ax.get_legend()
                        for t in ax.get_legend().get_texts()] +
                       [t.get_text() for lg in fig.legends for t in lg.get_texts()],
-            "markers": {tuple(c.get_paths()[0].vertices.round(3).flatten()) for ax in fig.axes
-                        for c in ax.collections if type(c).__name__ == "PathCollection" and
-                        len(c.get_offsets()) and c.get_paths()},
-            "error_bars": sum(1 for ax in fig.axes for c in ax.collections
-                              if type(c).__name__ == "LineCollection"),
+            "markers": {tuple(c.get_paths()[0].vertices.round(3).flatten())
+                        for c in collections(fig, "PathCollection") if len(c.get_offsets()) and c.get_paths()},
+            "error_bars": len(collections(fig, "LineCollection")),
         }
 
 
@@ -278,11 +282,9 @@ class Issue37(unittest.TestCase):
         class Rings(Inspecting):
             def inspect(self, fig, name):
                 super().inspect(fig, name)
-                for ax in fig.axes:
-                    for c in ax.collections:
-                        if type(c).__name__ == "PathCollection" and len(c.get_sizes()) and \
-                                c.get_sizes()[0] == figures.RING_SIZE:
-                            rings.extend(tuple(p) for p in c.get_offsets())
+                for c in collections(fig, "PathCollection"):
+                    if len(c.get_sizes()) and c.get_sizes()[0] == figures.RING_SIZE:
+                        rings.extend(tuple(p) for p in c.get_offsets())
 
         canvas = Rings()
         figures.draw_tradeoffs(t, canvas)
@@ -298,12 +300,9 @@ class Issue37(unittest.TestCase):
         class Bars(Inspecting):
             def inspect(self, fig, name):
                 super().inspect(fig, name)
-                for ax in fig.axes:
-                    for c in ax.collections:
-                        if type(c).__name__ == "LineCollection":
-                            for seg in c.get_segments():
-                                if len(seg) == 2 and seg[0][0] == seg[1][0]:  # vertical: an error bar
-                                    bars.append(abs(seg[1][1] - seg[0][1]))
+                for seg in (seg for c in collections(fig, "LineCollection") for seg in c.get_segments()):
+                    if len(seg) == 2 and seg[0][0] == seg[1][0]:  # vertical: an error bar
+                        bars.append(abs(seg[1][1] - seg[0][1]))
 
         figures.draw_tradeoffs(t, Bars())
         # each point's bar spans its reference noise either side (ref_noise_mse 1e-6)
@@ -317,8 +316,7 @@ class Issue37(unittest.TestCase):
         class Bars(Inspecting):
             def inspect(self, fig, name):
                 super().inspect(fig, name)
-                seen[name] = [seg for ax in fig.axes for c in ax.collections
-                              if type(c).__name__ == "LineCollection" for seg in c.get_segments()]
+                seen[name] = [seg for c in collections(fig, "LineCollection") for seg in c.get_segments()]
 
         rows = [dict(r, construct_ms_median=1.0, construct_ms_ci_low=0.9, construct_ms_ci_high=1.1,
                      ao_ms_median=5.0, ao_ms_ci_low=4.5, ao_ms_ci_high=5.5) for r in self.front_rows()]

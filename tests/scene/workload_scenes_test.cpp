@@ -12,6 +12,7 @@
 #include "harness/util/error.h"
 #include "harness/util/hash.h"
 #include "ldm_impls/common/fragment_census.h"
+#include "support/test_support.h"
 
 namespace ldm {
 namespace {
@@ -62,15 +63,7 @@ TEST(SponzaLike, TheDefaultAtriumIsTheOneTheCommittedSweepMeasured) {
   while (committed.empty() && std::getline(tidy, line)) {
     // The leading columns hold no quoted commas up to these two (device, with its comma,
     // comes before: split quotes-aware).
-    std::vector<std::string> cells;
-    std::string cell;
-    bool quoted = false;
-    for (char ch : line) {
-      if (ch == '"') quoted = !quoted;
-      else if (ch == ',' && !quoted) cells.push_back(cell), cell.clear();
-      else cell += ch;
-    }
-    cells.push_back(cell);
+    const std::vector<std::string> cells = test::split_csv_line(line);
     if (cells.size() > size_t(hash_col) && cells[size_t(scene_col)] == "atrium" && !cells[size_t(hash_col)].empty())
       committed = cells[size_t(hash_col)];
   }

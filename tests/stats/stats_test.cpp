@@ -101,24 +101,32 @@ TEST(LogTInterval, MatchesScipyAndRefusesWhatHasNoLog) {
   EXPECT_THROW(log_t_interval({3.0, 0.0}), std::invalid_argument);
 }
 
+using SamplePairs = std::vector<std::pair<std::vector<double>, std::vector<double>>>;
+
+// test(a, b) on each pair: its statistic and p value are scipy's test `kind` ("welch",
+// "paired") on the logs.
+template <typename Test>
+void expect_as_scipy(const char* kind, const SamplePairs& pairs, Test test) {
+  json cases = json::array();
+  for (const auto& [a, b] : pairs) cases.push_back({{"kind", kind}, {"a", a}, {"b", b}});
+  const json answers = scipy(cases);
+  ASSERT_EQ(answers.size(), pairs.size());
+  for (size_t i = 0; i < pairs.size(); ++i) {
+    const TimeTest t = test(pairs[i].first, pairs[i].second);
+    EXPECT_NEAR(t.log_ratio / t.se, answers[i]["statistic"].get<double>(), 1e-9) << kind << " " << i;
+    EXPECT_NEAR(t.p_value, answers[i]["p"].get<double>(), 1e-9) << kind << " " << i;
+  }
+}
+
 TEST(TimeTests, WelchAndPairedMatchScipyOnLogs) {
   std::mt19937 rng(11);
-  json cases = json::array();
-  std::vector<std::pair<std::vector<double>, std::vector<double>>> pairs;
+  SamplePairs pairs;
   for (int i = 0; i < 40; ++i) {
     const size_t ka = 2 + size_t(i % 7), kb = 2 + size_t((i * 3) % 6);
     pairs.push_back({lognormal(rng, ka, 10, 0.02 + 0.01 * (i % 5)), lognormal(rng, kb, 10 * (1 + 0.01 * (i % 9)), 0.03)});
-    cases.push_back({{"kind", "welch"}, {"a", pairs.back().first}, {"b", pairs.back().second}});
   }
-  const json welch = scipy(cases);
-  ASSERT_EQ(welch.size(), pairs.size());
-  for (size_t i = 0; i < pairs.size(); ++i) {
-    const TimeTest t = welch_log_t(pairs[i].first, pairs[i].second);
-    EXPECT_NEAR(t.log_ratio / t.se, welch[i]["statistic"].get<double>(), 1e-9) << i;
-    EXPECT_NEAR(t.p_value, welch[i]["p"].get<double>(), 1e-9) << i;
-  }
-  json paired_cases = json::array();
-  std::vector<std::pair<std::vector<double>, std::vector<double>>> matched;
+  expect_as_scipy("welch", pairs, [](const auto& a, const auto& b) { return welch_log_t(a, b); });
+  SamplePairs matched;
   for (int i = 0; i < 40; ++i) {
     const size_t k = 2 + size_t(i % 8);
     const std::vector<double> load = lognormal(rng, k, 10, 0.2);  // shared by each pair
@@ -128,15 +136,8 @@ TEST(TimeTests, WelchAndPairedMatchScipyOnLogs) {
       b[j] *= (1 + 0.01 * (i % 6)) * std::exp(0.01 * std::cos(double(i * j)));
     }
     matched.push_back({a, b});
-    paired_cases.push_back({{"kind", "paired"}, {"a", a}, {"b", b}});
   }
-  const json paired = scipy(paired_cases);
-  ASSERT_EQ(paired.size(), matched.size());
-  for (size_t i = 0; i < matched.size(); ++i) {
-    const TimeTest t = paired_log_t(matched[i].first, matched[i].second);
-    EXPECT_NEAR(t.log_ratio / t.se, paired[i]["statistic"].get<double>(), 1e-9) << i;
-    EXPECT_NEAR(t.p_value, paired[i]["p"].get<double>(), 1e-9) << i;
-  }
+  expect_as_scipy("paired", matched, [](const auto& a, const auto& b) { return paired_log_t(a, b); });
   EXPECT_THROW(paired_log_t({1, 2}, {1, 2, 3}), std::invalid_argument);
   EXPECT_THROW(welch_log_t({1}, {1, 2}), std::invalid_argument);
 }
@@ -254,24 +255,38 @@ TEST(RepetitionSummaries, MedianOfMediansWithATIntervalOnTheirLogs) {
   EXPECT_TRUE(std::isnan(rebuild->repetition_spread));
 }
 
+// The frames `rule` asks for, each `frame()`.
+template <typename Frame>
+TimingSeries frames_until_stopped(FrameStopRule& rule, Frame frame) {
+  TimingSeries s;
+  while (rule.want_another(s)) s.add_frame(frame());
+  return s;
+}
+
+// Frame times with 100 % noise (exponential, mean 10 ms) drawn from `seed`.
+auto exponential_frames(unsigned seed) {
+  return [rng = std::mt19937(seed), noise = std::exponential_distribution<double>(0.1)]() mutable {
+    return FrameTimes{{"frame", noise(rng)}};
+  };
+}
+
 TEST(FrameStopRule, StopsAtTheTargetTheCapOrTheMinimum) {
   const TimePrecision precision{0.02, 60.0, 400};
   // Constant frames: the interval is a point, so the first count whose interval reaches
   // 95 % ends it (6: five frames cannot claim it).
   {
     FrameStopRule rule(5, precision);
-    TimingSeries s;
-    while (rule.want_another(s)) s.add_frame({{"frame", 10.0}});
+    const TimingSeries s = frames_until_stopped(rule, [] { return FrameTimes{{"frame", 10.0}}; });
     EXPECT_EQ(s.frames(), 6u);
     EXPECT_TRUE(rule.target_met(s));
   }
   // 10 % noise: about (1.96 * 1.25 * 0.1 / 0.02)^2 = 150 frames for +-2 %, then stop met.
   {
     std::mt19937 rng(1);
-    FrameStopRule rule(5, precision);
-    TimingSeries s;
     std::normal_distribution<double> noise(10, 1);
-    while (rule.want_another(s)) s.add_frame({{"frame", noise(rng)}, {"build", 4.0}});
+    FrameStopRule rule(5, precision);
+    const TimingSeries s = frames_until_stopped(
+        rule, [&] { return FrameTimes{{"frame", noise(rng)}, {"build", 4.0}}; });
     EXPECT_GT(s.frames(), 60u);
     EXPECT_LT(s.frames(), 400u);
     EXPECT_TRUE(rule.target_met(s));
@@ -279,31 +294,22 @@ TEST(FrameStopRule, StopsAtTheTargetTheCapOrTheMinimum) {
   }
   // 100 % noise never gets there: the frame cap ends it, target missed.
   {
-    std::mt19937 rng(2);
     FrameStopRule rule(5, {0.001, 60.0, 50});
-    TimingSeries s;
-    std::exponential_distribution<double> noise(0.1);
-    while (rule.want_another(s)) s.add_frame({{"frame", noise(rng)}});
+    const TimingSeries s = frames_until_stopped(rule, exponential_frames(2));
     EXPECT_EQ(s.frames(), 50u);
     EXPECT_FALSE(rule.target_met(s));
   }
   // Target 0: exactly the minimum.
   {
     FrameStopRule rule(7, {0.0, 60.0, 400});
-    TimingSeries s;
-    std::mt19937 rng(4);
-    std::exponential_distribution<double> noise(0.1);
-    while (rule.want_another(s)) s.add_frame({{"frame", noise(rng)}});
+    const TimingSeries s = frames_until_stopped(rule, exponential_frames(4));
     EXPECT_EQ(s.frames(), 7u);
     EXPECT_TRUE(rule.target_met(s));
   }
   // The time cap: 0 s stops at the minimum even when the target is not met.
   {
     FrameStopRule rule(6, {0.001, 0.0, 400});
-    TimingSeries s;
-    std::mt19937 rng(6);
-    std::exponential_distribution<double> noise(0.1);
-    while (rule.want_another(s)) s.add_frame({{"frame", noise(rng)}});
+    const TimingSeries s = frames_until_stopped(rule, exponential_frames(6));
     EXPECT_EQ(s.frames(), 6u);
     EXPECT_FALSE(rule.target_met(s));
   }

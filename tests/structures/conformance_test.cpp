@@ -34,32 +34,31 @@ using test::Params;
 // the census; nullopt where the structure has no capacity to get wrong (the DF-buffer is
 // sized by its own count pass; its mis-sizing is tested in dfbuffer_test.cpp). A new
 // structure must add its line: EveryStructureSaysHowItCanBeLossy fails until it does.
-const std::map<std::string, std::function<std::optional<Params>(const FragmentCensus&)>>&
-lossy_configurations() {
-  static const std::map<std::string, std::function<std::optional<Params>(const FragmentCensus&)>>
-      table = {
-          {"psppsll",
-           [](const FragmentCensus& c) -> std::optional<Params> {
-             return Params{{"capacity", std::to_string(c.total_fragments / 2)}};
-           }},
-          {"ppsll",
-           [](const FragmentCensus& c) -> std::optional<Params> {
-             return Params{{"capacity", std::to_string(c.total_fragments / 2)}};
-           }},
-          {"dfbuffer", [](const FragmentCensus&) -> std::optional<Params> { return std::nullopt; }},
-          {"habuffer",
-           [](const FragmentCensus& c) -> std::optional<Params> {
-             return Params{{"max_age", std::to_string(c.max_depth_complexity / 2)}};
-           }},
-          {"ppfla",
-           [](const FragmentCensus& c) -> std::optional<Params> {
-             return Params{{"k", std::to_string(c.max_depth_complexity / 2)}};
-           }},
-          {"psppfla",
-           [](const FragmentCensus& c) -> std::optional<Params> {
-             return Params{{"k", std::to_string(c.max_depth_complexity / 2)}};
-           }},
-      };
+using LossyConfiguration = std::function<std::optional<Params>(const FragmentCensus&)>;
+
+// `param` at half the scene's fragments: a pool too small for them.
+LossyConfiguration half_the_fragments(const std::string& param) {
+  return [param](const FragmentCensus& c) -> std::optional<Params> {
+    return Params{{param, std::to_string(c.total_fragments / 2)}};
+  };
+}
+
+// `param` at half the scene's deepest pixel: too few slots for it.
+LossyConfiguration half_the_depth(const std::string& param) {
+  return [param](const FragmentCensus& c) -> std::optional<Params> {
+    return Params{{param, std::to_string(c.max_depth_complexity / 2)}};
+  };
+}
+
+const std::map<std::string, LossyConfiguration>& lossy_configurations() {
+  static const std::map<std::string, LossyConfiguration> table = {
+      {"psppsll", half_the_fragments("capacity")},
+      {"ppsll", half_the_fragments("capacity")},
+      {"dfbuffer", [](const FragmentCensus&) -> std::optional<Params> { return std::nullopt; }},
+      {"habuffer", half_the_depth("max_age")},
+      {"ppfla", half_the_depth("k")},
+      {"psppfla", half_the_depth("k")},
+  };
   return table;
 }
 

@@ -137,11 +137,8 @@ TEST(DfBuffer, MemoryIsExactlySizedFromTheCensus) {
 }
 
 TEST(DfBuffer, OutOfRangeParametersAreUserErrors) {
-  test::gl_context();
-  EXPECT_THROW(make_structure("dfbuffer", test::params({{"local", "0"}})), UserError);
-  EXPECT_THROW(make_structure("dfbuffer", test::params({{"local", "129"}})), UserError);
-  EXPECT_THROW(make_structure("dfbuffer", test::params({{"pool", "grow"}})), UserError);
-  EXPECT_NO_THROW(make_structure("dfbuffer", test::params({{"local", "1"}})));
+  test::expect_params_checked("dfbuffer", {{{"local", "0"}}, {{"local", "129"}}, {{"pool", "grow"}}},
+                              {{{"local", "1"}}});
 }
 
 }  // namespace

@@ -169,9 +169,7 @@ TEST(HaBuffer, SizingFollowsTheCensusAndTheAgeEquivalenceBound) {
 }
 
 TEST(HaBuffer, OutOfRangeParametersAreUserErrors) {
-  EXPECT_THROW(make_structure("habuffer", test::params({{"max_age", "255"}})), UserError);
-  EXPECT_THROW(make_structure("habuffer", test::params({{"key_bits", "48"}})), UserError);
-  EXPECT_THROW(make_structure("habuffer", test::params({{"load_factor", "0"}})), UserError);
+  test::expect_params_checked("habuffer", {{{"max_age", "255"}}, {{"key_bits", "48"}}, {{"load_factor", "0"}}});
 }
 
 }  // namespace

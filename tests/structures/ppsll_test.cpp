@@ -18,17 +18,7 @@ TEST(Ppsll, SmallLocalArraysSortInPlaceAndCountIt) {
 }
 
 TEST(Ppsll, FixedPoolOverflowIsCountedAndTheStoredListsAreSorted) {
-  const LdmFixture f("atrium", 8, 32);
-  const uint64_t capacity = f.census.total_fragments / 2;
-  const auto s = f.build("ppsll", {{"capacity", std::to_string(capacity)}});
-  const BuildStats stats = s->stats();
-  EXPECT_TRUE(stats.overflow);
-  EXPECT_EQ(stats.fragments_rasterized, f.census.total_fragments);
-  EXPECT_EQ(stats.fragments_stored, capacity);
-  EXPECT_EQ(stats.fragments_lost, f.census.total_fragments - capacity);
-  const LdmIntegrity integrity = LdmInspector(*s, *f.inputs).check();
-  EXPECT_EQ(integrity.fragments, capacity);
-  EXPECT_EQ(integrity.unsorted_pixels, 0u);
+  test::expect_fixed_pool_overflow_counted(LdmFixture("atrium", 8, 32), "ppsll");
 }
 
 TEST(Ppsll, MemoryAndSizingFollowTheCensus) {
@@ -52,13 +42,9 @@ TEST(Ppsll, MemoryAndSizingFollowTheCensus) {
 }
 
 TEST(Ppsll, OutOfRangeParametersAreUserErrors) {
-  test::gl_context();
-  EXPECT_THROW(make_structure("ppsll", test::params({{"local", "0"}})), UserError);
-  EXPECT_THROW(make_structure("ppsll", test::params({{"local", "129"}})), UserError);
-  EXPECT_THROW(make_structure("ppsll", test::params({{"pool", "fixed"}})), UserError);
-  EXPECT_THROW(make_structure("ppsll", test::params({{"capacity", "0"}})), UserError);
-  EXPECT_THROW(make_structure("ppsll", test::params({{"locl", "4"}})), UserError);
-  EXPECT_NO_THROW(make_structure("ppsll", test::params({{"local", "128"}})));
+  test::expect_params_checked(
+      "ppsll", {{{"local", "0"}}, {{"local", "129"}}, {{"pool", "fixed"}}, {{"capacity", "0"}}, {{"locl", "4"}}},
+      {{{"local", "128"}}});
 }
 
 }  // namespace

@@ -78,6 +78,36 @@ void expect_contains(const std::string& message, std::initializer_list<std::stri
         << "message '" << message << "' lacks '" << fragment << "'";
 }
 
+std::string cube_off(int side) {
+  std::string off = "OFF\n8 6 0\n";
+  for (int i = 0; i < 8; ++i)
+    off += std::to_string((i & 1) * side) + " " + std::to_string((i >> 1 & 1) * side) + " " +
+           std::to_string((i >> 2 & 1) * side) + "\n";
+  off += "4 0 2 3 1\n4 4 5 7 6\n4 0 1 5 4\n4 2 6 7 3\n4 0 4 6 2\n4 1 3 7 5\n";
+  return off;
+}
+
+std::vector<std::string> split_csv_line(const std::string& line) {
+  std::vector<std::string> cells;
+  std::string cell;
+  bool quoted = false;
+  for (char c : line) {
+    if (c == '"') quoted = !quoted;
+    else if (c == ',' && !quoted) cells.push_back(cell), cell.clear();
+    else cell += c;
+  }
+  cells.push_back(cell);
+  return cells;
+}
+
+void expect_run_rejected(const std::string& args, const std::string& culprit) {
+  const std::filesystem::path out = std::filesystem::path(make_temp_dir("ldm-rejected")) / "out";
+  const Outcome o = ldmbench("run " + args + " --out " + out.string());
+  EXPECT_EQ(o.status, 2) << args << "\n" << o.output;
+  EXPECT_NE(o.output.find(culprit), std::string::npos) << args << "\n" << o.output;
+  EXPECT_FALSE(std::filesystem::exists(out)) << args << ": an output folder was created";
+}
+
 Outcome run_shell(const std::string& command) {
   Outcome o;
   o.status = run_command(command, &o.output);

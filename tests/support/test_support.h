@@ -3,6 +3,7 @@
 #include <initializer_list>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -50,5 +51,15 @@ std::string user_error(F f) {
 
 // Expects `message` to contain every fragment.
 void expect_contains(const std::string& message, std::initializer_list<std::string> fragments);
+
+// An axis-aligned cube [0, side]^3 as an OFF mesh (six quads).
+std::string cube_off(int side);
+
+// The cells of one CSV line, split at the commas outside double quotes (the quotes kept).
+std::vector<std::string> split_csv_line(const std::string& line);
+
+// Bad input to `ldmbench run ARGS --out DIR`: exit status 2, a message naming `culprit`, and
+// nothing written (DIR, a fresh temporary path, is not created).
+void expect_run_rejected(const std::string& args, const std::string& culprit);
 
 }  // namespace ldm::test

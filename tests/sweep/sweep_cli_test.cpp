@@ -305,12 +305,6 @@ TEST(SweepCli, ShardsMergeIntoTheWholeSweep) {
   EXPECT_NE(allowed.output.find("warning"), std::string::npos) << allowed.output;
 }
 
-}  // namespace
-}  // namespace ldm
-
-namespace ldm {
-namespace {
-
 TEST(SweepCli, SlurmScriptRunsItsShardsAndMerges) {
   // The array task's and the merge job's branches of scripts/slurm-sweep.sh, as Slurm would
   // run them (the environment Slurm sets, no Slurm needed).
@@ -357,12 +351,6 @@ TEST(SweepCli, SlurmScriptRunsItsShardsAndMerges) {
   if (!std::getenv("SLURM_JOB_ID")) EXPECT_FALSE(plain_records[0].contains("slurm_job_id"));  // ctest not in a job
 }
 
-}  // namespace
-}  // namespace ldm
-
-namespace ldm {
-namespace {
-
 TEST(SweepCli, CiSmallSweepReproducesTheCommittedBaseline) {
   // sweeps/ci-small.json measures the configurations of results/baselines/ci-small (same ids,
   // same settings, through the same path as `ldmbench run`): memory, accuracy and status
@@ -378,12 +366,6 @@ TEST(SweepCli, CiSmallSweepReproducesTheCommittedBaseline) {
   EXPECT_NE(compared.output.find("regressions: time"), std::string::npos) << compared.output;
   EXPECT_NE(compared.output.find("memory 0 accuracy 0 status 0"), std::string::npos) << compared.output;
 }
-
-}  // namespace
-}  // namespace ldm
-
-namespace ldm {
-namespace {
 
 TEST(SweepCli, RunRedoesFailedConfigurationsWhenAsked) {
   // `ldmbench run` shares the loop: --redo-failed resumes the same sweep (it is not part of
@@ -402,12 +384,6 @@ TEST(SweepCli, RunRedoesFailedConfigurationsWhenAsked) {
   EXPECT_EQ(journal_records(out).size(), 3u);
   EXPECT_EQ(csv_ids(out).size(), 2u);
 }
-
-}  // namespace
-}  // namespace ldm
-
-namespace ldm {
-namespace {
 
 TEST(SweepCli, SlurmScriptSubmitsGpuOptionsAndNamedLogs) {
   // The login node's branch of scripts/slurm-sweep.sh with a stand-in sbatch on PATH that

@@ -9,6 +9,7 @@
 #include "harness/run/sweep_plan.h"
 #include "harness/run/sweep_spec.h"
 #include "harness/util/error.h"
+#include "support/fuzz_inputs.h"
 
 namespace ldm {
 namespace {
@@ -16,25 +17,11 @@ namespace {
 namespace fs = std::filesystem;
 
 TEST(SweepFuzzCorpus, InputsParseOrAreRefused) {
-  size_t count = 0;
-  for (const char* kind : {"corpus", "crashes"}) {
-    const fs::path dir = fs::path(LDM_TEST_SOURCE_DIR) / "fuzz" / kind / "sweep";
-    if (!fs::is_directory(dir)) continue;
-    for (const auto& entry : fs::directory_iterator(dir)) {
-      std::ifstream in(entry.path(), std::ios::binary);
-      std::stringstream text;
-      text << in.rdbuf();
-      ++count;
-      try {
-        SweepSpec spec = parse_sweep_spec(text.str(), "fuzz.json", current_sweep_vocabulary());
-        sweep_combinations(spec);
-      } catch (const UserError&) {
-      } catch (const std::exception& e) {
-        ADD_FAILURE() << entry.path() << ": " << e.what();
-      }
-    }
-  }
-  EXPECT_GE(count, 3u);
+  const test::FuzzReplay replay = test::replay_fuzz_inputs("sweep", [](const fs::path&, const std::string& text) {
+    SweepSpec spec = parse_sweep_spec(text, "fuzz.json", current_sweep_vocabulary());
+    sweep_combinations(spec);
+  });
+  EXPECT_GE(replay.inputs, 3u);
 }
 
 // Every shipped sweep parses and expands (the default one is what a new user runs first).

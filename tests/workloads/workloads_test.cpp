@@ -116,12 +116,7 @@ TEST(Workloads, DegenerateMeasurementsAreFlaggedAndNeverRanked) {
   // A box in millimetres with d_max 1 mm: no ray finds an occluder within reach, so the
   // reference is AO = 1 everywhere, without noise (the engine of issue 22, in miniature), and
   // the AO range is a fraction of an LDM pixel.
-  std::string off = "OFF\n8 6 0\n";
-  for (int i = 0; i < 8; ++i)
-    off += std::to_string((i & 1) * 400) + " " + std::to_string((i >> 1 & 1) * 400) + " " +
-           std::to_string((i >> 2 & 1) * 400) + "\n";
-  off += "4 0 2 3 1\n4 4 5 7 6\n4 0 1 5 4\n4 2 6 7 3\n4 0 4 6 2\n4 1 3 7 5\n";
-  write_file(dir, "box.off", off);
+  write_file(dir, "box.off", test::cube_off(400));
   const std::string tiny = write_file(dir, "tiny.json", R"({"name": "tiny-dmax", "meshes": [{"file": "box.off"}], "ao": {"d_max": 1}})");
   // The camera turned away from everything.
   const std::string away = write_file(dir, "away.json", R"({"name": "away", "meshes": [{"file": "box.off"}],
