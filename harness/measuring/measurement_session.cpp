@@ -9,6 +9,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "harness/gl/gl_objects.h"
 #include "harness/measuring/ldm_setup.h"
 #include "harness/settings/record_schema.h"
 #include "harness/measure/work_counters.h"
