@@ -1,5 +1,7 @@
 #include "harness/gl/gl_objects.h"
 
+#include <map>
+
 #include <cstdio>
 #include <string>
 
@@ -29,14 +31,92 @@ void check_gl(const char* where) {
   throw GpuError(std::string(where) + ": GL error" + codes);
 }
 
+namespace {
+
+struct Lendable {
+  const void* owner;
+  std::string name;
+  uint64_t bytes;
+  GLbitfield flags;
+  bool lent = false;
+};
+// Buffers allocated inside a GlBufferOwnerScope, by GL name, while their owner holds them.
+std::map<GLuint, Lendable>& lendable_buffers() {
+  static std::map<GLuint, Lendable> buffers;
+  return buffers;
+}
+const void* g_buffer_owner = nullptr;
+const void* g_buffer_lender = nullptr;
+uint64_t g_buffers_lent = 0, g_bytes_lent = 0;
+
+}  // namespace
+
+GlBufferOwnerScope::GlBufferOwnerScope(const void* owner) : previous_(g_buffer_owner) {
+  g_buffer_owner = owner;
+}
+GlBufferOwnerScope::~GlBufferOwnerScope() { g_buffer_owner = previous_; }
+
+GlBufferLoanScope::GlBufferLoanScope(const void* lender)
+    : previous_(g_buffer_lender), buffers_at_start_(g_buffers_lent), bytes_at_start_(g_bytes_lent) {
+  g_buffer_lender = lender;
+}
+GlBufferLoanScope::~GlBufferLoanScope() { g_buffer_lender = previous_; }
+uint64_t GlBufferLoanScope::buffers_lent() const { return g_buffers_lent - buffers_at_start_; }
+uint64_t GlBufferLoanScope::bytes_lent() const { return g_bytes_lent - bytes_at_start_; }
+
+GlBuffer::GlBuffer(GlBuffer&& other) noexcept
+    : handle_(std::move(other.handle_)),
+      bytes_(other.bytes_),
+      name_(std::move(other.name_)),
+      borrowed_(std::exchange(other.borrowed_, false)) {}
+
+GlBuffer& GlBuffer::operator=(GlBuffer&& other) noexcept {
+  if (this != &other) {
+    drop();
+    handle_ = std::move(other.handle_);
+    bytes_ = other.bytes_;
+    name_ = std::move(other.name_);
+    borrowed_ = std::exchange(other.borrowed_, false);
+  }
+  return *this;
+}
+
+void GlBuffer::drop() {
+  const GLuint id = handle_.id();
+  if (!id) return;
+  auto& lendable = lendable_buffers();
+  const auto it = lendable.find(id);
+  if (borrowed_) {  // the lender frees it
+    if (it != lendable.end()) it->second.lent = false;
+    handle_.release();
+    borrowed_ = false;
+    return;
+  }
+  if (it != lendable.end()) lendable.erase(it);
+  handle_.reset();
+}
+
 GlBuffer::GlBuffer(std::string name, uint64_t bytes, const void* data, GLbitfield flags)
     : bytes_(bytes), name_(std::move(name)) {
+  if (g_buffer_lender && !data) {
+    for (auto& [id, buffer] : lendable_buffers())
+      if (buffer.owner == g_buffer_lender && !buffer.lent && buffer.bytes == bytes &&
+          buffer.flags == flags && buffer.name == name_) {
+        buffer.lent = true;
+        handle_ = GlHandle<delete_gl_buffer>(id);
+        borrowed_ = true;
+        ++g_buffers_lent;
+        g_bytes_lent += bytes;
+        return;
+      }
+  }
   GLuint id = 0;
   glCreateBuffers(1, &id);
   handle_ = GlHandle<delete_gl_buffer>(id);
   // A zero-byte storage is invalid; keep one word so that bindings stay legal.
   glNamedBufferStorage(id, GLsizeiptr(bytes ? bytes : 4), data, flags);
   check_gl(("allocating buffer '" + name_ + "'").c_str());
+  if (g_buffer_owner) lendable_buffers()[id] = Lendable{g_buffer_owner, name_, bytes, flags};
 }
 
 void GlBuffer::clear_to_zero() { clear_to_uint(0u); }

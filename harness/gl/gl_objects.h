@@ -32,6 +32,8 @@ class GlHandle {
     if (id_) Delete(id_);
     id_ = 0;
   }
+  // Gives up the object without deleting it (another owner frees it).
+  GLuint release() { return std::exchange(id_, 0); }
 
  private:
   GLuint id_ = 0;
@@ -51,6 +53,9 @@ class GlBuffer {
   GlBuffer() = default;
   GlBuffer(std::string name, uint64_t bytes, const void* data = nullptr,
            GLbitfield flags = GL_DYNAMIC_STORAGE_BIT);
+  ~GlBuffer() { drop(); }
+  GlBuffer(GlBuffer&& other) noexcept;
+  GlBuffer& operator=(GlBuffer&& other) noexcept;
   GLuint id() const { return handle_.id(); }
   uint64_t bytes() const { return bytes_; }
   const std::string& name() const { return name_; }
@@ -68,11 +73,50 @@ class GlBuffer {
   }
   void bind_storage(GLuint binding) const;
   void bind_atomic_counter(GLuint binding) const;
+  // Whether this buffer shares a lender's storage (GlBufferLoanScope).
+  bool borrowed() const { return borrowed_; }
 
  private:
+  void drop();  // frees the storage, or hands a borrowed one back
   GlHandle<delete_gl_buffer> handle_;
   uint64_t bytes_ = 0;
   std::string name_;
+  bool borrowed_ = false;
+};
+
+// Storage lending, for the counting replay (harness/measuring/measurement_session.cpp): a
+// second instance of a structure or pass, prepared and run once after the measured frames,
+// takes the measured instance's buffers (already allocated at their settled size and
+// touched) instead of allocating and first-touching new ones. Buffers allocated while a
+// GlBufferOwnerScope is alive are tagged with its owner (an opaque pointer); while a
+// GlBufferLoanScope for that owner is alive, a buffer allocated without initial data takes,
+// instead of new storage, a live buffer of the owner with the same name, size and flags that
+// is not lent yet. The borrower shares that storage (what it writes, the lender then holds)
+// and never frees it. Outside these scopes (every measured frame) nothing changes.
+class GlBufferOwnerScope {
+ public:
+  explicit GlBufferOwnerScope(const void* owner);
+  ~GlBufferOwnerScope();
+  GlBufferOwnerScope(const GlBufferOwnerScope&) = delete;
+  GlBufferOwnerScope& operator=(const GlBufferOwnerScope&) = delete;
+
+ private:
+  const void* previous_;
+};
+
+class GlBufferLoanScope {
+ public:
+  explicit GlBufferLoanScope(const void* lender);
+  ~GlBufferLoanScope();
+  GlBufferLoanScope(const GlBufferLoanScope&) = delete;
+  GlBufferLoanScope& operator=(const GlBufferLoanScope&) = delete;
+  // Buffers lent (and bytes) since the scope began.
+  uint64_t buffers_lent() const;
+  uint64_t bytes_lent() const;
+
+ private:
+  const void* previous_;
+  uint64_t buffers_at_start_, bytes_at_start_;
 };
 
 class GlTexture2D {

@@ -9,6 +9,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "harness/gl/gl_objects.h"
 #include "harness/measuring/ldm_setup.h"
 #include "harness/settings/record_schema.h"
 #include "harness/measure/work_counters.h"
@@ -89,7 +90,12 @@ struct MeasurementSession::State {
       : request(r), pass(std::move(p)), timer(source) {}
 
   Scene& scene() { return setup ? setup->scene : *peer_scene; }
+  // What tags the storage the counting replay borrows (GlBufferLoanScope): the structure's
+  // (and its sizing's), and the pass's.
+  const void* structure_storage() const { return &structure; }
+  const void* pass_storage() const { return &pass; }
   void prepare_pass() {
+    const GlBufferOwnerScope owner(pass_storage());
     if (setup)
       pass->prepare({setup->scene, *setup->gpu_scene, setup->inputs.get(), structure.get(),
                      request.width, request.height, &request.axes});
@@ -143,6 +149,7 @@ MeasurementSession::MeasurementSession(const Scene& scene, const MeasurementRequ
   m.census = summarize_census(census);
 
   try {
+    const GlBufferOwnerScope owner(s.structure_storage());
     s.structure = s.setup->prepare(request.structure, request.structure_params);
   } catch (const StorageBlockExceeded& e) {  // say what would fit, from the census
     throw explained_refusal(e, census, request.views, request.resolution);
@@ -153,7 +160,10 @@ MeasurementSession::MeasurementSession(const Scene& scene, const MeasurementRequ
   // corrupt.
   s.inspector = std::make_unique<LdmInspector>(*s.structure, in,
                                                std::max(1u, census.max_depth_complexity));
-  s.sizer = std::make_unique<SizingDriver>(*s.structure, in);
+  {
+    const GlBufferOwnerScope owner(s.structure_storage());
+    s.sizer = std::make_unique<SizingDriver>(*s.structure, in);
+  }
   s.health.emplace(census);
   s.verifier = std::make_unique<BuildVerifier>(*s.structure, *s.inspector, *s.health,
                                                request.verify, request.verify_stride);
@@ -182,12 +192,16 @@ FrameTimes MeasurementSession::run_frame() {
   if (s.setup) {
     if (yardsticks) s.baseline->render(&s.timer);
     try {
+      const GlBufferOwnerScope owner(s.structure_storage());  // a resize's new storage
       s.sizer->build(&s.timer);  // the structure's build() under its sizing policy
     } catch (const StorageBlockExceeded& e) {  // grown past the device: say what would fit
       throw explained_refusal(e, s.setup->census, s.request.views, s.request.resolution);
     }
   }
-  s.pass->render(&s.timer);
+  {
+    const GlBufferOwnerScope owner(s.pass_storage());  // storage the pass grows itself
+    s.pass->render(&s.timer);
+  }
   FrameTimes times = s.timer.end_frame();
   if (s.setup) {
     // Untimed: what the build stored, read back through the query API (in full, or a
@@ -247,27 +261,46 @@ void MeasurementSession::count_work() {
   std::unique_ptr<Pass> pass = make_request_pass(s.request);
   {
     WorkCountingScope counting(counts.defines());
+    // The replay's structure, sizing and pass take the measured instances' buffers where
+    // they ask for the same ones (already allocated at their settled sizes and touched:
+    // gl_objects.h) instead of allocating new storage. The measured instances' contents are
+    // overwritten: the check below compares with what the measured frames recorded (the
+    // lists' first checksum) and with their images (textures, never lent).
     if (s.setup) {
-      structure = s.setup->prepare(s.request.structure, s.request.structure_params);
-      sizer = std::make_unique<SizingDriver>(*structure, *s.setup->inputs);
+      {
+        const GlBufferLoanScope loan(s.structure_storage());
+        structure = s.setup->prepare(s.request.structure, s.request.structure_params);
+        sizer = std::make_unique<SizingDriver>(*structure, *s.setup->inputs);
+      }
+      const GlBufferLoanScope loan(s.pass_storage());
       pass->prepare({s.setup->scene, *s.setup->gpu_scene, s.setup->inputs.get(), structure.get(),
                      s.request.width, s.request.height, &s.request.axes});
       pass->continue_sizing_from(*s.pass);
     } else {
+      const GlBufferLoanScope loan(s.pass_storage());
       pass->prepare({*s.peer_scene, *s.peer_gpu_scene, nullptr, nullptr, s.request.width,
                      s.request.height, &s.request.axes});
     }
     auto frame = [&] {
       timer.begin_frame();
-      if (sizer) sizer->build(&timer);
-      pass->render(&timer);
+      if (sizer) {
+        const GlBufferLoanScope loan(s.structure_storage());
+        sizer->build(&timer);
+      }
+      {
+        const GlBufferLoanScope loan(s.pass_storage());
+        pass->render(&timer);
+      }
       timer.end_frame();
     };
     // One counted frame, its structure sized as the measured frames' next would be. Where
     // a sizing policy still grew inside it (the indirect pass's photon buffer under
     // previous_frame, which the pass sizes itself), its rebuild counted the work twice:
     // that frame settled the sizes, and the next one is counted.
-    if (sizer) sizer->continue_from(*s.sizer);
+    if (sizer) {
+      const GlBufferLoanScope loan(s.structure_storage());
+      sizer->continue_from(*s.sizer);
+    }
     counts.clear();
     frame();
     if (counts.began("rebuild") || counts.began("photon_rebuild")) {
