@@ -494,5 +494,17 @@ class AgainstAnExhaustiveRun(unittest.TestCase):
         self.assertTrue(self.judge.how_it_stands(self.rows, {"recommended": None}, self.goal).startswith("refuted"))
 
 
+
+class VerifyRepeatedPrecision(unittest.TestCase):
+    def test_uncertain_candidates_are_repeated_in_processes_of_their_own(self):
+        # Repetitions in one process share its offset and would not narrow the interval
+        # (harness/measure/run_to_run_spread.h); the sweep file must ask for processes.
+        from ldmadvise.measure import VERIFY_UNCERTAIN
+        spec = sweep_file({"scene": "cornell", "pass": "ao", "image_size": "32x32"},
+                          [{"structures": "psppsll", "views": 4, "r_ldm": 32}], VERIFY_UNCERTAIN, "t")
+        self.assertEqual(spec["settings"]["timing"]["repetitions"], 3)
+        self.assertEqual(spec["settings"]["timing"]["isolation"], "process")
+
+
 if __name__ == "__main__":
     unittest.main(verbosity=1)

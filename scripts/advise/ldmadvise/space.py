@@ -173,6 +173,8 @@ def sweep_file(question, assignments, precision, description):
         timing["cap_s"] = precision["cap_s"]
     if precision.get("repetitions", 1) > 1:
         timing["repetitions"] = precision["repetitions"]
+    if precision.get("isolation"):
+        timing["isolation"] = precision["isolation"]
     return {
         "description": description,
         "axes": main,
