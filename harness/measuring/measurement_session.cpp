@@ -81,6 +81,9 @@ struct MeasurementSession::State {
   uint64_t sizing_changes_seen = 0;  // rebuilds + reallocations at the last verification
   // Where the counting replay disagreed with the measured frames (count_work()).
   std::vector<std::string> work_problems;
+  // measured_result() taken just before the counting replay wrote into the measured
+  // instances' storage (what the replay borrows); dropped when a later frame runs.
+  std::optional<Measurement> before_replay;
 
   // Peer passes: the scene as given (no LDM views, so no centred frame is imposed).
   std::unique_ptr<Scene> peer_scene;
@@ -181,6 +184,7 @@ MeasurementSession::~MeasurementSession() = default;
 // as build time; the pass then reads the finished structure.
 FrameTimes MeasurementSession::run_frame() {
   State& s = *state_;
+  s.before_replay.reset();  // this frame's readings are the measured instances' again
   const bool warmup = in_warmup();
   // The yardsticks on the first warm-up frame (their programs' first use) and on every
   // kBaselineFrameStride-th measured frame from the first: they are compared with the
@@ -252,6 +256,9 @@ size_t differing_values(const Image& a, const Image& b, double tolerance) {
 void MeasurementSession::count_work() {
   State& s = *state_;
   if (s.pass->requirements().runs_on_cpu) return;  // no shader to count (the CPU ray tracer)
+  // The replay borrows the measured buffers and overwrites them: read the measured frames'
+  // results, memory in use and losses first, so that the record keeps theirs.
+  s.before_replay = measured_result();
   const auto start = std::chrono::steady_clock::now();
   WorkCounterBuffer counts(configuration_work_counters(s.m.structure, s.request.pass));
   GpuTimer timer(TimerSource::CpuWallClock);  // only to tell the counters the sub-passes
@@ -345,6 +352,19 @@ void MeasurementSession::add_warmup_frame() {
 
 Measurement MeasurementSession::result() const {
   const State& s = *state_;
+  Measurement m = s.before_replay ? *s.before_replay : measured_result();
+  m.work = s.m.work;
+  m.work_counted = s.m.work_counted;
+  m.work_replay_ms = s.m.work_replay_ms;
+  // Where counting changed what the measured frames computed, the record is invalid.
+  if (!s.work_problems.empty()) m.status = BuildStatus::Invalid;
+  for (const auto& problem : s.work_problems)
+    m.status_detail += (m.status_detail.empty() ? "" : "; ") + problem;
+  return m;
+}
+
+Measurement MeasurementSession::measured_result() const {
+  const State& s = *state_;
   Measurement m = s.m;
   m.images = s.pass->images();
   m.pass_results = s.pass->results();
@@ -356,7 +376,6 @@ Measurement MeasurementSession::result() const {
     // may have cut short) make a peer's record invalid, as they do an LDM pass's.
     std::vector<std::string> all_problems = problems;
     for (const auto& problem : s.pass->problems()) all_problems.push_back(problem);
-    for (const auto& problem : s.work_problems) all_problems.push_back(problem);
     m.status = all_problems.empty() ? BuildStatus::Ok : BuildStatus::Invalid;
     m.memory = s.pass->memory();
     for (const auto& problem : all_problems)
@@ -373,7 +392,6 @@ Measurement MeasurementSession::result() const {
                             std::to_string(s.setup->census.total_fragments));
     for (const auto& problem : problems) health.report_problem(problem);
     for (const auto& problem : s.pass->problems()) health.report_problem(problem);
-    for (const auto& problem : s.work_problems) health.report_problem(problem);
     m.status = health.status();
     m.status_detail = health.detail();
     m.overflow = health.overflow();

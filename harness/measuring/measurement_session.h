@@ -44,6 +44,8 @@ class MeasurementSession {
   void count_work();
 
   // What measure() returns for the frames run so far (the last frame's images read back).
+  // After count_work(), what the measured instances read back was taken before the replay
+  // (which borrows their storage, gl_objects.h), with the replay's counters and verdict.
   Measurement result() const;
 
   // The scene the GPU computes in (LdmSetup's centred frame for LDM passes; the scene as
@@ -60,6 +62,9 @@ class MeasurementSession {
   const LdmStructure* structure() const;
 
  private:
+  // The measured instances' readings: images, results, memory, loss and the builds' verdict.
+  Measurement measured_result() const;
+
   struct State;
   std::unique_ptr<State> state_;
 };
