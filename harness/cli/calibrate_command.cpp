@@ -63,11 +63,14 @@ Runner add_calibrate_command(CLI::App& app) {
                   cache.c_str());
       return 0;
     }
-    const RunToRunSpread spread = run_calibration_probe(device, o->probe, std::cerr);
+    const RunToRunSpread spread = probe_and_pool(device, o->probe, std::cerr);
     const std::string path = o->out.empty() ? cache : o->out;
     write_calibration_file(path, spread);
     std::printf("run-to-run spread: %.4f (RMS of %zu log ratios between %zu processes, %.1f s)\n", spread.spread,
                 spread.pairs, spread.processes, spread.probe_seconds);
+    if (spread.pooled_probes > 1)
+      std::printf("pooled with %zu earlier probes of the last 24 h at load %.2f +- %.1f (this probe alone: %.4f)\n",
+                  spread.pooled_probes - 1, spread.load_average, kCalibrationMaxLoadChange, spread.probes.back().spread);
     std::printf("an interval of one repetition is widened by +-%.1f%% (95%%); written to %s\n",
                 100 * (std::exp(1.959964 * spread.spread) - 1), path.c_str());
     // One run's median varies by spread / sqrt 2 (the spread is that of a difference of two).

@@ -195,8 +195,9 @@ Runner add_run_command(CLI::App& app, const std::string& command_line,
                   "intervals, said in each record), or a FILE from `ldmbench calibrate --out` "
                   "(default: LDM_CALIBRATION, else auto)");
   run->add_option("--step", s.step,
-                  "Measure only the next repetition of this configuration id and stop (what "
-                  "--isolation process and `ldmbench interleave` run in each child)");
+                  "Measure only the next repetition of each of these configuration ids "
+                  "(ID[,ID...]) and stop (what --isolation process and `ldmbench interleave` run in "
+                  "each child)");
   run->add_option("--interleaved-session", s.interleaved_session,
                   "The `ldmbench interleave` session this run belongs to (recorded; compare "
                   "pairs the repetitions of two runs of one session)");

@@ -131,8 +131,9 @@ Runner add_sweep_command(CLI::App& app, const std::string& command_line,
                     "else context)")
       ->check(CLI::IsMember({"context", "process"}));
   auto* step = sweep->add_option("--step", o->step,
-                    "Measure only the next repetition of this configuration id and stop (the "
-                    "children of --isolation process and `ldmbench interleave`)");
+                    "Measure only the next repetition of each of these configuration ids "
+                    "(ID[,ID...]) and stop (the children of --isolation process and `ldmbench "
+                    "interleave`)");
   sweep->add_option("--calibration", o->calibration,
                     "The run-to-run spread that widens every time interval: auto, skip or FILE, as "
                     "for `ldmbench run` (default: LDM_CALIBRATION, else auto)");

@@ -47,6 +47,39 @@ std::string calibration_staleness(const RunToRunSpread& cached, int64_t now, dou
   return "";
 }
 
+RunToRunSpread pool_with_earlier_probes(const RunToRunSpread& fresh, const std::vector<ProbeEntry>& earlier,
+                                        int64_t now) {
+  RunToRunSpread out = fresh;
+  const ProbeEntry own{fresh.spread, fresh.pairs, fresh.processes, fresh.measured_at, fresh.load_average};
+  out.probes.clear();
+  for (const ProbeEntry& e : earlier) {
+    const int64_t age = now - e.measured_at;
+    if (age >= 0 && age <= kCalibrationMaxAgeSeconds && e.pairs && std::isfinite(e.spread)) out.probes.push_back(e);
+  }
+  if (out.probes.size() + 1 > kCalibrationKeptProbes)
+    out.probes.erase(out.probes.begin(), out.probes.end() - std::ptrdiff_t(kCalibrationKeptProbes - 1));
+  out.probes.push_back(own);
+  double sum_of_squares = 0;
+  size_t pairs = 0, processes = 0, pooled = 0;
+  for (const ProbeEntry& e : out.probes) {
+    // Another load, another spread: only probes at about this one's load pool with it. A
+    // probe whose load is unknown pools only with itself.
+    const bool same_load = &e == &out.probes.back() ||
+                           (std::isfinite(e.load_average) && std::isfinite(fresh.load_average) &&
+                            std::fabs(e.load_average - fresh.load_average) <= kCalibrationMaxLoadChange);
+    if (!same_load || !std::isfinite(e.spread)) continue;
+    sum_of_squares += e.spread * e.spread * double(e.pairs);
+    pairs += e.pairs;
+    processes += e.processes;
+    ++pooled;
+  }
+  if (pairs) out.spread = std::sqrt(sum_of_squares / double(pairs));
+  out.pairs = pairs;
+  out.processes = processes;
+  out.pooled_probes = pooled;
+  return out;
+}
+
 double widened_log_half_width(double within, double spread, size_t repetitions, double z,
                               RepetitionProcesses processes) {
   if (!std::isfinite(spread) || spread < 0) return within;
@@ -85,6 +118,18 @@ std::string spread_to_json(const RunToRunSpread& s) {
   j["driver"] = s.driver;
   j["host"] = s.host;
   j["commit"] = s.commit;
+  j["pooled_probes"] = s.pooled_probes;
+  nlohmann::ordered_json probes = nlohmann::ordered_json::array();
+  for (const ProbeEntry& e : s.probes) {
+    nlohmann::ordered_json p;
+    p["spread"] = e.spread;
+    p["pairs"] = e.pairs;
+    p["processes"] = e.processes;
+    p["measured_at"] = e.measured_at;
+    p["load_average"] = std::isfinite(e.load_average) ? nlohmann::ordered_json(e.load_average) : nlohmann::ordered_json();
+    probes.push_back(p);
+  }
+  j["probes"] = probes;
   return j.dump(2) + "\n";
 }
 
@@ -122,6 +167,28 @@ RunToRunSpread spread_from_json(const std::string& text, const std::string& orig
   s.driver = text_of("driver");
   s.host = text_of("host");
   s.commit = text_of("commit");
+  const double pooled = number("pooled_probes", false);
+  s.pooled_probes = pooled >= 1 ? size_t(pooled) : 1;
+  // The probes pooled so far (absent in a file written before pooling, or by hand).
+  if (const auto probes = j.find("probes"); probes != j.end()) {
+    if (!probes->is_array()) throw UserError(origin + ": \"probes\" must be an array");
+    for (const auto& p : *probes) {
+      const auto field = [&](const char* key) {
+        const auto it = p.is_object() ? p.find(key) : p.end();
+        return it != p.end() && it->is_number() ? it->get<double>() : std::numeric_limits<double>::quiet_NaN();
+      };
+      ProbeEntry e;
+      e.spread = field("spread");
+      const double entry_pairs = field("pairs"), entry_processes = field("processes"), at_ = field("measured_at");
+      if (!(e.spread >= 0) || e.spread > 5 || !(entry_pairs >= 1))
+        throw UserError(origin + ": every entry of \"probes\" needs a spread between 0 and 5 and pairs");
+      e.pairs = size_t(entry_pairs);
+      e.processes = entry_processes >= 0 ? size_t(entry_processes) : 0;
+      e.measured_at = std::isfinite(at_) ? int64_t(at_) : 0;
+      e.load_average = field("load_average");
+      s.probes.push_back(e);
+    }
+  }
   return s;
 }
 

@@ -21,16 +21,29 @@
 
 namespace ldm {
 
+// One probe as measured, kept in the cache so that later probes of the day pool with it.
+struct ProbeEntry {
+  double spread = std::numeric_limits<double>::quiet_NaN();  // this probe's own RMS log ratio
+  size_t pairs = 0;
+  size_t processes = 0;
+  int64_t measured_at = 0;
+  double load_average = std::numeric_limits<double>::quiet_NaN();
+};
+
 struct RunToRunSpread {
   double spread = std::numeric_limits<double>::quiet_NaN();  // RMS log ratio, see above
-  size_t pairs = 0;              // log ratios it is the RMS of
-  size_t processes = 0;          // probe processes
+  size_t pairs = 0;              // log ratios it is the RMS of (every pooled probe's)
+  size_t processes = 0;          // probe processes (every pooled probe's)
   int64_t measured_at = 0;       // Unix time of the probe's end
   double load_average = std::numeric_limits<double>::quiet_NaN();  // 1-minute, at the probe
   double probe_seconds = 0;      // the probe's wall time
   // What it holds for (the cache key, calibration_key(), but for the commit that probed).
   std::string device, driver, host, commit;
   std::string source;            // where this value came from: "probe", "cache FILE", "file FILE"
+  // The day's probes (the newest last), the pooled ones and the others; `pooled_probes` of
+  // them (at this one's load) make `spread`, `pairs` and `processes`.
+  std::vector<ProbeEntry> probes;
+  size_t pooled_probes = 1;
 };
 
 // One probe process's medians: configuration id + "/" + sub-pass -> median ms.
@@ -47,6 +60,17 @@ RunToRunSpread spread_from_processes(const std::vector<ProbeMedians>& processes)
 inline constexpr int64_t kCalibrationMaxAgeSeconds = 24 * 3600;
 inline constexpr double kCalibrationMaxLoadChange = 0.5;
 std::string calibration_staleness(const RunToRunSpread& cached, int64_t now, double load_average_now);
+
+// One probe of a few processes is a rough estimate: four processes give 6 pairs per
+// configuration, and probes minutes apart at the same load drew 0.079 and 0.17-0.23
+// (2026-12-04, docs/timing.md). So a fresh probe is pooled with the earlier probes of the
+// last kCalibrationMaxAgeSeconds measured at a load within kCalibrationMaxLoadChange of its own:
+// spread = sqrt(sum of spread_i^2 pairs_i / sum of pairs_i) (every log ratio weighs the same).
+// `earlier` is the cached entry's probe list; the result lists the day's probes (at any load,
+// at most kCalibrationKeptProbes, the newest kept) with the fresh one last.
+inline constexpr size_t kCalibrationKeptProbes = 16;
+RunToRunSpread pool_with_earlier_probes(const RunToRunSpread& fresh, const std::vector<ProbeEntry>& earlier,
+                                        int64_t now);
 
 // Where a record's K repetitions ran: each in a process of its own (--isolation process), or
 // all in this one (--isolation context), where they share the process's offset from other

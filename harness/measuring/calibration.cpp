@@ -78,6 +78,7 @@ std::string describe(const RunToRunSpread& s) {
   char spread[32];
   std::snprintf(spread, sizeof spread, "%.3f", s.spread);
   text << spread << " (" << s.pairs << " log ratios from " << s.processes << " processes";
+  if (s.pooled_probes > 1) text << " of " << s.pooled_probes << " probes pooled";
   if (s.measured_at) {
     char when[32];
     const std::time_t t = std::time_t(s.measured_at);
@@ -93,7 +94,27 @@ std::string describe(const RunToRunSpread& s) {
   return text.str();
 }
 
+// The probes a cached entry holds: its list, or (written before pooling) itself.
+std::vector<ProbeEntry> probes_of(const RunToRunSpread& cached) {
+  if (!cached.probes.empty()) return cached.probes;
+  return {ProbeEntry{cached.spread, cached.pairs, cached.processes, cached.measured_at, cached.load_average}};
+}
+
 }  // namespace
+
+RunToRunSpread probe_and_pool(const DeviceInfo& device, const ProbeOptions& options, std::ostream& log) {
+  const RunToRunSpread fresh = run_calibration_probe(device, options, log);
+  std::vector<ProbeEntry> earlier;
+  const std::string cache = calibration_cache_file(device).string();
+  if (std::filesystem::is_regular_file(cache)) {
+    try {
+      earlier = probes_of(read_calibration_file(cache));
+    } catch (const UserError& e) {
+      log << "calibration: the cached probes are not pooled: " << e.what() << "\n";
+    }
+  }
+  return pool_with_earlier_probes(fresh, earlier, now_seconds());
+}
 
 CalibrationChoice parse_calibration_choice(const std::string& option_value, const char* environment_value) {
   CalibrationChoice choice;
@@ -230,7 +251,7 @@ ResolvedCalibration resolve_calibration(const CalibrationChoice& choice, const D
   }
   log << "calibrating the run-to-run spread of this machine (" << why
       << "; `ldmbench calibrate`, --calibration skip|FILE): a few seconds\n";
-  RunToRunSpread measured = run_calibration_probe(device, ProbeOptions{}, log);
+  RunToRunSpread measured = probe_and_pool(device, ProbeOptions{}, log);
   write_calibration_file(path, measured);
   out.spread = measured;
   out.file = path;

@@ -43,6 +43,10 @@ struct ProbeOptions {
 // UserError when a probe process fails.
 RunToRunSpread run_calibration_probe(const DeviceInfo& device, const ProbeOptions& options, std::ostream& log);
 
+// Runs the probe and pools it with the earlier probes of the day in this device's cache
+// entry at about its load (pool_with_earlier_probes, harness/measure/run_to_run_spread.h).
+RunToRunSpread probe_and_pool(const DeviceInfo& device, const ProbeOptions& options, std::ostream& log);
+
 // The cache folder and this device's entry in it.
 std::filesystem::path calibration_cache_dir();
 std::filesystem::path calibration_cache_file(const DeviceInfo& device);

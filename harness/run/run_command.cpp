@@ -38,6 +38,7 @@
 #include "harness/util/hash.h"
 #include "harness/util/interrupt.h"
 #include "harness/util/process.h"
+#include "harness/util/text.h"
 #include "harness/util/version.h"
 #include "ldm_impls/ldm_structure.h"
 
@@ -410,33 +411,46 @@ int drive_repetition_processes(const ConfigurationRun& job, const std::string& c
   }
   child.push_back("--calibration");
   child.push_back(calibration.file.empty() ? "skip" : calibration.file);
-  const size_t repetitions = size_t(std::max(1, job.repetitions));
   const std::string journal_path = (std::filesystem::path(out_dir) / kJournalFile).string();
   int interrupted_by = 0;
-  for (size_t round = 0; round < repetitions && !interrupted_by; ++round) {
-    for (size_t i = 0; i < job.configurations.size() && !interrupted_by; ++i) {
-      const std::string id = job.configurations[i].config.id();
-      const FolderProgress progress = folder_progress(read_journal(journal_path), job.redo_failed, out_dir);
+  // Each child measures the next repetition of every configuration that needs one (one
+  // process start-up per round, not per configuration and round: a sweep of C
+  // configurations and K repetitions starts K children, not C x K). No two repetitions of a
+  // configuration share a process, which is what the isolation is for; the configurations
+  // of one round share one, as in one process's round robin.
+  std::map<std::string, size_t> last_counts;
+  for (size_t child_number = 0; !interrupted_by; ++child_number) {
+    const FolderProgress progress = folder_progress(read_journal(journal_path), job.redo_failed, out_dir);
+    std::vector<std::string> ids;
+    std::map<std::string, size_t> counts;
+    for (const auto& planned : job.configurations) {
+      const std::string id = planned.config.id();
       if (progress.finished.count(id)) continue;
       const auto partial = progress.partial.find(id);
-      // Every repetition journaled but not combined (a run stopped in between): the last
-      // round's child combines them (run_configurations does so before measuring).
-      const bool uncombined = round + 1 == repetitions && partial != progress.partial.end() &&
-                              partial->second.size() >= repetitions;
-      if (partial != progress.partial.end() && partial->second.size() > round && !uncombined) continue;
-      if ((interrupted_by = stop_signal())) break;
-      std::vector<std::string> argv = child;
-      argv.push_back("--step");
-      argv.push_back(id);
-      log << std::flush;
-      const ProcessResult result = run_process(argv, false, true);
-      if (!result.started) throw UserError("--isolation process: cannot start " + program + ": " + result.output);
-      if (result.status > kExitInterruptedBase) interrupted_by = result.status - kExitInterruptedBase;
-      else if (result.status != kExitOk && result.status != kExitSomeFailed) {
-        log << "ldmbench: the child measuring " << id << " exited " << result.status << "\n";
-        if (result.status == kExitUsage || result.status == kExitIoError) return result.status;
-        return kExitFailure;
-      }
+      counts[id] = partial == progress.partial.end() ? 0 : partial->second.size();
+      ids.push_back(id);  // a repetition to measure, or all journaled and to be combined
+    }
+    if (ids.empty()) break;
+    // A child that recorded nothing would be started again for ever (it cannot, short of a
+    // crash, which stops the run below; this is the guard).
+    if (child_number > 0 && counts == last_counts) {
+      log << "ldmbench: the last child measured no configuration; stopping\n";
+      return kExitFailure;
+    }
+    last_counts = counts;
+    if ((interrupted_by = stop_signal())) break;
+    std::vector<std::string> argv = child;
+    argv.push_back("--step");
+    argv.push_back(joined(ids, ","));
+    log << std::flush;
+    const ProcessResult result = run_process(argv, false, true);
+    if (!result.started) throw UserError("--isolation process: cannot start " + program + ": " + result.output);
+    if (result.status > kExitInterruptedBase) interrupted_by = result.status - kExitInterruptedBase;
+    else if (result.status != kExitOk && result.status != kExitSomeFailed) {
+      log << "ldmbench: the child measuring repetition " << (child_number + 1) << " of " << ids.size()
+          << " configuration(s) exited " << result.status << "\n";
+      if (result.status == kExitUsage || result.status == kExitIoError) return result.status;
+      return kExitFailure;
     }
   }
   if (!interrupted_by) interrupted_by = stop_signal();
@@ -524,6 +538,16 @@ Record failed_record(const PlannedConfiguration& planned, const DeviceInfo& devi
   return record;
 }
 
+// The configuration ids of a --step (comma-separated: ids never hold a comma).
+std::set<std::string> step_ids(const std::string& step) {
+  std::set<std::string> ids;
+  std::string id;
+  std::istringstream in(step);
+  while (std::getline(in, id, ','))
+    if (!id.empty()) ids.insert(id);
+  return ids;
+}
+
 // The measuring of one process (`ldmbench run`, or one --step of it): round robin over the
 // configurations, each repetition recorded through the run's RunRecordsWriter, the
 // repetitions of a configuration combined into its record after the last.
@@ -531,7 +555,7 @@ class ConfigurationLoop {
  public:
   ConfigurationLoop(const ConfigurationRun& job, const std::string& out_dir, std::ostream& log)
       : job_(job), out_dir_(out_dir), log_(log), repetitions_(size_t(std::max(1, job.repetitions))),
-        stepping_(!job.step.empty()), detail_(stepping_ ? discarded_ : log) {}
+        stepping_(!job.step.empty()), steps_(step_ids(job.step)), detail_(stepping_ ? discarded_ : log) {}
 
   int run(const std::string& command_line);
 
@@ -546,7 +570,16 @@ class ConfigurationLoop {
   void open_context_and_calibration();
   void start_records(const RunFolderPlan& plan, const std::string& command_line);
   size_t repetitions_to_measure();
-  bool skipped(const std::string& id) const { return writer_->finished(id) || (stepping_ && id != job_.step); }
+  // Finished, or (in a step) not one of the step's, or measured by this step already.
+  bool skipped(const std::string& id) const {
+    return writer_->finished(id) || (stepping_ && (!steps_.count(id) || stepped_ids_.count(id)));
+  }
+  // A step ends when each of its configurations is finished or measured once here.
+  bool step_done() const {
+    return stepping_ && std::all_of(steps_.begin(), steps_.end(), [&](const std::string& id) {
+             return writer_->finished(id) || stepped_ids_.count(id);
+           });
+  }
   [[noreturn]] void stop_for_io(const IoError& e, const std::string& id, const std::vector<std::string>& written);
   void combine(const std::string& id, const std::vector<Record>& reps, const RunSettings& settings);
   void combine_journaled_repetitions();
@@ -562,8 +595,10 @@ class ConfigurationLoop {
   const std::string out_dir_;
   std::ostream& log_;
   const size_t repetitions_;
-  // A step (one repetition, in a child) says only what it measured: its parent has the rest.
+  // A step (one repetition of each of its configurations, in a child) says only what it
+  // measured: its parent has the rest.
   const bool stepping_;
+  const std::set<std::string> steps_;
   std::ostringstream discarded_;
   std::ostream& detail_;
 
@@ -577,7 +612,7 @@ class ConfigurationLoop {
   std::optional<SweepProgress> progress_;
   HarnessCost cost_;
   int interrupted_by_ = 0;
-  bool stepped_ = false;  // a step measures one repetition, then stops
+  std::set<std::string> stepped_ids_;  // what this step measured: one repetition each
 };
 
 void ConfigurationLoop::open_context_and_calibration() {
@@ -740,7 +775,7 @@ bool ConfigurationLoop::measure_one(size_t i, size_t round, bool& context_used) 
     context_used = true;
   }
   const Repetition repetition{reps.size(), repetitions_};
-  stepped_ = stepping_;
+  if (stepping_) stepped_ids_.insert(id);
   // With the bar on a terminal, the bar shows the configuration in flight and its line
   // is printed whole when it ends; otherwise (logs, pipes) the line starts at once.
   const std::string prefix = progress_prefix(i, job_.configurations.size(), id, repetition);
@@ -776,14 +811,16 @@ void ConfigurationLoop::measure_round(size_t round) {
 
 int ConfigurationLoop::run(const std::string& command_line) {
   const RunFolderPlan plan = plan_run_folder(out_dir_, job_.sweep_key, job_.overwrite);
-  if (stepping_ && std::none_of(job_.configurations.begin(), job_.configurations.end(),
-                                [&](const PlannedConfiguration& p) { return p.config.id() == job_.step; }))
-    throw UserError("--step " + job_.step + ": no such configuration in this sweep");
+  if (stepping_ && steps_.empty()) throw UserError("--step '" + job_.step + "': no configuration id");
+  for (const std::string& id : steps_)
+    if (std::none_of(job_.configurations.begin(), job_.configurations.end(),
+                     [&](const PlannedConfiguration& p) { return p.config.id() == id; }))
+      throw UserError("--step " + id + ": no such configuration in this sweep");
   open_context_and_calibration();
   start_records(plan, command_line);
   progress_.emplace(repetitions_to_measure(), SweepProgress::stderr_if_terminal());
   combine_journaled_repetitions();
-  for (size_t round = 0; round < repetitions_ && !interrupted_by_ && !stepped_; ++round) measure_round(round);
+  for (size_t round = 0; round < repetitions_ && !interrupted_by_ && !step_done(); ++round) measure_round(round);
   progress_->erase();
   try {
     writer_->write_tables_if_empty();

@@ -150,5 +150,54 @@ TEST(RunRecords, RepetitionsResumeFromTheJournal) {
   EXPECT_NE(output.find("--step nonexistent: no such configuration"), std::string::npos) << output;
 }
 
+size_t occurrences(const std::string& text, const std::string& what) {
+  size_t n = 0;
+  for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + what.size())) ++n;
+  return n;
+}
+
+// A step of several configurations (what a child of --isolation process runs: one per
+// round) measures the next repetition of each, once, and the second such step completes
+// them: no repetition of a configuration shares a process with another of it.
+TEST(RunRecords, AStepOfSeveralConfigurationsMeasuresTheNextRepetitionOfEach) {
+  const fs::path out = fs::path(test::make_temp_dir("ldm-step-several")) / "run";
+  const std::string command = std::string(LDM_BINARY_PATH) +
+                              " run --scene cornell --structure psppsll,ppsll -N 2 -R 32 --width 32 --height 32 "
+                              "--frames 3 --time-target 0 --warmup 1 --no-images --repetitions 2 --out " +
+                              out.string();
+  const std::string step =
+      " --step cornell-psppsll-ao-n2-r32-plane-prevframe,cornell-ppsll-ao-n2-r32-plane-prevframe";
+  std::string output;
+  ASSERT_EQ(test::run_command(command + step, &output), 0) << output;
+  EXPECT_EQ(occurrences(output, "(repetition 1/2)"), 2u) << output;
+  EXPECT_EQ(output.find("(repetition 2/2)"), std::string::npos) << "one repetition each per step:\n" << output;
+  ASSERT_EQ(test::run_command(command + step, &output), 0) << output;
+  EXPECT_EQ(occurrences(output, "(repetition 2/2)"), 2u) << output;
+  const RunRecords run = load_run_records(out.string());
+  ASSERT_EQ(run.records.size(), 2u);
+  for (const auto& r : run.records) EXPECT_EQ(r["repetitions"], 2);
+  ASSERT_NE(test::run_command(command + " --step cornell-psppsll-ao-n2-r32-plane-prevframe,nonexistent", &output), 0);
+  EXPECT_NE(output.find("--step nonexistent: no such configuration"), std::string::npos) << output;
+}
+
+// --isolation process starts one child per round (each journals its invocation), not one
+// per configuration and round: 2 configurations x 2 repetitions are 2 children.
+TEST(RunRecords, ProcessIsolationStartsOneChildPerRepetitionRound) {
+  const fs::path out = fs::path(test::make_temp_dir("ldm-isolation-rounds")) / "run";
+  std::string output;
+  ASSERT_EQ(test::run_command(std::string(LDM_BINARY_PATH) +
+                                  " run --scene cornell --structure psppsll,ppsll -N 2 -R 32 --width 32 --height 32 "
+                                  "--frames 3 --time-target 0 --warmup 1 --no-images --calibration skip "
+                                  "--repetitions 2 --isolation process --out " + out.string(),
+                              &output),
+            0)
+      << output;
+  const std::string journal = test::read_text((out / "records.jsonl").string());
+  EXPECT_EQ(occurrences(journal, "{\"run\""), 3u) << "the parent and two children:\n" << journal;
+  const RunRecords run = load_run_records(out.string());
+  ASSERT_EQ(run.records.size(), 2u);
+  for (const auto& r : run.records) EXPECT_EQ(r["repetitions"], 2);
+}
+
 }  // namespace
 }  // namespace ldm

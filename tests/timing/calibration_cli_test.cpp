@@ -27,13 +27,18 @@ nlohmann::json only_record(const std::string& out) {
 
 TEST(Calibration, ProbeWritesASpreadThatARunWidensItsIntervalsBy) {
   const std::string dir = make_temp_dir("calibrate");
-  const auto probe = ldmbench("calibrate --processes 2 --out " + dir + "/spread.json");
+  // A cache of its own: an earlier probe of the day there would be pooled with this one.
+  const auto probe = ldmbench("calibrate --processes 2 --out " + dir + "/spread.json",
+                              "XDG_CACHE_HOME=" + make_temp_dir("calibrate-empty-cache"));
   ASSERT_EQ(probe.status, 0) << probe.output;
   EXPECT_NE(probe.output.find("run-to-run spread:"), std::string::npos) << probe.output;
   const RunToRunSpread spread = read_calibration_file(dir + "/spread.json");
   EXPECT_GT(spread.pairs, 0u);
   EXPECT_EQ(spread.processes, 2u);
   EXPECT_GE(spread.spread, 0.0);
+  EXPECT_EQ(spread.pooled_probes, 1u);
+  ASSERT_EQ(spread.probes.size(), 1u);
+  EXPECT_EQ(spread.probes[0].spread, spread.spread);
 
   const auto run = ldmbench(std::string(kTinyRun) + " --calibration " + dir + "/spread.json --out " + dir + "/run");
   ASSERT_EQ(run.status, 0) << run.output;
@@ -83,6 +88,29 @@ TEST(Calibration, ProcessIsolationHandsTheParentsSpreadToEveryChild) {
   EXPECT_EQ(r.at("repetitions"), 2);
   EXPECT_EQ(r.at("time_interval"), "t_on_log_repetition_medians+run_to_run_spread");
   EXPECT_EQ(r.at("time_run_to_run_spread").get<double>(), 0.1);
+}
+
+// The probe reads the cache's earlier probes: one older than a day is dropped from the list;
+// a written-before-pooling entry (no list) counts as one probe.
+TEST(Calibration, ProbeDropsTheCachesProbesOlderThanADay) {
+  const std::string cache = make_temp_dir("calibrate-old-cache");
+  setenv("XDG_CACHE_HOME", cache.c_str(), 1);
+  const std::string entry = calibration_cache_file(test::gl_context().device()).string();
+  RunToRunSpread old;
+  old.spread = 0.9;
+  old.pairs = 6;
+  old.processes = 4;
+  old.measured_at = int64_t(std::time(nullptr)) - kCalibrationMaxAgeSeconds - 60;
+  old.load_average = 0.0;
+  write_calibration_file(entry, old);
+  const auto probe = ldmbench("calibrate --processes 2", "XDG_CACHE_HOME=" + cache);
+  ASSERT_EQ(probe.status, 0) << probe.output;
+  const RunToRunSpread cached = read_calibration_file(entry);
+  EXPECT_EQ(cached.pooled_probes, 1u);
+  EXPECT_EQ(cached.processes, 2u);
+  ASSERT_EQ(cached.probes.size(), 1u);
+  EXPECT_GT(cached.probes[0].measured_at, old.measured_at);  // the fresh one, alone
+  EXPECT_EQ(cached.spread, cached.probes[0].spread);
 }
 
 TEST(Calibration, AutoReadsAFreshCacheEntryWithoutProbing) {

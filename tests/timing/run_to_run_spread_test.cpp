@@ -97,6 +97,63 @@ TEST(RunToRunSpread, RoundTripsThroughJsonAndRefusesBadFiles) {
   EXPECT_THROW(spread_from_json("{\"spread\": \"wide\"}", "text.json"), UserError);
 }
 
+// A probe of the day at about the fresh one's load pools with it (every log ratio weighing
+// the same); one at another load, one older than a day and one of unknown load do not.
+TEST(RunToRunSpread, PoolsAFreshProbeWithTheDaysProbesAtItsLoad) {
+  const int64_t now = 2'000'000;
+  RunToRunSpread fresh;
+  fresh.spread = 0.08;
+  fresh.pairs = 18;
+  fresh.processes = 4;
+  fresh.measured_at = now;
+  fresh.load_average = 1.0;
+  const std::vector<ProbeEntry> earlier = {
+      {0.20, 18, 4, now - 3600, 1.3},                         // same load (within 0.5): pooled
+      {0.30, 36, 6, now - 600, 0.4},                          // 0.6 below: kept, not pooled
+      {0.90, 18, 4, now - kCalibrationMaxAgeSeconds - 1, 1.0},  // older than a day: dropped
+      {0.50, 18, 4, now - 60, std::nan("")},                  // load unknown: kept, not pooled
+  };
+  const RunToRunSpread pooled = pool_with_earlier_probes(fresh, earlier, now);
+  EXPECT_NEAR(pooled.spread, std::sqrt((0.08 * 0.08 * 18 + 0.20 * 0.20 * 18) / 36), 1e-12);
+  EXPECT_EQ(pooled.pairs, 36u);
+  EXPECT_EQ(pooled.processes, 8u);
+  EXPECT_EQ(pooled.pooled_probes, 2u);
+  ASSERT_EQ(pooled.probes.size(), 4u);  // the day's three earlier ones and the fresh one, last
+  EXPECT_EQ(pooled.probes.back().spread, 0.08);
+  EXPECT_EQ(pooled.measured_at, now);
+  EXPECT_EQ(pooled.load_average, 1.0);
+  // Alone, it is itself.
+  const RunToRunSpread alone = pool_with_earlier_probes(fresh, {}, now);
+  EXPECT_EQ(alone.spread, 0.08);
+  EXPECT_EQ(alone.pooled_probes, 1u);
+  EXPECT_EQ(alone.probes.size(), 1u);
+}
+
+TEST(RunToRunSpread, KeepsAtMostTheNewestProbesAndRoundTripsThemThroughJson) {
+  const int64_t now = 2'000'000;
+  std::vector<ProbeEntry> earlier;
+  for (int i = 0; i < 30; ++i) earlier.push_back({0.1 + 0.01 * i, 6, 4, now - 3000 + 100 * i, 1.0});
+  RunToRunSpread fresh;
+  fresh.spread = 0.2;
+  fresh.pairs = 6;
+  fresh.processes = 4;
+  fresh.measured_at = now;
+  fresh.load_average = 1.0;
+  const RunToRunSpread pooled = pool_with_earlier_probes(fresh, earlier, now);
+  ASSERT_EQ(pooled.probes.size(), kCalibrationKeptProbes);
+  EXPECT_DOUBLE_EQ(pooled.probes.front().spread, 0.1 + 0.01 * (30 - (kCalibrationKeptProbes - 1)));
+  EXPECT_EQ(pooled.pooled_probes, kCalibrationKeptProbes);
+  const RunToRunSpread back = spread_from_json(spread_to_json(pooled), "pooled.json");
+  EXPECT_EQ(back.pooled_probes, kCalibrationKeptProbes);
+  ASSERT_EQ(back.probes.size(), kCalibrationKeptProbes);
+  EXPECT_EQ(back.probes.back().spread, 0.2);
+  EXPECT_EQ(back.probes.back().measured_at, now);
+  EXPECT_EQ(back.probes.front().load_average, 1.0);
+  EXPECT_THROW(spread_from_json("{\"spread\": 0.1, \"probes\": [{\"spread\": -1, \"pairs\": 3}]}", "p.json"),
+               UserError);
+  EXPECT_THROW(spread_from_json("{\"spread\": 0.1, \"probes\": 3}", "p.json"), UserError);
+}
+
 TEST(RunToRunSpread, KeysTheCacheByDeviceDriverAndHost) {
   const std::string key = calibration_key("llvmpipe (LLVM 15)", "4.5 Mesa", "vm");
   EXPECT_EQ(key.rfind("spread-vm-4_5_Mesa-", 0), 0u) << key;
