@@ -505,6 +505,75 @@ class VerifyRepeatedPrecision(unittest.TestCase):
         self.assertEqual(spec["settings"]["timing"]["repetitions"], 3)
         self.assertEqual(spec["settings"]["timing"]["isolation"], "process")
 
+    def test_the_search_levels_count_no_work_and_the_verification_does(self):
+        from ldmadvise.measure import LEVELS, VERIFY, VERIFY_UNCERTAIN
+        question = {"scene": "cornell", "pass": "ao", "image_size": "32x32"}
+        one = [{"structures": "psppsll", "views": 4, "r_ldm": 32}]
+        for level in LEVELS:
+            self.assertIs(sweep_file(question, one, level, "t")["settings"]["work"], False)
+        for verify in (VERIFY, VERIFY_UNCERTAIN):
+            self.assertNotIn("work", sweep_file(question, one, verify, "t")["settings"])
+
+
+class VerifyMoreUncertain(unittest.TestCase):
+    """The rounds after the first verification (ldmbench_advise.verify_more_uncertain)."""
+
+    class State:
+        def __init__(self, m):
+            self.measurement, self.history = m, []
+
+    class Runner:
+        def __init__(self, truth):
+            self.truth, self.stages = truth, []
+
+        def run_stage(self, keys, precision, stage):
+            self.stages.append((stage, list(keys), precision["name"]))
+            return {k: self.truth[k] for k in keys}, stage, {k: {} for k in keys}, stage + "/run"
+
+    @staticmethod
+    def m(time, low, high, error):
+        return Measurement(time=time, time_low=low, time_high=high, error=error, error_band=0.0, memory=1)
+
+    def run_rounds(self, truth, search_measured, uncertain, verified):
+        import ldmbench_advise
+        goal = Goal(budget_ms=6.0)
+        search = type("S", (), {})()
+        search.states = {k: self.State(m) for k, m in search_measured.items()}
+        outcome = type("O", (), {"uncertain": uncertain})()
+        runner = self.Runner(truth)
+        vsource = {k: ("verify", {}, "verify/run") for k in verified}
+        ldmbench_advise.verify_more_uncertain(runner, search, goal, outcome, verified, vsource, "verify")
+        return runner, verified, vsource
+
+    def test_unverified_better_candidates_are_verified_until_none_beats_the_best_within(self):
+        # The Cornell box of 2026-12-04: the recommendation (error 0.0098) surely within; the
+        # first round's two uncertain candidates (0.0031) still across the line; two at 0.0079
+        # unverified, surely within when measured; one more at 0.0031, over when measured.
+        rec, a, b, c, d, e = "rec", "n16-a", "n16-b", "n8r64-a", "n8r64-b", "n16-c"
+        verified = {rec: self.m(3.2, 2.9, 3.5, 0.0098), a: self.m(5.5, 4.8, 6.3, 0.0031),
+                    b: self.m(6.1, 5.6, 6.5, 0.0031)}
+        race = {c: self.m(4.6, 3.1, 6.8, 0.0079), d: self.m(5.3, 3.9, 7.3, 0.0079), e: self.m(6.1, 5.2, 7.1, 0.0031)}
+        truth = {c: self.m(4.8, 4.2, 5.6, 0.0079), d: self.m(4.2, 3.6, 4.9, 0.0079), e: self.m(6.6, 6.1, 7.2, 0.0031)}
+        runner, verified, vsource = self.run_rounds(truth, dict(race), [a, b, c, d, e], verified)
+        self.assertEqual(runner.stages, [("verify-uncertain-1", [c, d], "verify-repeated"),
+                                         ("verify-uncertain-2", [e], "verify-repeated")])
+        self.assertEqual(verified[d].time, 4.2)
+        self.assertEqual(vsource[d][0], "verify-uncertain-1")  # the record the answer would report
+        self.assertEqual(vsource[d][2], "verify-uncertain-1/run")
+
+    def test_nothing_more_is_verified_when_no_unverified_candidate_beats_the_best_within(self):
+        rec, worse = "rec", "worse"
+        verified = {rec: self.m(3.2, 2.9, 3.5, 0.003)}
+        runner, _, _ = self.run_rounds({}, {worse: self.m(5.9, 5.0, 7.0, 0.009)}, [worse], verified)
+        self.assertEqual(runner.stages, [])
+
+    def test_at_most_two_more_rounds(self):
+        verified = {"rec": self.m(3.2, 2.9, 3.5, 0.01)}
+        names = [f"u{i}" for i in range(8)]
+        straddling = {k: self.m(6.0, 5.0, 7.0, 0.001 * (i + 1)) for i, k in enumerate(names)}
+        runner, _, _ = self.run_rounds(straddling, dict(straddling), names, verified)
+        self.assertEqual([len(keys) for _, keys, _ in runner.stages], [2, 2])
+
 
 if __name__ == "__main__":
     unittest.main(verbosity=1)

@@ -175,12 +175,14 @@ def sweep_file(question, assignments, precision, description):
         timing["repetitions"] = precision["repetitions"]
     if precision.get("isolation"):
         timing["isolation"] = precision["isolation"]
+    settings = {"reference": reference, "images": precision.get("images", False), "timing": timing}
+    if not precision.get("work", True):
+        settings["work"] = False  # no counting replay (docs/reference/work-counters.md)
     return {
         "description": description,
         "axes": main,
         "include": [dict(a) for a in assignments[1:]],
-        "settings": {"reference": reference, "images": precision.get("images", False), "timing": timing},
+        "settings": settings,
     } if len(assignments) > 1 else {
-        "description": description, "axes": main,
-        "settings": {"reference": reference, "images": precision.get("images", False), "timing": timing},
+        "description": description, "axes": main, "settings": settings,
     }
