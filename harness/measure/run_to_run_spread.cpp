@@ -50,7 +50,8 @@ std::string calibration_staleness(const RunToRunSpread& cached, int64_t now, dou
 RunToRunSpread pool_with_earlier_probes(const RunToRunSpread& fresh, const std::vector<ProbeEntry>& earlier,
                                         int64_t now) {
   RunToRunSpread out = fresh;
-  const ProbeEntry own{fresh.spread, fresh.pairs, fresh.processes, fresh.measured_at, fresh.load_average};
+  const ProbeEntry own{fresh.spread,       fresh.pairs,  fresh.processes, fresh.measured_at,
+                       fresh.load_average, fresh.commit, fresh.medians};
   out.probes.clear();
   for (const ProbeEntry& e : earlier) {
     const int64_t age = now - e.measured_at;
@@ -59,23 +60,31 @@ RunToRunSpread pool_with_earlier_probes(const RunToRunSpread& fresh, const std::
   if (out.probes.size() + 1 > kCalibrationKeptProbes)
     out.probes.erase(out.probes.begin(), out.probes.end() - std::ptrdiff_t(kCalibrationKeptProbes - 1));
   out.probes.push_back(own);
-  double sum_of_squares = 0;
-  size_t pairs = 0, processes = 0, pooled = 0;
+  std::vector<ProbeMedians> processes;
+  double rms_sum_of_squares = 0;  // entries without medians
+  size_t rms_pairs = 0, process_count = 0, pooled = 0;
   for (const ProbeEntry& e : out.probes) {
-    // Another load, another spread: only probes at about this one's load pool with it. A
-    // probe whose load is unknown pools only with itself.
-    const bool same_load = &e == &out.probes.back() ||
-                           (std::isfinite(e.load_average) && std::isfinite(fresh.load_average) &&
-                            std::fabs(e.load_average - fresh.load_average) <= kCalibrationMaxLoadChange);
-    if (!same_load || !std::isfinite(e.spread)) continue;
-    sum_of_squares += e.spread * e.spread * double(e.pairs);
-    pairs += e.pairs;
-    processes += e.processes;
+    // Another load, another spread; another build, other times: only probes by this build at
+    // about this one's load pool with it. A probe whose load is unknown pools only with itself.
+    const bool own_probe = &e == &out.probes.back();
+    const bool same_load = own_probe || (std::isfinite(e.load_average) && std::isfinite(fresh.load_average) &&
+                                         std::fabs(e.load_average - fresh.load_average) <= kCalibrationMaxLoadChange);
+    if (!same_load || (!own_probe && e.commit != fresh.commit)) continue;
+    if (e.medians.size() >= 2 || (own_probe && !e.medians.empty())) {
+      processes.insert(processes.end(), e.medians.begin(), e.medians.end());
+    } else {
+      rms_sum_of_squares += e.spread * e.spread * double(e.pairs);
+      rms_pairs += e.pairs;
+    }
+    process_count += e.processes;
     ++pooled;
   }
+  const RunToRunSpread across = spread_from_processes(processes);
+  const double sum_of_squares = rms_sum_of_squares + (across.pairs ? across.spread * across.spread * double(across.pairs) : 0);
+  const size_t pairs = rms_pairs + across.pairs;
   if (pairs) out.spread = std::sqrt(sum_of_squares / double(pairs));
   out.pairs = pairs;
-  out.processes = processes;
+  out.processes = process_count;
   out.pooled_probes = pooled;
   return out;
 }
@@ -127,6 +136,10 @@ std::string spread_to_json(const RunToRunSpread& s) {
     p["processes"] = e.processes;
     p["measured_at"] = e.measured_at;
     p["load_average"] = std::isfinite(e.load_average) ? nlohmann::ordered_json(e.load_average) : nlohmann::ordered_json();
+    p["commit"] = e.commit;
+    nlohmann::ordered_json medians = nlohmann::ordered_json::array();
+    for (const ProbeMedians& process : e.medians) medians.push_back(process);
+    p["medians"] = medians;
     probes.push_back(p);
   }
   j["probes"] = probes;
@@ -186,6 +199,19 @@ RunToRunSpread spread_from_json(const std::string& text, const std::string& orig
       e.processes = entry_processes >= 0 ? size_t(entry_processes) : 0;
       e.measured_at = std::isfinite(at_) ? int64_t(at_) : 0;
       e.load_average = field("load_average");
+      if (const auto commit = p.find("commit"); commit != p.end() && commit->is_string()) e.commit = commit->get<std::string>();
+      if (const auto medians = p.find("medians"); medians != p.end()) {
+        if (!medians->is_array()) throw UserError(origin + ": a probe's \"medians\" must be an array");
+        for (const auto& process : *medians) {
+          if (!process.is_object()) throw UserError(origin + ": a probe process's medians must be an object");
+          ProbeMedians m;
+          for (const auto& [key, value] : process.items()) {
+            if (!value.is_number()) throw UserError(origin + ": median \"" + key + "\" must be a number");
+            m[key] = value.get<double>();
+          }
+          e.medians.push_back(std::move(m));
+        }
+      }
       s.probes.push_back(e);
     }
   }

@@ -21,6 +21,10 @@
 
 namespace ldm {
 
+
+// One probe process's medians: configuration id + "/" + sub-pass -> median ms.
+using ProbeMedians = std::map<std::string, double>;
+
 // One probe as measured, kept in the cache so that later probes of the day pool with it.
 struct ProbeEntry {
   double spread = std::numeric_limits<double>::quiet_NaN();  // this probe's own RMS log ratio
@@ -28,6 +32,8 @@ struct ProbeEntry {
   size_t processes = 0;
   int64_t measured_at = 0;
   double load_average = std::numeric_limits<double>::quiet_NaN();
+  std::string commit;                 // the build that probed
+  std::vector<ProbeMedians> medians;  // each process's (none in an entry written before)
 };
 
 struct RunToRunSpread {
@@ -40,14 +46,13 @@ struct RunToRunSpread {
   // What it holds for (the cache key, calibration_key(), but for the commit that probed).
   std::string device, driver, host, commit;
   std::string source;            // where this value came from: "probe", "cache FILE", "file FILE"
+  std::vector<ProbeMedians> medians;  // a fresh probe's processes' medians (pooling reads them)
   // The day's probes (the newest last), the pooled ones and the others; `pooled_probes` of
   // them (at this one's load) make `spread`, `pairs` and `processes`.
   std::vector<ProbeEntry> probes;
   size_t pooled_probes = 1;
 };
 
-// One probe process's medians: configuration id + "/" + sub-pass -> median ms.
-using ProbeMedians = std::map<std::string, double>;
 
 // The spread from several processes' medians of the same configurations: every pair of
 // processes, every key both hold with positive medians, one log ratio each. NaN (and 0
@@ -61,13 +66,18 @@ inline constexpr int64_t kCalibrationMaxAgeSeconds = 24 * 3600;
 inline constexpr double kCalibrationMaxLoadChange = 0.5;
 std::string calibration_staleness(const RunToRunSpread& cached, int64_t now, double load_average_now);
 
-// One probe of a few processes is a rough estimate: four processes give 6 pairs per
-// configuration, and probes minutes apart at the same load drew 0.079 and 0.17-0.23
-// (2026-12-04, docs/timing.md). So a fresh probe is pooled with the earlier probes of the
-// last kCalibrationMaxAgeSeconds measured at a load within kCalibrationMaxLoadChange of its own:
-// spread = sqrt(sum of spread_i^2 pairs_i / sum of pairs_i) (every log ratio weighs the same).
-// `earlier` is the cached entry's probe list; the result lists the day's probes (at any load,
-// at most kCalibrationKeptProbes, the newest kept) with the fresh one last.
+// One probe of a few processes is a rough estimate, and of the wrong time scale: its
+// processes run back to back within seconds, while the spread that matters is between runs
+// minutes or hours apart. Probes seconds apart at the same load drew 0.069-0.082 and
+// 0.17-0.23, and an advise measured in a minute 30 % slower than the exhaustive runs'
+// (2026-12-04, docs/timing.md). So a fresh probe is pooled with the earlier probes of the last
+// kCalibrationMaxAgeSeconds, by the same build, measured at a load within
+// kCalibrationMaxLoadChange of its own: the spread is spread_from_processes() over all their
+// processes together, so that every pair of processes of two probes minutes or hours apart
+// gives its log ratios too. (An entry written before probes kept their medians pools by its
+// RMS: spread = sqrt((S + s_i^2 pairs_i) / (P + pairs_i)).) `earlier` is the cached entry's
+// probe list; the result lists the day's probes (at any load, at most
+// kCalibrationKeptProbes, the newest kept) with the fresh one last.
 inline constexpr size_t kCalibrationKeptProbes = 16;
 RunToRunSpread pool_with_earlier_probes(const RunToRunSpread& fresh, const std::vector<ProbeEntry>& earlier,
                                         int64_t now);

@@ -97,7 +97,8 @@ std::string describe(const RunToRunSpread& s) {
 // The probes a cached entry holds: its list, or (written before pooling) itself.
 std::vector<ProbeEntry> probes_of(const RunToRunSpread& cached) {
   if (!cached.probes.empty()) return cached.probes;
-  return {ProbeEntry{cached.spread, cached.pairs, cached.processes, cached.measured_at, cached.load_average}};
+  return {ProbeEntry{cached.spread, cached.pairs, cached.processes, cached.measured_at, cached.load_average,
+                     cached.commit, {}}};
 }
 
 }  // namespace
@@ -180,6 +181,7 @@ RunToRunSpread run_calibration_probe(const DeviceInfo& device, const ProbeOption
   std::filesystem::remove_all(folder, ignored);
   RunToRunSpread spread = spread_from_processes(processes);
   if (!spread.pairs) throw UserError("calibrate: the probe processes measured nothing in common");
+  spread.medians = processes;
   spread.measured_at = now_seconds();
   spread.load_average = load_count ? load_sum / load_count : std::nan("");
   spread.probe_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();

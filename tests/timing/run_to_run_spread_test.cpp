@@ -129,6 +129,39 @@ TEST(RunToRunSpread, PoolsAFreshProbeWithTheDaysProbesAtItsLoad) {
   EXPECT_EQ(alone.probes.size(), 1u);
 }
 
+// Probes keep their processes' medians, and pooling pairs the processes of different probes:
+// two probes each steady within (ratio 1 between its processes) but a factor 2 apart (a
+// slower hour) give a spread that neither shows alone. A probe by another build is not pooled.
+TEST(RunToRunSpread, PoolingPairsTheProcessesOfProbesMinutesApart) {
+  const int64_t now = 2'000'000;
+  RunToRunSpread fresh;
+  fresh.medians = {{{"a/frame", 2.0}}, {{"a/frame", 2.0}}};
+  fresh.spread = 0;
+  fresh.pairs = 1;
+  fresh.processes = 2;
+  fresh.measured_at = now;
+  fresh.load_average = 1.0;
+  fresh.commit = "abc";
+  ProbeEntry earlier{0, 1, 2, now - 1800, 1.2, "abc", {{{"a/frame", 1.0}}, {{"a/frame", 1.0}}}};
+  ProbeEntry other_build{0, 1, 2, now - 900, 1.0, "def", {{{"a/frame", 8.0}}, {{"a/frame", 8.0}}}};
+  const RunToRunSpread pooled = pool_with_earlier_probes(fresh, {earlier, other_build}, now);
+  // 4 processes: 6 pairs, the 4 across the two probes at log 2, the 2 within at 0.
+  EXPECT_EQ(pooled.pairs, 6u);
+  EXPECT_NEAR(pooled.spread, std::sqrt(4 * std::log(2.0) * std::log(2.0) / 6), 1e-12);
+  EXPECT_EQ(pooled.pooled_probes, 2u);
+  EXPECT_EQ(pooled.processes, 4u);
+  ASSERT_EQ(pooled.probes.size(), 3u);
+  const RunToRunSpread back = spread_from_json(spread_to_json(pooled), "medians.json");
+  ASSERT_EQ(back.probes.size(), 3u);
+  EXPECT_EQ(back.probes[0].commit, "abc");
+  ASSERT_EQ(back.probes[0].medians.size(), 2u);
+  EXPECT_EQ(back.probes[0].medians[1].at("a/frame"), 1.0);
+  EXPECT_EQ(back.probes[2].medians[0].at("a/frame"), 2.0);
+  EXPECT_THROW(spread_from_json("{\"spread\": 0.1, \"probes\": [{\"spread\": 0.1, \"pairs\": 3, \"medians\": [{\"a\": \"x\"}]}]}",
+                                "m.json"),
+               UserError);
+}
+
 TEST(RunToRunSpread, KeepsAtMostTheNewestProbesAndRoundTripsThemThroughJson) {
   const int64_t now = 2'000'000;
   std::vector<ProbeEntry> earlier;
