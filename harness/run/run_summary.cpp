@@ -7,6 +7,7 @@
 
 #include "harness/measuring/timing_columns.h"
 #include "harness/records/columns.h"
+#include "harness/util/text.h"
 
 namespace ldm {
 namespace {
@@ -53,16 +54,9 @@ bool is_false(const Record& r, const std::string& key) {
 
 // The notes of status_detail ("; "-separated).
 std::vector<std::string> detail_notes(const Record& r) {
-  std::vector<std::string> notes;
   const std::string detail = text(r, "status_detail");
-  if (detail == "-") return notes;
-  size_t start = 0;
-  while (start <= detail.size()) {
-    const size_t end = std::min(detail.find("; ", start), detail.size());
-    if (end > start) notes.push_back(detail.substr(start, end - start));
-    start = end + 2;
-  }
-  return notes;
+  if (detail == "-") return {};
+  return split_nonempty(detail, "; ");
 }
 
 // A flag: its letter and meaning, whether the record's columns raise it, and which notes of

@@ -12,6 +12,7 @@
 #include "harness/records/harness_columns.h"
 #include "harness/scene/scene_loader.h"
 #include "harness/util/error.h"
+#include "harness/util/text.h"
 #include "ldm_impls/ldm_structure.h"
 
 namespace ldm {
@@ -321,16 +322,7 @@ constexpr int kParametersRank = 90;  // the structure's parameters, in the id an
 
 int column_rank(const HarnessAxis& axis) { return axis.column_rank.value_or(axis.id_rank); }
 
-std::vector<std::string> split_columns(const std::string& columns) {
-  std::vector<std::string> out;
-  size_t start = 0;
-  while (start <= columns.size()) {
-    const size_t comma = std::min(columns.find(',', start), columns.size());
-    if (comma > start) out.push_back(columns.substr(start, comma - start));
-    start = comma + 1;
-  }
-  return out;
-}
+std::vector<std::string> split_columns(const std::string& columns) { return split_nonempty(columns, ","); }
 
 void put_axis_value(Record& r, const AxisSpec& spec, const std::string& text) {
   const std::vector<std::string> columns = split_columns(spec.column);
