@@ -6,6 +6,7 @@
 #include "harness/reference/embree_scene.h"
 #include "harness/reference/pixel_renderer.h"
 #include "harness/reference/surface_point.h"
+#include "harness/util/enum_names.h"
 #include "harness/util/error.h"
 #include "harness/util/hash.h"
 
@@ -23,13 +24,12 @@ AoSettings settings_used(const Scene& scene, const AoReferenceRequest& request) 
 
 }  // namespace
 
-const char* ao_sampler_name(AoSampler sampler) {
-  return sampler == AoSampler::Sobol ? "sobol" : "random";
-}
+constexpr EnumNames<AoSampler, 2> kAoSamplerNames{{{AoSampler::Sobol, "sobol"}, {AoSampler::Random, "random"}}};
+
+const char* ao_sampler_name(AoSampler sampler) { return name_of(kAoSamplerNames, sampler); }
 
 AoSampler parse_ao_sampler(const std::string& text, const std::string& what) {
-  if (text == "sobol") return AoSampler::Sobol;
-  if (text == "random") return AoSampler::Random;
+  if (const auto sampler = value_named(kAoSamplerNames, text)) return *sampler;
   throw UserError(what + " '" + text + "': expected sobol or random");
 }
 

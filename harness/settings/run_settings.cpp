@@ -9,17 +9,20 @@
 #include "harness/passes/pass.h"
 #include "ldm_impls/ldm_structure.h"
 #include "harness/scene/scene_loader.h"
+#include "harness/util/enum_names.h"
 #include "harness/util/error.h"
 
 namespace ldm {
 
+constexpr EnumNames<RepetitionIsolation, 2> kRepetitionIsolationNames{
+    {{RepetitionIsolation::Context, "context"}, {RepetitionIsolation::Process, "process"}}};
+
 const char* repetition_isolation_name(RepetitionIsolation isolation) {
-  return isolation == RepetitionIsolation::Process ? "process" : "context";
+  return name_of(kRepetitionIsolationNames, isolation);
 }
 
 RepetitionIsolation parse_repetition_isolation(const std::string& name) {
-  if (name == "process") return RepetitionIsolation::Process;
-  if (name == "context") return RepetitionIsolation::Context;
+  if (const auto isolation = value_named(kRepetitionIsolationNames, name)) return *isolation;
   throw UserError("--isolation: '" + name + "' is not context or process");
 }
 
