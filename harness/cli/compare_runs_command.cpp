@@ -68,30 +68,26 @@ Runner add_compare_runs_command(CLI::App& app) {
                   "Power at which each test's minimum detectable change is reported")
       ->check(CLI::Range(0.5, 0.999))
       ->capture_default_str();
-  cmd->add_option("--min-time-change", o->thresholds.min_time_change,
-                  "Relative time change of interest (0.05: 5%): FAST or SLOW need at least "
-                  "this and the test's minimum detectable change")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
+  // A tolerance: a non-negative number, its default shown.
+  auto tolerance = [cmd](const std::string& name, double& value, const std::string& description) {
+    cmd->add_option(name, value, description)->check(CLI::NonNegativeNumber)->capture_default_str();
+  };
+  tolerance("--min-time-change", o->thresholds.min_time_change,
+            "Relative time change of interest (0.05: 5%): FAST or SLOW need at least this and the "
+            "test's minimum detectable change");
   auto* spread = cmd->add_option("--process-spread", o->thresholds.process_spread,
                   "Assumed relative standard deviation of one process's median, for a run measured "
                   "with one repetition (which cannot show it); default: the records' calibration "
                   "(time_run_to_run_spread / sqrt 2, `ldmbench calibrate`), else this")
       ->check(CLI::Range(0.0, 10.0))
       ->capture_default_str();
-  cmd->add_option("--memory-tolerance", o->thresholds.memory_tolerance,
-                  "Relative growth of bytes_allocated/bytes_used allowed (0: exact)")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
-  cmd->add_option("--work-tolerance", o->thresholds.work_tolerance,
-                  "Relative growth allowed of a work counter that depends on arrival order "
-                  "(insertion walks, retries); deterministic counters are compared exactly")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
-  cmd->add_option("--noise-factor", o->thresholds.noise_factor,
-                  "MSE growth allowed, in multiples of the reference's ref_noise_mse")
-      ->check(CLI::NonNegativeNumber)
-      ->capture_default_str();
+  tolerance("--memory-tolerance", o->thresholds.memory_tolerance,
+            "Relative growth of bytes_allocated/bytes_used allowed (0: exact)");
+  tolerance("--work-tolerance", o->thresholds.work_tolerance,
+            "Relative growth allowed of a work counter that depends on arrival order (insertion "
+            "walks, retries); deterministic counters are compared exactly");
+  tolerance("--noise-factor", o->thresholds.noise_factor,
+            "MSE growth allowed, in multiples of the reference's ref_noise_mse");
   cmd->add_option("--ignore-param", o->ignored_params,
                   "Leave this structure parameter (or n_views, r_ldm) out of the identity, to "
                   "compare two values of it as one configuration (repeatable)");
