@@ -21,6 +21,7 @@
 #include "harness/scene/camera.h"
 #include "support/ao_reference_request.h"
 #include "support/ao_closed_forms.h"
+#include "support/ao_convergence.h"
 #include "support/pass_run.h"
 #include "support/test_support.h"
 
@@ -183,28 +184,9 @@ TEST(RtaoGpu, ErrorBeyondTheReferenceNoiseFallsAsOneOverK) {
   }
 }
 
-// The mean of n samples of V in [0, 1] lies within 5 standard errors sqrt(AO (1 - AO) / n) of
-// the exact AO in every pixel, and the mean deviation over the pixels within 5 of its own
-// (as tests/reference/ao_analytic_test.cpp checks the reference). Not shared with that
-// check: it holds the reference to float rounding (1e-6, exact where the variance is 0),
-// this one the GPU's arithmetic to 1e-5, over at least half the pixels instead of 9 in 10.
-void expect_converged(const Image& image, uint32_t samples,
-                      const std::function<std::optional<double>(int, int)>& expected) {
-  double deviation = 0, variance = 0;
-  int checked = 0;
-  for (int y = 0; y < image.height; ++y)
-    for (int x = 0; x < image.width; ++x) {
-      const auto e = expected(x, y);
-      if (!e) continue;
-      ++checked;
-      const double v = std::max(0.0, *e * (1.0 - *e)) / samples;
-      ASSERT_NEAR(image.at(x, y), *e, 5.0 * std::sqrt(v) + 1e-5) << "pixel " << x << "," << y;
-      deviation += image.at(x, y) - *e;
-      variance += v;
-    }
-  EXPECT_GE(checked, image.width * image.height / 2);
-  EXPECT_LE(std::abs(deviation), 5.0 * std::sqrt(variance) + 1e-5 * checked) << "mean deviation " << deviation / checked;
-}
+// The GPU's arithmetic is held to 1e-5 (the reference's to float rounding), over at least
+// half the pixels (the closed forms cover less of the image than the reference's scenes).
+constexpr test::AoConvergence kGpuConvergence{1e-5, 0.5};
 
 // Where pixel (x, y)'s primary ray meets the floor y = 0.
 glm::dvec3 floor_point(const Scene& scene, int x, int y, int size) {
@@ -225,21 +207,21 @@ TEST(RtaoGpu, ConvergesToTheClosedFormsAtLargeK) {
   {
     const Scene scene = load_scene("parallel-planes");
     const double ao = test::parallel_planes_ao(1.0 - offset, 2.0, 2.0);
-    expect_converged(rtao_gpu_run(scene, size, {{"spp", std::to_string(k)}}).image, k,
+    test::expect_ao_converged(rtao_gpu_run(scene, size, {{"spp", std::to_string(k)}}).image, k, kGpuConvergence,
                      [&](int, int) { return ao; });
   }
   {
     const double w = 1.5;
     const Scene scene = generate_scene("parallel-planes", {{"half_size", w}, {"attenuated", false}}, "test");
     const double h = 1.0 - kRayOffsetUlps * 1.1920928955078125e-7 * w;
-    expect_converged(rtao_gpu_run(scene, size, {{"spp", std::to_string(k)}}).image, k, [&](int x, int y) {
+    test::expect_ao_converged(rtao_gpu_run(scene, size, {{"spp", std::to_string(k)}}).image, k, kGpuConvergence, [&](int x, int y) {
       const glm::dvec3 p = floor_point(scene, x, y, size);
       return test::square_ceiling_ao(p.x, p.z, w, h);
     });
   }
   {
     const Scene scene = generate_scene("wall", {{"d_max", 1.0}}, "test");
-    expect_converged(rtao_gpu_run(scene, size, {{"spp", std::to_string(k)}}).image, k, [&](int x, int y) {
+    test::expect_ao_converged(rtao_gpu_run(scene, size, {{"spp", std::to_string(k)}}).image, k, kGpuConvergence, [&](int x, int y) {
       return test::wall_ao(floor_point(scene, x, y, size).x, 1.0);
     });
   }
