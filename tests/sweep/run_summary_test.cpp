@@ -5,6 +5,7 @@
 
 #include "harness/run/run_summary.h"
 #include "harness/run/sweep_progress.h"
+#include "support/subpass_time.h"
 
 namespace ldm {
 namespace {
@@ -18,9 +19,7 @@ Record measured(const std::string& id, double build_ms) {
   r.set("gbuffer_ms_median", 1.25);
   r.set("ao_ms_median", 47.258949);
   r.set("pass_ms_median", 48.51);
-  r.set("frame_ms_median", 73.4);
-  r.set("frame_ms_ci_low", 72.0);
-  r.set("frame_ms_ci_high", 75.0);
+  test::set_subpass_time(r, "frame", 73.4, 72.0, 75.0);
   r.set("bytes_allocated", int64_t(3) << 20);
   r.set("bytes_used", int64_t(1) << 19);
   r.set("mse", 0.0012345678);

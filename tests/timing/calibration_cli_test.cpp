@@ -8,6 +8,7 @@
 
 #include "harness/measuring/calibration.h"
 #include "harness/measure/run_to_run_spread.h"
+#include "support/probe_spread.h"
 #include "support/test_support.h"
 
 namespace ldm {
@@ -18,6 +19,13 @@ using test::make_temp_dir;
 using test::read_text;
 
 const char* kTinyRun = "run --scene cornell --structure ppsll -N 4 -R 32 --image-size 32x32 --no-reference --no-images";
+
+// This device's calibration cache entry in a cache of its own, `cache` (XDG_CACHE_HOME, for
+// this process and the ldmbench it starts with the same variable).
+std::string own_cache_entry(const std::string& cache) {
+  setenv("XDG_CACHE_HOME", cache.c_str(), 1);
+  return calibration_cache_file(test::gl_context().device()).string();
+}
 
 nlohmann::json only_record(const std::string& out) {
   const auto records = nlohmann::json::parse(read_text(out + "/records.json")).at("records");
@@ -94,14 +102,9 @@ TEST(Calibration, ProcessIsolationHandsTheParentsSpreadToEveryChild) {
 // a written-before-pooling entry (no list) counts as one probe.
 TEST(Calibration, ProbeDropsTheCachesProbesOlderThanADay) {
   const std::string cache = make_temp_dir("calibrate-old-cache");
-  setenv("XDG_CACHE_HOME", cache.c_str(), 1);
-  const std::string entry = calibration_cache_file(test::gl_context().device()).string();
-  RunToRunSpread old;
-  old.spread = 0.9;
-  old.pairs = 6;
-  old.processes = 4;
-  old.measured_at = int64_t(std::time(nullptr)) - kCalibrationMaxAgeSeconds - 60;
-  old.load_average = 0.0;
+  const std::string entry = own_cache_entry(cache);
+  const RunToRunSpread old =
+      test::probe_spread({0.9, 6, 4, int64_t(std::time(nullptr)) - kCalibrationMaxAgeSeconds - 60, 0.0});
   write_calibration_file(entry, old);
   const auto probe = ldmbench("calibrate --processes 2", "XDG_CACHE_HOME=" + cache);
   ASSERT_EQ(probe.status, 0) << probe.output;
@@ -116,8 +119,7 @@ TEST(Calibration, ProbeDropsTheCachesProbesOlderThanADay) {
 TEST(Calibration, AutoReadsAFreshCacheEntryWithoutProbing) {
   const std::string cache = make_temp_dir("calibrate-cache");
   // The entry this device would be cached under, fresh and at today's load.
-  setenv("XDG_CACHE_HOME", cache.c_str(), 1);
-  const std::string entry = calibration_cache_file(test::gl_context().device()).string();
+  const std::string entry = own_cache_entry(cache);
   RunToRunSpread spread;
   spread.spread = 0.123;
   spread.measured_at = int64_t(std::time(nullptr));

@@ -10,6 +10,8 @@
 #include "harness/measure/run_to_run_spread.h"
 #include "harness/stats/intervals.h"
 #include "harness/util/error.h"
+#include "support/probe_spread.h"
+#include "support/subpass_time.h"
 
 namespace ldm {
 namespace {
@@ -72,12 +74,7 @@ TEST(RunToRunSpread, WidensOneRepetitionByTheWholeSpreadAndKRepetitionsByTheOthe
 }
 
 TEST(RunToRunSpread, RoundTripsThroughJsonAndRefusesBadFiles) {
-  RunToRunSpread s;
-  s.spread = 0.25;
-  s.pairs = 180;
-  s.processes = 5;
-  s.measured_at = 1796265508;
-  s.load_average = 0.75;
+  RunToRunSpread s = test::probe_spread({0.25, 180, 5, 1796265508, 0.75});
   s.device = "llvmpipe";
   s.host = "vm";
   const RunToRunSpread back = spread_from_json(spread_to_json(s), "x.json");
@@ -101,12 +98,7 @@ TEST(RunToRunSpread, RoundTripsThroughJsonAndRefusesBadFiles) {
 // the same); one at another load, one older than a day and one of unknown load do not.
 TEST(RunToRunSpread, PoolsAFreshProbeWithTheDaysProbesAtItsLoad) {
   const int64_t now = 2'000'000;
-  RunToRunSpread fresh;
-  fresh.spread = 0.08;
-  fresh.pairs = 18;
-  fresh.processes = 4;
-  fresh.measured_at = now;
-  fresh.load_average = 1.0;
+  const RunToRunSpread fresh = test::probe_spread({0.08, 18, 4, now, 1.0});
   const std::vector<ProbeEntry> earlier = {
       {0.20, 18, 4, now - 3600, 1.3},                         // same load (within 0.5): pooled
       {0.30, 36, 6, now - 600, 0.4},                          // 0.6 below: kept, not pooled
@@ -166,12 +158,7 @@ TEST(RunToRunSpread, KeepsAtMostTheNewestProbesAndRoundTripsThemThroughJson) {
   const int64_t now = 2'000'000;
   std::vector<ProbeEntry> earlier;
   for (int i = 0; i < 30; ++i) earlier.push_back({0.1 + 0.01 * i, 6, 4, now - 3000 + 100 * i, 1.0});
-  RunToRunSpread fresh;
-  fresh.spread = 0.2;
-  fresh.pairs = 6;
-  fresh.processes = 4;
-  fresh.measured_at = now;
-  fresh.load_average = 1.0;
+  const RunToRunSpread fresh = test::probe_spread({0.2, 6, 4, now, 1.0});
   const RunToRunSpread pooled = pool_with_earlier_probes(fresh, earlier, now);
   ASSERT_EQ(pooled.probes.size(), kCalibrationKeptProbes);
   EXPECT_DOUBLE_EQ(pooled.probes.front().spread, 0.1 + 0.01 * (30 - (kCalibrationKeptProbes - 1)));
@@ -201,15 +188,9 @@ Record timed_record(size_t repetitions) {
   r.set("repetitions", repetitions);
   r.set("time_interval", kFrameInterval);
   r.set("time_half_width", 0.02);
-  r.set("frame_ms_median", 10.0);
-  r.set("frame_ms_ci_low", 9.8);
-  r.set("frame_ms_ci_high", 10.2);
-  r.set("build_ms_median", 4.0);
-  r.set("build_ms_ci_low", 3.9);
-  r.set("build_ms_ci_high", 4.2);
-  r.set("rebuild_ms_median", 0.0);  // a sub-pass no frame ran
-  r.set("rebuild_ms_ci_low", 0.0);
-  r.set("rebuild_ms_ci_high", 0.0);
+  test::set_subpass_time(r, "frame", 10.0, 9.8, 10.2);
+  test::set_subpass_time(r, "build", 4.0, 3.9, 4.2);
+  test::set_subpass_time(r, "rebuild", 0.0, 0.0, 0.0);  // a sub-pass no frame ran
   return r;
 }
 

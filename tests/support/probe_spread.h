@@ -1,0 +1,16 @@
+#pragma once
+// A run-to-run spread as one probe measured it, for the calibration tests (tests/timing): the
+// probe's spread, pairs, processes, time and load; the rest as RunToRunSpread's defaults.
+#include "harness/measure/run_to_run_spread.h"
+
+namespace ldm::test {
+
+inline RunToRunSpread probe_spread(const ProbeEntry& probe) {
+  return {.spread = probe.spread,
+          .pairs = probe.pairs,
+          .processes = probe.processes,
+          .measured_at = probe.measured_at,
+          .load_average = probe.load_average};
+}
+
+}  // namespace ldm::test
