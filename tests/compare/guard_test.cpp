@@ -127,14 +127,20 @@ TEST(RunRecords, RepetitionsAreCombinedIntoOneRecord) {
   }
 }
 
+// The command of a small run of `structures` (a comma list) on cornell, 2 repetitions of 3
+// frames, no images, written to `out`; `options` added.
+std::string two_repetitions_run(const std::string& structures, const fs::path& out,
+                                const std::string& options = "") {
+  return std::string(LDM_BINARY_PATH) + " run --scene cornell --structure " + structures +
+         " -N 2 -R 32 --width 32 --height 32 --frames 3 --time-target 0 --warmup 1 --no-images "
+         "--repetitions 2" + options + " --out " + out.string();
+}
+
 // A repetition measured alone (--step, as a child measures it) is journaled; the full
 // command then resumes with it and measures only the rest.
 TEST(RunRecords, RepetitionsResumeFromTheJournal) {
   const fs::path out = fs::path(test::make_temp_dir("ldm-repetitions")) / "run";
-  const std::string command = std::string(LDM_BINARY_PATH) +
-                              " run --scene cornell --structure psppsll -N 2 -R 32 --width 32 --height 32 "
-                              "--frames 3 --time-target 0 --warmup 1 --no-images --repetitions 2 --out " +
-                              out.string();
+  const std::string command = two_repetitions_run("psppsll", out);
   std::string output;
   ASSERT_EQ(test::run_command(command + " --step cornell-psppsll-ao-n2-r32-plane-prevframe", &output), 0) << output;
   EXPECT_NE(output.find("(repetition 1/2)"), std::string::npos) << output;
@@ -161,10 +167,7 @@ size_t occurrences(const std::string& text, const std::string& what) {
 // them: no repetition of a configuration shares a process with another of it.
 TEST(RunRecords, AStepOfSeveralConfigurationsMeasuresTheNextRepetitionOfEach) {
   const fs::path out = fs::path(test::make_temp_dir("ldm-step-several")) / "run";
-  const std::string command = std::string(LDM_BINARY_PATH) +
-                              " run --scene cornell --structure psppsll,ppsll -N 2 -R 32 --width 32 --height 32 "
-                              "--frames 3 --time-target 0 --warmup 1 --no-images --repetitions 2 --out " +
-                              out.string();
+  const std::string command = two_repetitions_run("psppsll,ppsll", out);
   const std::string step =
       " --step cornell-psppsll-ao-n2-r32-plane-prevframe,cornell-ppsll-ao-n2-r32-plane-prevframe";
   std::string output;
@@ -185,10 +188,7 @@ TEST(RunRecords, AStepOfSeveralConfigurationsMeasuresTheNextRepetitionOfEach) {
 TEST(RunRecords, ProcessIsolationStartsOneChildPerRepetitionRound) {
   const fs::path out = fs::path(test::make_temp_dir("ldm-isolation-rounds")) / "run";
   std::string output;
-  ASSERT_EQ(test::run_command(std::string(LDM_BINARY_PATH) +
-                                  " run --scene cornell --structure psppsll,ppsll -N 2 -R 32 --width 32 --height 32 "
-                                  "--frames 3 --time-target 0 --warmup 1 --no-images --calibration skip "
-                                  "--repetitions 2 --isolation process --out " + out.string(),
+  ASSERT_EQ(test::run_command(two_repetitions_run("psppsll,ppsll", out, " --calibration skip --isolation process"),
                               &output),
             0)
       << output;
