@@ -86,20 +86,21 @@ TEST(ReliabilityIdentity, EditingAnyFieldOfASceneFileIsAnotherSweep) {
 
 TEST(ReliabilityIdentity, AValueGivenTwiceIsRefusedNamingOptionAndValue) {
   const fs::path dir = test::make_temp_dir("ldm-identity");
-  const std::vector<std::tuple<std::string, std::string, std::string>> cases = {
+  // (arguments, the option the refusal names, what it says)
+  std::vector<std::tuple<std::string, std::string, std::string>> cases = {
       {"-N 4,4", "--views", "4 appears twice"},
       {"-N 2 -R 8,16,8", "--r-ldm", "8 appears twice"},
       {"-N 2 --structure psppsll --structure psppsll", "--structure", "psppsll appears twice"},
       {"-N 2 --structure psppsll,ppfla,psppsll", "--structure", "psppsll appears twice"},
-      {"-N 2 --scene cornell,cornell", "--scene", "cornell appears twice"},
-      {"-N 2 --pass ao,ao", "--pass", "ao appears twice"},
       {"-N 2 --d-max 1,1.0", "--d-max", "1 appears twice"},
-      {"-N 2 --trace plane,plane", "--trace", "plane appears twice"},
-      {"-N 2 --sizing census,census", "--sizing", "census appears twice"},
-      {"-N 2 --visibility attenuated,attenuated", "--visibility", "attenuated appears twice"},
       {"-N 2 --structure ppfla --param ppfla:k=4,4", "--param ppfla:k=4,4", "4 appears twice"},
       {"-N 2 --structure ppfla --param ppfla:k=4 --param ppfla:k=8", "--param ppfla:k", "given twice (4 and 8)"},
   };
+  // And one value twice in an option's comma list ("--pass ao,ao").
+  for (const auto& [option, value] : std::vector<std::pair<std::string, std::string>>{
+           {"--scene", "cornell"}, {"--pass", "ao"}, {"--trace", "plane"}, {"--sizing", "census"},
+           {"--visibility", "attenuated"}})
+    cases.emplace_back("-N 2 " + option + " " + value + "," + value, option, value + " appears twice");
   for (const auto& [args, option, what] : cases) {
     const fs::path out = dir / "out";
     const Outcome o = test::ldmbench("run " + args + kTiny + "--out " + out.string());
