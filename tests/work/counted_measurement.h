@@ -16,6 +16,7 @@ namespace ldm::work_test {
 struct Counted {
   Measurement m;
   std::map<std::string, double> work;  // work_* fields as numbers
+  double fragments = 0;                // the census's fragments (count() expects some)
   // A counter the record must carry.
   double operator[](const std::string& column) const {
     const auto found = work.find(column);
@@ -49,6 +50,8 @@ inline Counted count(const std::string& structure, uint32_t views, uint32_t reso
   request.frames = 2;
   Counted c{measure(scene, request), {}};
   for (const auto& [name, value] : c.m.work) c.work[name] = as_number(value);
+  c.fragments = double(c.m.census.fragments);
+  EXPECT_GT(c.fragments, 0) << structure << ": the census counted no fragments";
   EXPECT_TRUE(c.m.work_counted);
   EXPECT_EQ(c.m.status, BuildStatus::Ok) << structure << ": " << c.m.status_detail;
   return c;
