@@ -48,27 +48,17 @@ ldm::SweepVocabulary fuzz_vocabulary() {
   v.parameters = {{"ppfla", {k}}, {"hbao", {jitter}}, {"psppsll", {reads}}};
   // A run-wide setting of every kind, top level and grouped (ldmbench's own come from
   // harness/settings/run_setting_table.h).
-  auto setting = [](const char* path, ldm::SettingRule::Kind kind, double lo, double hi,
-                    std::vector<std::string> choices = {}) {
-    ldm::SettingRule r;
-    r.path = path;
-    r.kind = kind;
-    r.min = lo;
-    r.max = hi;
-    r.choices = std::move(choices);
-    return r;
-  };
+  // (SettingRule's fields in order: path, kind, min, max, positive, choices.)
   using Kind = ldm::SettingRule::Kind;
-  v.settings = {setting("timing.repetitions", Kind::Integer, 1, 1000),
-                setting("timing.isolation", Kind::Choice, 0, 0, {"context", "process"}),
-                setting("timing.cap_s", Kind::Real, 0, 86400),
-                setting("timer", Kind::Choice, 0, 0, {"auto", "gl_timestamp", "fenced_wall_clock"}),
-                setting("reference.enabled", Kind::Flag, 0, 0),
-                setting("reference.spp", Kind::Integer, 0, 1 << 20),
-                setting("reference.noise", Kind::Real, 0, 0),
-                setting("reference.max_spp", Kind::Integer, 1, 1 << 20),
-                setting("images", Kind::Flag, 0, 0)};
-  v.settings[6].positive = true;
+  v.settings = {{"timing.repetitions", Kind::Integer, 1, 1000},
+                {"timing.isolation", Kind::Choice, 0, 0, false, {"context", "process"}},
+                {"timing.cap_s", Kind::Real, 0, 86400},
+                {"timer", Kind::Choice, 0, 0, false, {"auto", "gl_timestamp", "fenced_wall_clock"}},
+                {"reference.enabled", Kind::Flag},
+                {"reference.spp", Kind::Integer, 0, 1 << 20},
+                {"reference.noise", Kind::Real, 0, 0, true},
+                {"reference.max_spp", Kind::Integer, 1, 1 << 20},
+                {"images", Kind::Flag}};
   return v;
 }
 
