@@ -113,7 +113,8 @@ TEST(Calibration, ProbeDropsTheCachesProbesOlderThanADay) {
   EXPECT_EQ(cached.processes, 2u);
   ASSERT_EQ(cached.probes.size(), 1u);
   EXPECT_GT(cached.probes[0].measured_at, old.measured_at);  // the fresh one, alone
-  EXPECT_EQ(cached.spread, cached.probes[0].spread);
+  // Pooled alone: sqrt(s^2 pairs / pairs), which is s but for rounding.
+  EXPECT_DOUBLE_EQ(cached.spread, cached.probes[0].spread);
 }
 
 TEST(Calibration, AutoReadsAFreshCacheEntryWithoutProbing) {
