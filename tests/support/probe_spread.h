@@ -1,6 +1,7 @@
 #pragma once
 // A run-to-run spread as one probe measured it, for the calibration tests (tests/timing): the
-// probe's spread, pairs, processes, time and load; the rest as RunToRunSpread's defaults.
+// probe's spread, pairs, processes, time, load, build and processes' medians; the rest as
+// RunToRunSpread's defaults.
 #include "harness/measure/run_to_run_spread.h"
 
 namespace ldm::test {
@@ -10,7 +11,9 @@ inline RunToRunSpread probe_spread(const ProbeEntry& probe) {
           .pairs = probe.pairs,
           .processes = probe.processes,
           .measured_at = probe.measured_at,
-          .load_average = probe.load_average};
+          .load_average = probe.load_average,
+          .commit = probe.commit,
+          .medians = probe.medians};
 }
 
 }  // namespace ldm::test

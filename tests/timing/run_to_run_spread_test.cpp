@@ -126,14 +126,8 @@ TEST(RunToRunSpread, PoolsAFreshProbeWithTheDaysProbesAtItsLoad) {
 // slower hour) give a spread that neither shows alone. A probe by another build is not pooled.
 TEST(RunToRunSpread, PoolingPairsTheProcessesOfProbesMinutesApart) {
   const int64_t now = 2'000'000;
-  RunToRunSpread fresh;
-  fresh.medians = {{{"a/frame", 2.0}}, {{"a/frame", 2.0}}};
-  fresh.spread = 0;
-  fresh.pairs = 1;
-  fresh.processes = 2;
-  fresh.measured_at = now;
-  fresh.load_average = 1.0;
-  fresh.commit = "abc";
+  const RunToRunSpread fresh =
+      test::probe_spread({0, 1, 2, now, 1.0, "abc", {{{"a/frame", 2.0}}, {{"a/frame", 2.0}}}});
   ProbeEntry earlier{0, 1, 2, now - 1800, 1.2, "abc", {{{"a/frame", 1.0}}, {{"a/frame", 1.0}}}};
   ProbeEntry other_build{0, 1, 2, now - 900, 1.0, "def", {{{"a/frame", 8.0}}, {{"a/frame", 8.0}}}};
   const RunToRunSpread pooled = pool_with_earlier_probes(fresh, {earlier, other_build}, now);
