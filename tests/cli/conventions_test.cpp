@@ -16,7 +16,7 @@ namespace fs = std::filesystem;
 using test::Outcome;
 using test::ldmbench;
 
-const fs::path kRoot = fs::path(LDM_TEST_SOURCE_DIR) / "..";
+const fs::path kSourceRoot = fs::path(LDM_TEST_SOURCE_DIR) / "..";
 
 TEST(Conventions, VersionNamesTheProjectVersionAndCommit) {
   const Outcome o = ldmbench("--version");
@@ -24,7 +24,7 @@ TEST(Conventions, VersionNamesTheProjectVersionAndCommit) {
   EXPECT_TRUE(std::regex_match(o.output, std::regex(R"(ldmbench \d+\.\d+\.\d+ \(commit ([0-9a-f]{7,40}|unknown)(, dirty)?\)\n)")))
       << o.output;
   // The project version is CMakeLists.txt's project(... VERSION x.y.z).
-  const std::string cmake = test::read_text((kRoot / "CMakeLists.txt").string());
+  const std::string cmake = test::read_text((kSourceRoot / "CMakeLists.txt").string());
   std::smatch m;
   ASSERT_TRUE(std::regex_search(cmake, m, std::regex(R"(project\(ldmbench VERSION ([0-9.]+))")));
   EXPECT_NE(o.output.find("ldmbench " + m[1].str() + " "), std::string::npos) << o.output;
@@ -41,9 +41,9 @@ TEST(Conventions, VersionStampOutsideAndInsideGit) {
   const fs::path source = dir / "src", out = dir / "version.cpp";
   fs::create_directories(source);
   std::ofstream(source / "file.txt") << "one\n";
-  const std::string stamp = "cmake -DSOURCE=" + source.string() + " -DIN=" + (kRoot / "cmake" / "version.cpp.in").string() +
+  const std::string stamp = "cmake -DSOURCE=" + source.string() + " -DIN=" + (kSourceRoot / "cmake" / "version.cpp.in").string() +
                             " -DOUT=" + out.string() + " -DPROJECT_VERSION=9.8.7 -P " +
-                            (kRoot / "cmake" / "VersionStamp.cmake").string();
+                            (kSourceRoot / "cmake" / "VersionStamp.cmake").string();
   Outcome o = test::run_shell(stamp);
   ASSERT_EQ(o.status, 0) << o.output;
   std::string text = test::read_text(out.string());

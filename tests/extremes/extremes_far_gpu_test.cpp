@@ -16,8 +16,8 @@
 namespace ldm {
 namespace {
 
-constexpr uint32_t kViews = 8, kResolution = 64;
-constexpr int kSize = 32;
+constexpr uint32_t kViews = 8, kFarResolution = 64;
+constexpr int kFarImageSize = 32;
 
 // Two 2 x 2 squares one unit apart, the camera between them, every coordinate a dyadic
 // fraction: translated by 1e5 (an integer) they stay exact in float, so any difference in
@@ -45,10 +45,10 @@ struct GpuAo {
 };
 
 GpuAo gpu_ao(const Scene& scene) {
-  const test::LdmFixture f(scene, kViews, kResolution);
+  const test::LdmFixture f(scene, kViews, kFarResolution);
   auto structure = f.build("psppsll");
-  GBufferPass gbuffer(kSize, kSize);
-  AoPass ao(*structure, *f.inputs, kSize, kSize, f.scene.ao);
+  GBufferPass gbuffer(kFarImageSize, kFarImageSize);
+  AoPass ao(*structure, *f.inputs, kFarImageSize, kFarImageSize, f.scene.ao);
   gbuffer.render(*f.gpu_scene, f.scene, nullptr);
   ao.render(gbuffer, nullptr);
   return {f.census, ao.read_image()};

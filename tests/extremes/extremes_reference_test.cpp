@@ -12,7 +12,7 @@
 namespace ldm {
 namespace {
 
-constexpr int kSize = 24;
+constexpr int kReferenceImageSize = 24;
 
 // Parallel planes with a tilted camera, every coordinate a dyadic fraction, so that the
 // translations and power-of-two scalings below are exact in float: any difference in the
@@ -35,7 +35,7 @@ Scene transformed(Scene scene, float scale, glm::vec3 translate) {
 }
 
 Image render(const Scene& scene) {
-  return render_ao_half(scene, scene.ao, kSize, kSize, 64, /*seed=*/3, 0, /*threads=*/2);
+  return render_ao_half(scene, scene.ao, kReferenceImageSize, kReferenceImageSize, 64, /*seed=*/3, 0, /*threads=*/2);
 }
 
 double mean_abs_difference(const Image& a, const Image& b) {

@@ -16,7 +16,7 @@
 namespace ldm {
 namespace {
 
-constexpr uint32_t kResolution = 16;
+constexpr uint32_t kSeparationResolution = 16;
 
 Scene planes(float h) {
   Scene scene = generate_scene("parallel-planes", {{"h", 1.0}}, "test");
@@ -52,14 +52,14 @@ double ulp(double x) {
 TEST(ExtremesSeparation, EveryStructureKeepsLayersAFewUlpsApart) {
   // 16 ulps of the depth of the planes (about half the view's depth range of ~11 units),
   // which is also more than two 24-bit HA-buffer steps (range / 2^24 each).
-  const test::LdmFixture probe(planes(1.0f), 1, kResolution);
+  const test::LdmFixture probe(planes(1.0f), 1, kSeparationResolution);
   const double range = probe.views.views[0].depth_range;
   const float h = float(16.0 * ulp(range));
   ASSERT_GT(h, 2.0 * range / std::ldexp(1.0, 24));
-  const test::LdmFixture fixture(planes(h), 1, kResolution);
+  const test::LdmFixture fixture(planes(h), 1, kSeparationResolution);
   for (const auto& name : structure_names()) {
     const Separation s = measure(fixture, name);
-    EXPECT_GT(s.pixels, kResolution * kResolution / 2) << name;
+    EXPECT_GT(s.pixels, kSeparationResolution * kSeparationResolution / 2) << name;
     EXPECT_EQ(s.distinct, s.pixels) << name << ": layers " << h << " apart merged";
   }
   if (!std::getenv("LDM_EXTREMES_SCAN")) return;
@@ -68,7 +68,7 @@ TEST(ExtremesSeparation, EveryStructureKeepsLayersAFewUlpsApart) {
     double smallest = 0, quantum = 0, depth = 0;
     for (int k = 8; k <= 30; ++k) {
       const float hk = std::ldexp(1.0f, -k);
-      const test::LdmFixture f(planes(hk), 1, kResolution);
+      const test::LdmFixture f(planes(hk), 1, kSeparationResolution);
       const Separation s = measure(f, name);
       quantum = s.quantum;
       depth = s.max_depth;
@@ -103,7 +103,7 @@ TEST(ExtremesSeparation, DepthsCollidedOnOneQuantisedKeyAreCounted) {
   const auto base = uint32_t(scene.mesh.positions.size() - 3);
   scene.mesh.triangles.emplace_back(base, base + 1, base + 2);
   scene.mesh.triangle_materials.push_back(scene.mesh.triangle_materials.front());
-  const test::LdmFixture fixture(scene, 1, kResolution);
+  const test::LdmFixture fixture(scene, 1, kSeparationResolution);
   for (const char* structure : {"psppsll", "habuffer"}) {
     const auto s = fixture.build(structure);
     const LdmIntegrity integrity = LdmInspector(*s, *fixture.inputs).check();

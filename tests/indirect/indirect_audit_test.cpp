@@ -15,7 +15,7 @@
 namespace ldm {
 namespace {
 
-double mean3(glm::vec3 v) { return (double(v.x) + v.y + v.z) / 3.0; }
+double channel_mean(glm::vec3 v) { return (double(v.x) + v.y + v.z) / 3.0; }
 
 // Every secondary photon's flux is tallied under exactly one fate, the stored ones' equal to
 // what the photon buffer holds, and the counts split culled_depth the same way.
@@ -28,7 +28,7 @@ void expect_tally_closes(const test::IndirectRun& run) {
                        t.culled_footprint + t.degenerate + t.stored + t.overflow;
   EXPECT_NEAR(fates, t.emitted, 1e-5 * t.emitted);
   double stored = 0;
-  for (const auto& p : lighting.read_photons()) stored += mean3(p.flux);
+  for (const auto& p : lighting.read_photons()) stored += channel_mean(p.flux);
   EXPECT_NEAR(t.stored, stored, 1e-5 * stored);
   EXPECT_EQ(c.culled_depth, c.culled_outside + c.culled_hidden() + c.culled_backside);
   EXPECT_LE(c.culled_outside + c.culled_backside, c.culled_depth);
@@ -65,8 +65,8 @@ TEST(IndirectAudit, NormalizedEmissionEmitsExactlyTheReflectedFlux) {
   const auto tally_n = normalized.lighting().read_tally(), tally_t = thesis.lighting().read_tally();
   constexpr uint32_t K = PhotonLighting::kTallyEntries;
   for (size_t i = 0; i + K <= tally_n.size(); i += K) {
-    const double e_t = mean3(glm::vec3(tally_t[i + 1])), e_n = mean3(glm::vec3(tally_n[i + 1]));
-    const double s_t = mean3(glm::vec3(tally_t[i + 8])), s_n = mean3(glm::vec3(tally_n[i + 8]));
+    const double e_t = channel_mean(glm::vec3(tally_t[i + 1])), e_n = channel_mean(glm::vec3(tally_n[i + 1]));
+    const double s_t = channel_mean(glm::vec3(tally_t[i + 8])), s_n = channel_mean(glm::vec3(tally_n[i + 8]));
     if (e_t > 0 && s_t > 0) ASSERT_NEAR(s_n / s_t, e_n / e_t, 1e-4 * e_n / e_t) << "texel " << i / K;
   }
 }
@@ -128,7 +128,7 @@ TEST(IndirectAudit, OnePhotonsFluxGoesWhereTheAuditSays) {
     p.flux = {1.0f, 0.5f, 0.25f};
     return p;
   };
-  const double phi = mean3(photon({}).flux);
+  const double phi = channel_mean(photon({}).flux);
   lighting.splat_photons(camera, {photon({0.1f, 0.0f, -0.1f})});
   SplatAudit a = lighting.audit_splat(camera);
   EXPECT_NEAR(a.tangent_all, phi, 0.01 * phi);

@@ -12,7 +12,7 @@
 namespace ldm {
 namespace {
 
-double mean3(glm::vec3 v) { return (double(v.x) + v.y + v.z) / 3.0; }
+double flux_mean(glm::vec3 v) { return (double(v.x) + v.y + v.z) / 3.0; }
 
 // What the pass's light G-buffer holds at GL texel (x, y) (row 0 at the bottom).
 struct LightTexel {
@@ -85,7 +85,7 @@ TEST(IndirectFlux, ClosedSphereBookkeeping) {
       phi1[i] = texel_flux(scene.light, frame, x, y, r_light, nullptr);
       for (int ch = 0; ch < 3; ++ch)
         ASSERT_NEAR(tally[K * i][ch], phi1[i][ch], 1e-3 * phi1[i][ch] + 1e-12) << x << "," << y;
-      primary_total += mean3(phi1[i]);
+      primary_total += flux_mean(phi1[i]);
       // Flux into the secondaries: rho * Phi1 * 2/N * sum over the views of |cos|.
       double cos_sum = 0;
       for (const auto& view : views) cos_sum += std::abs(glm::dot(view.forward, glm::vec3(t.normal)));
@@ -95,8 +95,8 @@ TEST(IndirectFlux, ClosedSphereBookkeeping) {
     }
   EXPECT_EQ(primaries, c.primary);
   // The texels' flux is a midpoint quadrature of the spot's closed-form flux.
-  EXPECT_NEAR(primary_total, mean3(spot_radiant_flux(scene.light)),
-              0.01 * mean3(spot_radiant_flux(scene.light)));
+  EXPECT_NEAR(primary_total, flux_mean(spot_radiant_flux(scene.light)),
+              0.01 * flux_mean(spot_radiant_flux(scene.light)));
 
   // Each stored photon: rho * Phi1 * 2 |cos(n1, forward_v)| / N of its texel and view, and
   // it went along the side of the view axis that lies in the hit's hemisphere.
@@ -113,7 +113,7 @@ TEST(IndirectFlux, ClosedSphereBookkeeping) {
     // float rounding, amplified where the falloff's smoothstep is steep near the cone's edge
     for (int ch = 0; ch < 3; ++ch) ASSERT_NEAR(p.flux[ch], expected[ch], 1e-3 * expected[ch]);
     ASSERT_GT(glm::length(glm::cross(p.du_x, p.dv_x)), 0.0f);
-    stored_total += mean3(p.flux);
+    stored_total += flux_mean(p.flux);
   }
   // Reflected once, a closed sphere of albedo rho sends rho * Phi on (minus what escaped).
   const double rho = 0.5;

@@ -28,7 +28,7 @@ Image gtao_image(const Scene& scene, int size, std::map<std::string, std::string
 }
 
 // Where pixel (x, y)'s primary ray (y = 0 the top row) meets the floor y = 0.
-glm::dvec3 floor_point(const Scene& scene, int x, int y, int size) {
+glm::dvec3 gtao_floor_point(const Scene& scene, int x, int y, int size) {
   const CameraFrame camera = camera_frame(scene.camera, size, size);
   const glm::dvec3 d(camera.ray_direction(x, y, size, size));
   const glm::dvec3 eye(camera.eye);
@@ -72,7 +72,7 @@ WallError wall_error(const Scene& scene, const Image& image, int size) {
   double sum = 0;
   for (int y = 0; y < size; ++y)
     for (int x = 0; x < size; ++x) {
-      const glm::dvec3 p = floor_point(scene, x, y, size);
+      const glm::dvec3 p = gtao_floor_point(scene, x, y, size);
       if (p.x < 0.05 || p.x > 1.2 || std::abs(p.z) > 2.0) continue;
       // The wall within d_max of p: a half disc of radius sqrt(d_max^2 - a^2) on the wall.
       const double reach = std::sqrt(std::max(0.0, 1.0 - p.x * p.x));

@@ -189,7 +189,7 @@ TEST(RtaoGpu, ErrorBeyondTheReferenceNoiseFallsAsOneOverK) {
 constexpr test::AoConvergence kGpuConvergence{1e-5, 0.5};
 
 // Where pixel (x, y)'s primary ray meets the floor y = 0.
-glm::dvec3 floor_point(const Scene& scene, int x, int y, int size) {
+glm::dvec3 rtao_floor_point(const Scene& scene, int x, int y, int size) {
   const CameraFrame camera = camera_frame(scene.camera, size, size);
   const glm::dvec3 d(camera.ray_direction(x, y, size, size));
   const glm::dvec3 eye(camera.eye);
@@ -215,14 +215,14 @@ TEST(RtaoGpu, ConvergesToTheClosedFormsAtLargeK) {
     const Scene scene = generate_scene("parallel-planes", {{"half_size", w}, {"attenuated", false}}, "test");
     const double h = 1.0 - kRayOffsetUlps * 1.1920928955078125e-7 * w;
     test::expect_ao_converged(rtao_gpu_run(scene, size, {{"spp", std::to_string(k)}}).image, k, kGpuConvergence, [&](int x, int y) {
-      const glm::dvec3 p = floor_point(scene, x, y, size);
+      const glm::dvec3 p = rtao_floor_point(scene, x, y, size);
       return test::square_ceiling_ao(p.x, p.z, w, h);
     });
   }
   {
     const Scene scene = generate_scene("wall", {{"d_max", 1.0}}, "test");
     test::expect_ao_converged(rtao_gpu_run(scene, size, {{"spp", std::to_string(k)}}).image, k, kGpuConvergence, [&](int x, int y) {
-      return test::wall_ao(floor_point(scene, x, y, size).x, 1.0);
+      return test::wall_ao(rtao_floor_point(scene, x, y, size).x, 1.0);
     });
   }
 }

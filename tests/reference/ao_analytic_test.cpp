@@ -24,7 +24,7 @@
 namespace ldm {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+constexpr double kPiAo = std::numbers::pi;
 constexpr int kSize = 64;
 constexpr uint32_t kSppPerHalf = 512;
 
@@ -55,14 +55,14 @@ TEST(AoClosedForms, WallMatchesQuadrature) {
     const int ns = 2000, nphi = 4000;  // midpoint rule over s in (0, 1), φ in (-π, π)
     double sum = 0.0;
     for (int j = 0; j < nphi; ++j) {
-      const double c = std::cos(-kPi + (j + 0.5) * 2.0 * kPi / nphi);
+      const double c = std::cos(-kPiAo + (j + 0.5) * 2.0 * kPiAo / nphi);
       for (int i = 0; i < ns; ++i) {
         const double s = (i + 0.5) / ns;
         const double v = c <= 0.0 ? 1.0 : std::pow(std::min(k / (s * c), 1.0), 2.0);
         sum += s * v;
       }
     }
-    sum *= (1.0 / ns) * (2.0 * kPi / nphi) / kPi;
+    sum *= (1.0 / ns) * (2.0 * kPiAo / nphi) / kPiAo;
     EXPECT_NEAR(wall_ao(k, 1.0), sum, 1e-4) << "kappa " << k;
   }
 }
@@ -76,7 +76,7 @@ TEST(AoClosedForms, SquareCeilingMatchesQuadrature) {
     const int n = 200000;
     double occluded = 0.0;
     for (int j = 0; j < n; ++j) {
-      const double phi = (j + 0.5) * 2.0 * kPi / n;
+      const double phi = (j + 0.5) * 2.0 * kPiAo / n;
       const double dx = std::cos(phi), dz = std::sin(phi);
       const double rx = dx > 0 ? (W - px) / dx : dx < 0 ? (W + px) / -dx : INFINITY;
       const double rz = dz > 0 ? (W - pz) / dz : dz < 0 ? (W + pz) / -dz : INFINITY;

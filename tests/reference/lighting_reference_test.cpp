@@ -24,7 +24,7 @@
 namespace ldm {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+constexpr double kPiLight = std::numbers::pi;
 using dvec3 = glm::dvec3;
 
 // ---- the spot light, written out again in double precision ----------------------------------
@@ -37,8 +37,8 @@ double smoothstep(double e0, double e1, double x) {
 // falloff as spot_light.h specifies it, for the unit direction w leaving the light.
 double falloff(const SpotLight& light, dvec3 w) {
   const double c = glm::dot(glm::normalize(dvec3(light.direction)), w);
-  const double c_in = std::cos(light.inner_angle_deg * kPi / 180.0);
-  const double c_out = std::cos(light.outer_angle_deg * kPi / 180.0);
+  const double c_in = std::cos(light.inner_angle_deg * kPiLight / 180.0);
+  const double c_out = std::cos(light.outer_angle_deg * kPiLight / 180.0);
   if (c_in <= c_out) return c >= c_in ? 1.0 : 0.0;
   return smoothstep(c_out, c_in, c);
 }
@@ -55,7 +55,7 @@ SpotLight make_light(glm::vec3 direction, float inner, float outer) {
 TEST(SpotLight, IntensityIsFullInsideTheInnerConeZeroOutsideTheOuterAndSmoothBetween) {
   const SpotLight light = make_light({0, -1, 0}, 30, 45);
   auto at_angle = [&](double degrees) {
-    const double a = degrees * kPi / 180.0;
+    const double a = degrees * kPiLight / 180.0;
     return spot_radiant_intensity(light, glm::vec3(std::sin(a), -std::cos(a), 0.0));
   };
   EXPECT_EQ(at_angle(0), light.intensity);
@@ -63,7 +63,7 @@ TEST(SpotLight, IntensityIsFullInsideTheInnerConeZeroOutsideTheOuterAndSmoothBet
   EXPECT_EQ(at_angle(45.1), glm::vec3(0.0f));
   EXPECT_EQ(at_angle(170), glm::vec3(0.0f));
   // Halfway in cos(angle) between the two cones the smoothstep is exactly 1/2.
-  const double mid = std::acos(0.5 * (std::cos(kPi / 6) + std::cos(kPi / 4))) * 180.0 / kPi;
+  const double mid = std::acos(0.5 * (std::cos(kPiLight / 6) + std::cos(kPiLight / 4))) * 180.0 / kPiLight;
   EXPECT_NEAR(at_angle(mid).y, 0.5 * light.intensity.y, 1e-5);
   // A cone with no soft edge is a step.
   const SpotLight hard = make_light({0, -1, 0}, 40, 40);
@@ -77,16 +77,16 @@ glm::dvec3 flux_by_quadrature(const SpotLight& light) {
   constexpr int kTheta = 2000, kPhi = 2000;
   dvec3 sum(0.0);
   for (int i = 0; i < kTheta; ++i) {
-    const double theta = (i + 0.5) * kPi / kTheta;
+    const double theta = (i + 0.5) * kPiLight / kTheta;
     double ring = 0.0;
     for (int j = 0; j < kPhi; ++j) {
-      const double phi = (j + 0.5) * 2.0 * kPi / kPhi;
+      const double phi = (j + 0.5) * 2.0 * kPiLight / kPhi;
       ring += falloff(light, dvec3(std::sin(theta) * std::cos(phi), std::cos(theta),
                                    std::sin(theta) * std::sin(phi)));
     }
     sum += dvec3(light.intensity) * ring * std::sin(theta);
   }
-  return sum * (kPi / kTheta) * (2.0 * kPi / kPhi);
+  return sum * (kPiLight / kTheta) * (2.0 * kPiLight / kPhi);
 }
 
 TEST(SpotLight, FluxEqualsTheIntegralOfTheIntensityOverTheSphere) {
@@ -209,7 +209,7 @@ TEST(LightingReference, DirectLightOnAPlaneIsTheClosedFormPerPixel) {
         const double r2 = glm::dot(to_light, to_light);
         const dvec3 l = to_light / std::sqrt(r2);
         const double f = falloff(scene.light, -l);
-        dvec3 expected = albedo / kPi * dvec3(scene.light.intensity) * f * l.y / r2;
+        dvec3 expected = albedo / kPiLight * dvec3(scene.light.intensity) * f * l.y / r2;
         if (occluder) {
           // Where the segment to the light crosses y = 1.5, inside the square or near its
           // edge (skipped: rounding decides there).
@@ -225,7 +225,7 @@ TEST(LightingReference, DirectLightOnAPlaneIsTheClosedFormPerPixel) {
         if (f > 0) ++lit;
         // Float rounding of cos(angle) (~1e-7, and the shift to the scene-centred frame)
         // moves the steep soft edge by up to ~1e-5 of the peak (I/(π h²) ~ 0.05 here).
-        const dvec3 peak = albedo / kPi * dvec3(scene.light.intensity) / (light.y * light.y);
+        const dvec3 peak = albedo / kPiLight * dvec3(scene.light.intensity) / (light.y * light.y);
         for (int c = 0; c < 3; ++c)
           EXPECT_NEAR(result.image.at(x, y, c), expected[c], 1e-5 * expected[c] + 3e-5 * peak[c])
               << "pixel " << x << "," << y << " channel " << c << (occluder ? " (occluder)" : "");
@@ -249,26 +249,26 @@ TEST(LightingReference, DirectLightOnAPlaneIsTheClosedFormPerPixel) {
 double single_bounce_on_wall(const Scene& scene, double wy, double wz, double floor_albedo,
                              double wall_albedo, int refinement = 1) {
   const dvec3 light(scene.light.position);
-  const double radius = light.y * std::tan(scene.light.outer_angle_deg * kPi / 180.0);
+  const double radius = light.y * std::tan(scene.light.outer_angle_deg * kPiLight / 180.0);
   const int kRadial = 100 * refinement, kAngular = 128 * refinement;
   double sum = 0.0;
   for (int i = 0; i < kRadial; ++i) {
     const double rho = (i + 0.5) * radius / kRadial;
     for (int j = 0; j < kAngular; ++j) {
-      const double phi = (j + 0.5) * 2.0 * kPi / kAngular;
+      const double phi = (j + 0.5) * 2.0 * kPiLight / kAngular;
       const dvec3 q(light.x + rho * std::cos(phi), 0.0, light.z + rho * std::sin(phi));
       const dvec3 from_light = q - light;
       const double r2 = glm::dot(from_light, from_light);
       const dvec3 w = from_light / std::sqrt(r2);
       const double floor_radiance =
-          floor_albedo / kPi * scene.light.intensity.x * falloff(scene.light, w) * (-w.y) / r2;
+          floor_albedo / kPiLight * scene.light.intensity.x * falloff(scene.light, w) * (-w.y) / r2;
       const dvec3 to_floor = q - dvec3(0.0, wy, wz);
       const double d2 = glm::dot(to_floor, to_floor);
       const double cos_wall = to_floor.x / std::sqrt(d2), cos_floor = wy / std::sqrt(d2);
       sum += floor_radiance * cos_wall * cos_floor / d2 * rho;
     }
   }
-  return wall_albedo / kPi * sum * (radius / kRadial) * (2.0 * kPi / kAngular);
+  return wall_albedo / kPiLight * sum * (radius / kRadial) * (2.0 * kPiLight / kAngular);
 }
 
 TEST(LightingReference, SingleBounceOnAWallMatchesAnIndependentQuadrature) {
@@ -346,10 +346,10 @@ TEST(LightingReference, SpotBounceRefusesALightWhoseConeReachesTheWall) {
 // The tessellation's own error (that closed form against the ideal sphere's, computed here
 // too) is the budget of the comparisons with the ideal sphere (docs/measured/indirect.md).
 double ideal_single_bounce(const Scene& scene, double rho, double radius) {
-  const double phi = 2.0 * kPi * scene.light.intensity.x *
-                     (1.0 - 0.5 * (std::cos(scene.light.inner_angle_deg * kPi / 180.0) +
-                                   std::cos(scene.light.outer_angle_deg * kPi / 180.0)));
-  return rho / kPi * rho * phi / (4.0 * kPi * radius * radius);
+  const double phi = 2.0 * kPiLight * scene.light.intensity.x *
+                     (1.0 - 0.5 * (std::cos(scene.light.inner_angle_deg * kPiLight / 180.0) +
+                                   std::cos(scene.light.outer_angle_deg * kPiLight / 180.0)));
+  return rho / kPiLight * rho * phi / (4.0 * kPiLight * radius * radius);
 }
 
 // Mean and rms of the relative deviation of `image` (channel 0, covered pixels) from `expected`.

@@ -25,7 +25,7 @@ Outcome with_faults(const std::string& args, const fs::path& dir, long at, bool 
   return test::ldmbench(args, environment);
 }
 
-std::vector<std::string> lines_of(const std::string& text) {
+std::vector<std::string> log_lines(const std::string& text) {
   std::vector<std::string> lines;
   std::istringstream in(text);
   for (std::string line; std::getline(in, line);) lines.push_back(line);
@@ -45,7 +45,7 @@ Figures fault_every_call(const std::string& sweep, bool sticky) {
   const fs::path log = dir / "calls.log";
   const Outcome clean = with_faults(sweep + " --out " + (dir / "clean" / "out").string(), dir / "clean", 0, false, log);
   EXPECT_EQ(clean.status, 0) << clean.output;
-  const std::vector<std::string> calls = lines_of(test::read_text(log.string()));
+  const std::vector<std::string> calls = log_lines(test::read_text(log.string()));
   const FolderState reference = inspect_folder(dir / "clean" / "out");
   EXPECT_TRUE(reference.problems.empty()) << joined(reference.problems);
   f.points = calls.size();

@@ -42,7 +42,7 @@ TEST(ReliabilityRecords, MergeRefusesAColumnOutsideTheSchema) {
 }
 
 // The journal's lines, one string each.
-std::vector<std::string> lines_of(const std::string& text) {
+std::vector<std::string> split_lines(const std::string& text) {
   std::vector<std::string> lines;
   std::istringstream in(text);
   for (std::string line; std::getline(in, line);) lines.push_back(line);
@@ -74,7 +74,7 @@ TEST(ReliabilityRecords, MergeChecksEveryRecordAgainstItsOwnBuildsSchema) {
   const std::string other = std::regex_replace(test::read_text((run / "records.jsonl").string()),
                                                std::regex("\"git_commit\":\"[^\"]*\""),
                                                "\"git_commit\":\"another-build\"");
-  const std::vector<std::string> lines = lines_of(other);
+  const std::vector<std::string> lines = split_lines(other);
   std::vector<size_t> record_lines;
   for (size_t i = 0; i < lines.size(); ++i)
     if (lines[i].rfind("{\"record\":", 0) == 0) record_lines.push_back(i);

@@ -67,7 +67,7 @@ class StructureConformance : public ::testing::TestWithParam<std::string> {
   const std::string& structure() const { return GetParam(); }
 };
 
-double quantum_of(const LdmStructure& s, const LdmFixture& f) {
+double depth_quantum(const LdmStructure& s, const LdmFixture& f) {
   return s.depth_quantum(f.views.views[0]);
 }
 
@@ -88,7 +88,7 @@ void expect_lists_equal_psppsll(const std::string& name, const std::string& scen
   EXPECT_EQ(integrity.unsorted_pixels, 0u) << what;
   EXPECT_EQ(integrity.overlong_pixels, 0u) << what;
   const auto lists = test::read_all_views(*s, f);
-  const double quantum = quantum_of(*s, f);
+  const double quantum = depth_quantum(*s, f);
   if (quantum == 0.0) {
     EXPECT_EQ(integrity.checksum, reference.integrity.checksum) << what;
     test::expect_bit_identical_lists(reference.lists, lists, what);
@@ -147,7 +147,7 @@ TEST_P(StructureConformance, LossIsCountedExactlyAndJudgedLossy) {
   EXPECT_EQ(integrity.unsorted_pixels, 0u);
   const auto lists = test::read_all_views(*s, f);
   EXPECT_EQ(test::missing_fragments(reference.lists, lists), int64_t(stats.fragments_lost));
-  EXPECT_EQ(test::pixels_not_a_subsequence(reference.lists, lists, quantum_of(*s, f)), 0u);
+  EXPECT_EQ(test::pixels_not_a_subsequence(reference.lists, lists, depth_quantum(*s, f)), 0u);
   BuildHealth health(f.census);
   health.observe(stats, integrity);
   EXPECT_EQ(health.status(), BuildStatus::Lossy) << health.detail();
@@ -164,7 +164,7 @@ TEST_P(StructureConformance, AoEqualsAoThroughPsppsll) {
   const Image expected = test::render_ao(*reference, f, 64);
   const Image actual = test::render_ao(*s, f, 64);
   ASSERT_TRUE(actual.same_shape(expected));
-  const double q = quantum_of(*s, f);
+  const double q = depth_quantum(*s, f);
   const double tolerance =
       q == 0.0 ? 0.0 : 2 * f.scene.ao.falloff_exponent * q / f.scene.ao.d_max + 4 * 1.2e-7 * 2.0;
   uint64_t beyond = 0, shaded = 0;

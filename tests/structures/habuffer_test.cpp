@@ -16,7 +16,7 @@ namespace {
 using test::LdmFixture;
 using test::ViewLists;
 
-double quantum_of(const LdmStructure& s, const LdmFixture& f) {
+double habuffer_depth_quantum(const LdmStructure& s, const LdmFixture& f) {
   return s.depth_quantum(f.views.views[0]);
 }
 
@@ -33,7 +33,7 @@ void expect_matches_psppsll(const std::string& scene, uint32_t n, uint32_t r,
   EXPECT_EQ(test::stats_counter(stats, "aborted_insertions"), 0.0);
   // Every pixel needs ages 0 .. n-1 at least.
   EXPECT_GE(test::stats_counter(stats, "max_age_used") + 1, double(f.census.max_depth_complexity));
-  const double quantum = quantum_of(*ha, f);
+  const double quantum = habuffer_depth_quantum(*ha, f);
   if (test::sizing_value(*ha, "key_bits") == "32") {
     // Half a power-of-two step no coarser than twice the 24-bit precision of the range.
     const double precision = f.views.views[0].depth_range / 16777215.0;
@@ -117,7 +117,7 @@ void expect_exact_loss(const LdmFixture& f, const test::PsppsllReference& refere
   const LdmIntegrity integrity = LdmInspector(*ha, *f.inputs).check();
   EXPECT_EQ(integrity.fragments, stats.fragments_stored);
   EXPECT_EQ(integrity.unsorted_pixels, 0u);
-  EXPECT_EQ(test::pixels_not_a_subsequence(reference.lists, lists, quantum_of(*ha, f)), 0u);
+  EXPECT_EQ(test::pixels_not_a_subsequence(reference.lists, lists, habuffer_depth_quantum(*ha, f)), 0u);
   std::printf(
       "habuffer lossy (%s): lost %llu of %llu (at least %llu)\n",
       [&] {

@@ -51,7 +51,7 @@ std::map<std::string, std::string> buffers_of(const std::string& text) {
   return buffers;
 }
 
-std::string write_sweep(const fs::path& dir, const std::string& name, const std::string& text) {
+std::string write_sweep_file(const fs::path& dir, const std::string& name, const std::string& text) {
   const fs::path path = dir / name;
   std::ofstream(path) << text;
   return path.string();
@@ -64,7 +64,7 @@ struct PlanAndRun {
 
 PlanAndRun plan_and_measure(const std::string& sweep_text) {
   const fs::path dir = test::make_temp_dir("ldm-memory-plan");
-  const std::string sweep = write_sweep(dir, "sweep.json", sweep_text);
+  const std::string sweep = write_sweep_file(dir, "sweep.json", sweep_text);
   const Outcome planned = ldmbench("sweep " + sweep + " --memory-plan --out " + (dir / "plan").string());
   EXPECT_EQ(planned.status, 0) << planned.output;
   const Outcome measured = ldmbench("sweep " + sweep + " --out " + (dir / "run").string());
@@ -148,7 +148,7 @@ TEST(MemoryPlanCli, PreviousFrameBytesAfterSeveralBuildsAreTheRecordedBytes) {
 TEST(MemoryPlanCli, BadInputWritesNothingAndRefusalsAreRows) {
   const fs::path dir = test::make_temp_dir("ldm-memory-plan");
   const fs::path out = dir / "plan";
-  const std::string bad = write_sweep(dir, "bad.json", R"({"axes": {"structures": ["psppsll", "foo"]}})");
+  const std::string bad = write_sweep_file(dir, "bad.json", R"({"axes": {"structures": ["psppsll", "foo"]}})");
   const Outcome unknown = ldmbench("sweep " + bad + " --memory-plan --out " + out.string());
   EXPECT_EQ(unknown.status, 2) << unknown.output;
   EXPECT_NE(unknown.output.find("bad.json: axes.structures[1]: unknown structure \"foo\""), std::string::npos)
@@ -157,7 +157,7 @@ TEST(MemoryPlanCli, BadInputWritesNothingAndRefusalsAreRows) {
 
   // A buffer over the storage block (k = 100000: 782 MiB) and a budget below the fixed
   // buffers are refused, with the run's reason; the others are planned.
-  const std::string sweep = write_sweep(
+  const std::string sweep = write_sweep_file(
       dir, "refused.json",
       R"({"axes": {"structures": ["ppfla", "dfbuffer"], "sizing": ["oracle", "budget"],)"
       R"("sizing_budget_mib": 0.001, "ppfla:k": [4, 100000], )" + kSettings);

@@ -66,7 +66,7 @@ json settings_with(const RunSetting& s, const json& value) {
   return settings;
 }
 
-std::string write_sweep(const std::string& dir, const json& settings) {
+std::string write_settings_sweep(const std::string& dir, const json& settings) {
   const std::string path = dir + "/sweep.json";
   std::ofstream(path) << json{{"axes", {{"scenes", "cornell"}}}, {"settings", settings}}.dump(2);
   return path;
@@ -106,7 +106,7 @@ TEST(RunSettingTable, EverySettingRoundTripsSweepFileRunSettingsCommandLine) {
     SCOPED_TRACE(setting.path);
     const json value = other_value(setting, run_setting_json(setting, RunSettings()));
     // Sweep file -> RunSettings.
-    const SweepPlan plan = plan_sweep(write_sweep(dir, settings_with(setting, value)), RunSettings());
+    const SweepPlan plan = plan_sweep(write_settings_sweep(dir, settings_with(setting, value)), RunSettings());
     ASSERT_FALSE(plan.configurations.empty());
     const RunSettings& from_file = plan.configurations.front().settings;
     EXPECT_TRUE(same(run_setting_json(setting, from_file), value))

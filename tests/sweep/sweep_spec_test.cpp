@@ -162,7 +162,7 @@ TEST(SweepSpec, ShardIsIndexOverCount) {
     EXPECT_THROW(parse_shard(bad), UserError) << bad;
 }
 
-std::string write_sweep(const std::string& dir, const std::string& text) {
+std::string write_sweep_text(const std::string& dir, const std::string& text) {
   const std::string path = dir + "/sweep.json";
   std::ofstream(path) << text;
   return path;
@@ -171,7 +171,7 @@ std::string write_sweep(const std::string& dir, const std::string& text) {
 TEST(SweepPlan, CombinationsAConfigurationDoesNotUseAreOne) {
   const std::string dir = test::make_temp_dir("ldm-sweep");
   // HBAO reads no structure, N or ppfla:k; psppsll reads no ppfla:k.
-  const SweepPlan plan = plan_sweep(write_sweep(dir, R"({"axes": {
+  const SweepPlan plan = plan_sweep(write_sweep_text(dir, R"({"axes": {
       "passes": ["ao", "hbao"], "structures": ["psppsll", "ppfla"], "views": [4, 8],
       "ppfla:k": [2, 4]}})"), RunSettings());
   EXPECT_EQ(plan.combinations, 16u);
@@ -189,7 +189,7 @@ TEST(SweepPlan, CombinationsAConfigurationDoesNotUseAreOne) {
 
 TEST(SweepPlan, VaryingImageSizeOrFramesNamesThemInTheId) {
   const std::string dir = test::make_temp_dir("ldm-sweep");
-  const SweepPlan plan = plan_sweep(write_sweep(dir, R"({"axes": {"image_size": ["32x32", 48],
+  const SweepPlan plan = plan_sweep(write_sweep_text(dir, R"({"axes": {"image_size": ["32x32", 48],
       "frames": 2}})"), RunSettings());
   ASSERT_EQ(plan.configurations.size(), 2u);
   EXPECT_EQ(plan.configurations[0].config.id(), "cornell-psppsll-ao-n32-r128-plane-prevframe-img32x32");
@@ -197,7 +197,7 @@ TEST(SweepPlan, VaryingImageSizeOrFramesNamesThemInTheId) {
   EXPECT_EQ(plan.configurations[1].settings.height, 48);
   EXPECT_EQ(plan.configurations[1].settings.frames, 2);
   // Held fixed, they are settings and the ids are those of `ldmbench run`.
-  const SweepPlan fixed = plan_sweep(write_sweep(dir, R"({"axes": {"image_size": "32x24"}})"), RunSettings());
+  const SweepPlan fixed = plan_sweep(write_sweep_text(dir, R"({"axes": {"image_size": "32x24"}})"), RunSettings());
   EXPECT_EQ(fixed.configurations[0].config.id(), "cornell-psppsll-ao-n32-r128-plane-prevframe");
   EXPECT_EQ(fixed.configurations[0].settings.height, 24);
 }
@@ -232,7 +232,7 @@ TEST(SweepPlan, SweepFileOfRunSettingsPlansTheSameConfigurations) {
   s.precision.clock_warmup_seconds = 0.25;
 
   const std::string dir = test::make_temp_dir("ldm-sweep");
-  const SweepPlan plan = plan_sweep(write_sweep(dir, sweep_file_json(s, "round trip")), RunSettings());
+  const SweepPlan plan = plan_sweep(write_sweep_text(dir, sweep_file_json(s, "round trip")), RunSettings());
   std::vector<std::string> planned, expected;
   for (const auto& p : plan.configurations) planned.push_back(p.config.id());
   for (const auto& c : expand_configurations(s)) expected.push_back(c.id());
@@ -260,7 +260,7 @@ TEST(SweepPlan, ValuesAreCheckedByTheirOwnersAtTheirPath) {
   const std::string dir = test::make_temp_dir("ldm-sweep");
   auto error = [&](const std::string& text) {
     try {
-      plan_sweep(write_sweep(dir, text), RunSettings());
+      plan_sweep(write_sweep_text(dir, text), RunSettings());
     } catch (const UserError& e) {
       return std::string(e.what());
     }
@@ -286,7 +286,7 @@ TEST(SweepPlan, SceneFilesAreFoundBesideTheSweepFile) {
   const std::string dir = test::make_temp_dir("ldm-sweep");
   std::filesystem::copy_file(std::string(LDM_TEST_SOURCE_DIR) + "/../scenes/cornell.json",
                              dir + "/box.json");
-  const SweepPlan plan = plan_sweep(write_sweep(dir, R"({"axes": {"scenes": "box.json"}})"), RunSettings());
+  const SweepPlan plan = plan_sweep(write_sweep_text(dir, R"({"axes": {"scenes": "box.json"}})"), RunSettings());
   ASSERT_EQ(plan.configurations.size(), 1u);
   EXPECT_EQ(plan.configurations[0].config.scene, dir + "/box.json");
 }

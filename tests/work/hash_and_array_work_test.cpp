@@ -36,7 +36,7 @@ using work_test::count;
 using work_test::over_pixels;
 using work_test::as_number;
 
-uint64_t pixels(uint32_t views, uint32_t resolution) { return uint64_t(views) * resolution * resolution; }
+uint64_t pixel_count(uint32_t views, uint32_t resolution) { return uint64_t(views) * resolution * resolution; }
 
 // Every counter the schema declares deterministic equal between two runs; the arrival-
 // dependent ones present in both.
@@ -54,7 +54,7 @@ void expect_deterministic_equal(const Counted& a, const Counted& b, const std::s
   EXPECT_GE(compared, 10u) << what;
 }
 
-bool declared_deterministic(const std::string& column) {
+bool hash_declared_deterministic(const std::string& column) {
   const ColumnSpec* spec = find_column(column);
   return spec && spec->deterministic;
 }
@@ -70,7 +70,7 @@ TEST(HashAndArrayWork, PpflaCountsWhatTheCensusAndTheTraceSay) {
   EXPECT_EQ(c["work_construct_bytes_stored_counts"], 4 * fragments);
   EXPECT_EQ(c["work_construct_bytes_stored_entries"], 4 * fragments);
   // The sort: one invocation per pixel in groups of 64, one list per pixel.
-  const double all_pixels = double(pixels(4, 32));
+  const double all_pixels = double(pixel_count(4, 32));
   EXPECT_GE(c["work_sort_invocations"], all_pixels);
   EXPECT_EQ(std::fmod(c["work_sort_invocations"], 64.0), 0.0);
   EXPECT_EQ(c["work_sort_bytes_loaded_counts"], 4 * all_pixels);
@@ -99,7 +99,7 @@ TEST(HashAndArrayWork, PsppflaCountsWhatTheCensusAndTheTraceSay) {
   // atomicMin whatever the order (k from the census: nothing dropped).
   const double walked = over_pixels(c, [](double n) { return n * (n + 1) / 2; });
   EXPECT_EQ(c["work_construct_atomic_min"], walked);
-  EXPECT_TRUE(declared_deterministic("work_construct_atomic_min"));
+  EXPECT_TRUE(hash_declared_deterministic("work_construct_atomic_min"));
   EXPECT_EQ(c["work_construct_bytes_loaded_entries"], 4 * walked);
   EXPECT_EQ(c["work_construct_bytes_stored_entries"], 4 * walked);
   EXPECT_EQ(c["work_construct_fragments_dropped"], 0);
@@ -109,7 +109,7 @@ TEST(HashAndArrayWork, PsppflaCountsWhatTheCensusAndTheTraceSay) {
   EXPECT_LE(c["work_construct_slots_shifted_max"], c.m.census.max_depth_complexity - 1.0);
   EXPECT_DOUBLE_EQ(c["work_construct_slots_shifted_mean"] * fragments,
                    c["work_construct_slots_shifted_total"]);
-  EXPECT_FALSE(declared_deterministic("work_construct_slots_shifted_total"));
+  EXPECT_FALSE(hash_declared_deterministic("work_construct_slots_shifted_total"));
   // Queries: a slot per entry read, plus the empty one that ends a walk that reached it.
   EXPECT_GE(c["work_ao_slots_scanned_total"], c["work_ao_entries_read_total"]);
   EXPECT_EQ(c["work_ao_slots_scanned_max"], 1);
@@ -135,14 +135,14 @@ TEST(HashAndArrayWork, HaBufferCountsWhatItsInsertionsAndTheTraceSay) {
   EXPECT_EQ(c["work_construct_bytes_stored_table"], 4 * probes);
   EXPECT_EQ(c["work_construct_bytes_loaded_age_table"], 4 * (fragments + evictions));
   EXPECT_EQ(c["work_construct_bytes_loaded_ha_offsets"], 4 * (probes + evictions));
-  EXPECT_FALSE(declared_deterministic("work_construct_hash_probes_total"));
+  EXPECT_FALSE(hash_declared_deterministic("work_construct_hash_probes_total"));
   // Queries: every entry the trace read was found by at least one probe.
   EXPECT_GE(c["work_ao_hash_probes_total"], c["work_ao_entries_read_total"]);
   EXPECT_GE(c["work_ao_hash_probes_max"], 1);
   EXPECT_EQ(c["work_ao_bytes_loaded_table"], 4 * c["work_ao_hash_probes_total"]);
   EXPECT_EQ(c["work_ao_bytes_loaded_ha_offsets"], 4 * c["work_ao_hash_probes_total"]);
   EXPECT_LE(c["work_ao_bytes_loaded_age_table"], 4 * 4 * c["work_ao_covered_pixels"]);
-  EXPECT_TRUE(declared_deterministic("work_ao_hash_probes_total"));
+  EXPECT_TRUE(hash_declared_deterministic("work_ao_hash_probes_total"));
 }
 
 TEST(HashAndArrayWork, DeterministicCountersAreEqualInTwoRuns) {

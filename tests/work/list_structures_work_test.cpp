@@ -37,9 +37,9 @@ using work_test::count;
 using work_test::over_pixels;
 using work_test::as_number;
 
-double pixels(uint32_t views, uint32_t resolution) { return double(views) * resolution * resolution; }
+double pixel_count_f(uint32_t views, uint32_t resolution) { return double(views) * resolution * resolution; }
 
-bool declared_deterministic(const std::string& column) {
+bool list_declared_deterministic(const std::string& column) {
   const ColumnSpec* spec = find_column(column);
   return spec && spec->deterministic;
 }
@@ -58,7 +58,7 @@ void expect_query_counts(const Counted& c) {
   EXPECT_GE(queries, visited);
   EXPECT_LE(queries - visited, 4 * c["work_ao_covered_pixels"]);
   for (const std::string column : {"work_ao_nodes_visited_total", "work_ao_nodes_visited_max"})
-    EXPECT_TRUE(declared_deterministic(column)) << column;
+    EXPECT_TRUE(list_declared_deterministic(column)) << column;
 }
 
 TEST(ListStructuresWork, PsppsllCountsWhatTheCensusAndTheTraceSay) {
@@ -83,8 +83,8 @@ TEST(ListStructuresWork, PsppsllCountsWhatTheCensusAndTheTraceSay) {
   for (const std::string column : {"work_construct_atomic_cas", "work_construct_atomic_cas_failed",
                                    "work_construct_insert_steps_total", "work_construct_bytes_loaded_nodes",
                                    "work_construct_bytes_stored_nodes_relinked"})
-    EXPECT_FALSE(declared_deterministic(column)) << column;
-  EXPECT_TRUE(declared_deterministic("work_construct_bytes_stored_nodes"));
+    EXPECT_FALSE(list_declared_deterministic(column)) << column;
+  EXPECT_TRUE(list_declared_deterministic("work_construct_bytes_stored_nodes"));
   expect_query_counts(c);
   // Bytes where they are read: a head per begin, a next index per next, a depth per entry read.
   const double queries = c["work_ao_nodes_visited_total"] / c["work_ao_nodes_visited_mean"];
@@ -100,7 +100,7 @@ TEST(ListStructuresWork, PpsllCountsWhatTheCensusAndTheTraceSay) {
   EXPECT_EQ(c["work_construct_atomic_exchange"], fragments);
   EXPECT_EQ(c["work_construct_bytes_stored_nodes"], 8 * fragments);  // fragments x node size
   // The sort: one invocation per pixel in groups of 64, one list per pixel.
-  const double all_pixels = pixels(4, 32);
+  const double all_pixels = pixel_count_f(4, 32);
   EXPECT_GE(c["work_sort_invocations"], all_pixels);
   EXPECT_EQ(std::fmod(c["work_sort_invocations"], 64.0), 0.0);
   EXPECT_EQ(c["work_sort_list_length_total"], fragments);
@@ -117,17 +117,17 @@ TEST(ListStructuresWork, PpsllCountsWhatTheCensusAndTheTraceSay) {
   EXPECT_GE(c["work_sort_comparisons"], over_pixels(c, [](double n) { return n > 1 ? n - 1 : 0; }));
   EXPECT_LE(c["work_sort_comparisons"], over_pixels(c, [](double n) { return n * (n - 1) / 2; }));
   EXPECT_GE(c["work_sort_moves"], over_pixels(c, [](double n) { return n > 1 ? n - 1 : 0; }));
-  EXPECT_TRUE(declared_deterministic("work_sort_bytes_loaded_nodes"));
-  EXPECT_TRUE(declared_deterministic("work_sort_list_length_total"));
-  EXPECT_FALSE(declared_deterministic("work_sort_comparisons"));
-  EXPECT_FALSE(declared_deterministic("work_sort_moves"));
+  EXPECT_TRUE(list_declared_deterministic("work_sort_bytes_loaded_nodes"));
+  EXPECT_TRUE(list_declared_deterministic("work_sort_list_length_total"));
+  EXPECT_FALSE(list_declared_deterministic("work_sort_comparisons"));
+  EXPECT_FALSE(list_declared_deterministic("work_sort_moves"));
   expect_query_counts(c);
 }
 
 TEST(ListStructuresWork, DfBufferCountsWhatTheCensusAndTheScanSay) {
   const Counted c = count("dfbuffer", 4, 32);
   const double fragments = c.fragments;
-  const double all_pixels = pixels(4, 32);
+  const double all_pixels = pixel_count_f(4, 32);
   EXPECT_EQ(c["work_count_atomic_add"], fragments);
   EXPECT_EQ(c["work_construct_atomic_add"], fragments);
   EXPECT_EQ(c["work_construct_bytes_loaded_offsets"], 8 * fragments);
@@ -166,7 +166,7 @@ TEST(ListStructuresWork, DeterministicCountersAreEqualInTwoRuns) {
     size_t compared = 0;
     for (const auto& [column, value] : a.work) {
       ASSERT_TRUE(b.work.count(column)) << structure << " " << column << " in one run only";
-      if (!declared_deterministic(column)) continue;
+      if (!list_declared_deterministic(column)) continue;
       ++compared;
       EXPECT_EQ(value, b.work.at(column)) << structure << " " << column;
     }
@@ -295,7 +295,7 @@ TEST(ListStructuresWork, InPlaceSortsCountDeterministicBytesWhateverTheArrivalOr
     EXPECT_EQ(a.work.at("work_sort_list_length_max"), double(kHotFragments)) << structure;
     size_t compared = 0;
     for (const auto& [column, value] : a.work)
-      if (declared_deterministic(column) && column.rfind("work_sort_", 0) == 0) {
+      if (list_declared_deterministic(column) && column.rfind("work_sort_", 0) == 0) {
         ++compared;
         EXPECT_EQ(value, b.work.at(column)) << structure << " " << column;
       }
