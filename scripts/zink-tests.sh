@@ -23,8 +23,10 @@ esac
 "$build/ldmbench" info | grep '^self-test' || true
 # The suites whose tests build structures or run passes in the test process itself.
 suites='ao|context|extremes|indirect|measure|passes|peers|psppsll|sizing|structures|work'
+# extremes' CPU-only cases (scene parsing, the reference far from the origin, the journal, the
+# fuzz corpus) touch no driver: test.sh and sanitize.sh run them; not a third time here.
 ctest --test-dir "$build" --output-on-failure -j "$(nproc)" --timeout 900 \
-  -R "^($suites)\\." -E 'DriverDefects\.'
+  -R "^($suites)\\." -E 'DriverDefects\.|^extremes\.(ExtremesScene|ExtremesReference|ExtremesJournal|FuzzCorpus)\.'
 echo "zink-tests: the reproducer of the known driver defect (reported, not judged):"
 if "$build/tests/test_context" --gtest_filter='DriverDefects.*' > "$XDG_RUNTIME_DIR/defects.txt" 2>&1; then
   echo "  passes: this zink has no barrier defect (docs/reference/structures.md#driver-conformance is out of date)"
