@@ -1,15 +1,19 @@
 #!/usr/bin/env bash
 # Builds the parser fuzzers (tests/fuzz/, libFuzzer from Debian's clang, ASan + UBSan) into
-# build-fuzz/ and runs each for LDM_FUZZ_RUNS inputs (default 100000) or LDM_FUZZ_SECONDS
-# seconds (default 30), whichever ends first, from the fixed seed LDM_FUZZ_SEED (default 1),
-# so that CI repeats the same search instead of failing at random on a new finding; explore
-# with another seed and more runs by hand. A crash, hang or sanitizer report is copied to
-# tests/fuzz/crashes/<target>/ and fails the script. The targets run LDM_FUZZ_JOBS at a time
-# (default: the number of cores).
+# build-fuzz/ and runs each for a fixed number of inputs from the fixed seed LDM_FUZZ_SEED
+# (default 1), so that every machine, fast or slow, searches the same inputs and CI repeats
+# the same search instead of failing at random on a new finding. The counts (below, per
+# target; LDM_FUZZ_RUNS overrides them all) are what a 2-core machine runs in about 15 s each:
+# an input of fuzz_import starts Assimp in a child process (63 inputs in 30 s), one of
+# fuzz_scene_json parses a few hundred bytes (100,000 in under 30 s). LDM_FUZZ_SECONDS
+# (default 300) only bounds a target on a far slower machine, and the script says so when a
+# target stopped at it before its count. Explore with another seed and more runs by hand. A
+# crash, hang or sanitizer report is copied to tests/fuzz/crashes/<target>/ and fails the
+# script. The targets run LDM_FUZZ_JOBS at a time (default: the number of cores).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-seconds="${LDM_FUZZ_SECONDS:-30}"
-runs="${LDM_FUZZ_RUNS:-100000}"
+seconds="${LDM_FUZZ_SECONDS:-300}"
+declare -A runs_of=([scene_json]=50000 [obj]=400 [import]=30 [sweep]=50000 [records]=5000)
 seed="${LDM_FUZZ_SEED:-1}"
 cmake -S . -B build-fuzz -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DLDMBENCH_BUILD_TESTS=OFF -DLDMBENCH_BUILD_BENCHMARKS=OFF -DLDMBENCH_FUZZ=ON > /dev/null
@@ -22,14 +26,14 @@ targets=(scene_json obj import sweep records)
 fuzz_one() {
   local target=$1 corpus="build-fuzz/corpus/$1" artifacts="build-fuzz/artifacts/$1/"
   mkdir -p "$corpus" "$artifacts"
-  (cd build-fuzz && "tests/fuzz/fuzz_$target" -max_total_time="$seconds" -runs="$runs" -seed="$seed" -timeout=10 \
+  (cd build-fuzz && "tests/fuzz/fuzz_$target" -max_total_time="$seconds" -runs="${LDM_FUZZ_RUNS:-${runs_of[$target]}}" -seed="$seed" -timeout=10 \
       -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix="../$artifacts" \
       "../$corpus" "../tests/fuzz/corpus/$target") > "build-fuzz/fuzz_$target.log" 2>&1
 }
 declare -A pid_of
 for target in "${targets[@]}"; do
   while [ "$(jobs -rp | wc -l)" -ge "$jobs" ]; do wait -n || true; done
-  echo "fuzz: $target for ${seconds}s"
+  echo "fuzz: $target for ${LDM_FUZZ_RUNS:-${runs_of[$target]}} inputs (at most ${seconds} s)"
   fuzz_one "$target" &
   pid_of[$target]=$!
 done
@@ -45,6 +49,10 @@ for target in "${targets[@]}"; do
   else
     echo "fuzz: $target"
     grep -E "^stat::number_of_executed_units|^Done" "build-fuzz/fuzz_$target.log" || true
+    executed=$(sed -n 's/^stat::number_of_executed_units: *//p' "build-fuzz/fuzz_$target.log" | tail -n 1)
+    if [ -n "$executed" ] && [ "$executed" -lt "${LDM_FUZZ_RUNS:-${runs_of[$target]}}" ]; then
+      echo "fuzz: $target stopped at its ${seconds} s bound after $executed of ${LDM_FUZZ_RUNS:-${runs_of[$target]}} inputs (a slow machine: this run searched fewer inputs than CI's)"
+    fi
   fi
 done
 exit $status
