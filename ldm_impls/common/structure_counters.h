@@ -18,6 +18,10 @@
 
 namespace ldm {
 
+// The mark of a row whose count depends on the order the fragments arrive in (which entry an
+// atomic finds first), short for the tables' rows.
+inline constexpr WorkOrder kArrival = WorkOrder::ArrivalDependent;
+
 // The bytes a sub-pass's shaders read (bytes_loaded_<buffer>) or wrote (bytes_stored_<buffer>)
 // of one buffer: a total in bytes, described by `what` after the sub-pass's "<subpass>: " (a
 // query's counters, sub-pass "", are filled in by their pass and have no prefix).

@@ -26,7 +26,6 @@ DfBuffer::DfBuffer(StructureParams& params) { requested_local_ = read_sort_local
 // A data table of its own counters, alike in form only to the other structures' (see
 // ldm_impls/common/structure_counters.h).
 std::vector<WorkCounter> DfBuffer::work_counters() {
-  constexpr WorkOrder kArrival = WorkOrder::ArrivalDependent;
   std::vector<WorkCounter> own = {
       // shaders/ldm/dfbuffer/count.frag
       {"count", "atomic_add", WorkShape::Total, "atomics", "count: DF-buffer atomicAdd on a pixel's count (one per fragment)"},

@@ -15,7 +15,6 @@ Ppfla::Ppfla(StructureParams& params) : requested_k_(read_fixed_array_k(params))
 // A data table of its own counters, alike in form only to the other structures' (see
 // ldm_impls/common/structure_counters.h).
 std::vector<WorkCounter> Ppfla::work_counters() {
-  constexpr WorkOrder kArrival = WorkOrder::ArrivalDependent;
   return with_geometry_counters({"construct"}, {
       // shaders/ldm/fixed_arrays/ppfla_build.frag: which entry a fragment takes depends on
       // the order they arrive, how many each pixel fills does not.

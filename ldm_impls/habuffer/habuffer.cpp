@@ -91,7 +91,6 @@ std::vector<WorkCounter> HaBuffer::work_counters() {
   // Counted by shaders/ldm/habuffer/ha_build.frag, once per fragment. Every insertion chain
   // depends on what arrived before it (which entry an atomicMax finds), so all but the
   // tickets are arrival-dependent; the table they end in is not (see query_work_counters()).
-  constexpr WorkOrder kArrival = WorkOrder::ArrivalDependent;
   return with_geometry_counters({"construct"}, {
       {"construct", "hash_probes", WorkShape::Distribution, "slots",
        "construct: slots one fragment's insertion tried (an atomicMax on the table each), "

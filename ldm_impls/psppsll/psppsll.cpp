@@ -14,7 +14,6 @@ Psppsll::Psppsll(StructureParams& params) : pool_("psppsll", params) {
 std::vector<WorkCounter> Psppsll::work_counters() {
   // shaders/ldm/psppsll/build.frag: where an insertion walks, and how often its
   // compare-and-swap loses, depends on the order the fragments arrive.
-  constexpr WorkOrder kArrival = WorkOrder::ArrivalDependent;
   return with_geometry_counters({"construct"}, {
       {"construct", "atomic_add", WorkShape::Total, "atomics",
        "construct: atomic counter increments (PSPPSLL, PPSLL: one node allocation per fragment, "
