@@ -105,14 +105,19 @@ uint64_t budget_after(const std::string& structure, const SizingPlan& plan, uint
   return plan.budget_bytes - fixed_bytes;
 }
 
+std::vector<WorkCounter> draw_work_counters(const std::string& subpass,
+                                            const std::string& vertices_what,
+                                            const std::string& fragments_what) {
+  return {{subpass, "vertices", WorkShape::Total, "invocations", subpass + ": " + vertices_what},
+          {subpass, "fragments", WorkShape::Total, "fragments", subpass + ": " + fragments_what}};
+}
+
 std::vector<WorkCounter> geometry_work_counters(const std::string& subpass) {
-  return {
-      {subpass, "vertices", WorkShape::Total, "invocations",
-       subpass + ": vertex shader invocations of the LDM geometry pass (every view's instance; "
-                 "an indexed draw's post-transform cache may shade a shared vertex once)"},
-      {subpass, "fragments", WorkShape::Total, "fragments",
-       subpass + ": fragments shaded (helper invocations left out), counted by the shader"},
-  };
+  return draw_work_counters(subpass,
+                            "vertex shader invocations of the LDM geometry pass (every view's "
+                            "instance; an indexed draw's post-transform cache may shade a shared "
+                            "vertex once)",
+                            "fragments shaded (helper invocations left out), counted by the shader");
 }
 
 }  // namespace ldm

@@ -201,6 +201,12 @@ std::vector<WorkCounter> structure_query_work_counters(const std::string& name, 
 // What every geometry sub-pass counts without the structure's help: vertex shader
 // invocations (ldm_raster.vert) and fragments shaded (LDM_SKIP_HELPER_INVOCATIONS).
 std::vector<WorkCounter> geometry_work_counters(const std::string& subpass);
+// The two counters of a draw under `subpass`, which every geometry sub-pass and G-buffer
+// declares: "vertices" (vertex shader invocations) and "fragments" (fragments shaded), each
+// described after "<subpass>: ".
+std::vector<WorkCounter> draw_work_counters(const std::string& subpass,
+                                            const std::string& vertices_what,
+                                            const std::string& fragments_what);
 // Throws UserError for an unknown name (listing the known ones) or bad parameters.
 std::unique_ptr<LdmStructure> make_structure(const std::string& name, StructureParams params);
 

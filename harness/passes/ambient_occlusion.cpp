@@ -25,16 +25,13 @@ std::vector<AxisSpec> AmbientOcclusion::parameters() {
 }
 
 std::vector<WorkCounter> AmbientOcclusion::work_counters() {
-  std::vector<WorkCounter> counters = gbuffer_work_counters("gbuffer");
-  const std::vector<WorkCounter> own = {
+  return with_gbuffer_counters({
       {"ao", "covered_pixels", WorkShape::Total, "pixels", "ao: image pixels that see a surface and trace every view"},
       {"ao", "entries_read", WorkShape::Distribution, "fragments",
        "ao: fragments the LDM trace read per view traced (one per covered pixel and view; 0 outside the view)"},
       {"ao", "trace_steps", WorkShape::Distribution, "iterations",
        "ao: loop iterations per view traced: the walk's and the structure's own query loops' (trace_steps_max's count)"},
-  };
-  counters.insert(counters.end(), own.begin(), own.end());
-  return counters;
+  });
 }
 
 std::vector<ColumnSpec> AmbientOcclusion::columns() {

@@ -11,15 +11,21 @@ namespace ldm {
 constexpr int kTriangleIdAttachment = 3;
 
 std::vector<WorkCounter> gbuffer_work_counters(const std::string& subpass) {
-  return {
-      {subpass, "vertices", WorkShape::Total, "invocations",
-       subpass + ": vertex shader invocations of the G-buffer draw (one indexed draw of the scene; "
-                 "the post-transform cache may shade a shared vertex once)"},
-      {subpass, "fragments", WorkShape::Total, "fragments",
-       subpass + ": fragments the G-buffer draw shaded (every rasterised fragment in the image: with "
-                 "the counting variant's side effects no early depth test culls any; helpers left "
-                 "out): the camera's depth complexity summed over its pixels"},
-  };
+  return draw_work_counters(subpass,
+                            "vertex shader invocations of the G-buffer draw (one indexed draw of "
+                            "the scene; the post-transform cache may shade a shared vertex once)",
+                            "fragments the G-buffer draw shaded (every rasterised fragment in the "
+                            "image: with the counting variant's side effects no early depth test "
+                            "culls any; helpers left out): the camera's depth complexity summed "
+                            "over its pixels");
+}
+
+std::vector<WorkCounter> with_gbuffer_counters(const std::vector<WorkCounter>& own,
+                                               const std::vector<WorkCounter>& after) {
+  std::vector<WorkCounter> counters = gbuffer_work_counters("gbuffer");
+  counters.insert(counters.end(), own.begin(), own.end());
+  counters.insert(counters.end(), after.begin(), after.end());
+  return counters;
 }
 
 GBufferPass::GBufferPass(int width, int height, bool albedo, bool triangle_ids)

@@ -21,6 +21,10 @@ namespace ldm {
 // indirect pass's "light_gbuffer"): vertex shader invocations and fragments shaded. Every
 // pass that draws a G-buffer declares them for each sub-pass it draws one in.
 std::vector<WorkCounter> gbuffer_work_counters(const std::string& subpass);
+// The work_counters() of a pass that draws the G-buffer first (as "gbuffer"): its counters,
+// then `own`, then `after` (a smoothing's).
+std::vector<WorkCounter> with_gbuffer_counters(const std::vector<WorkCounter>& own,
+                                               const std::vector<WorkCounter>& after = {});
 
 class GBufferPass {
  public:

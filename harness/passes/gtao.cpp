@@ -56,26 +56,17 @@ std::vector<ColumnSpec> Gtao::columns() {
   return ao_pass_columns(false, {}, true);
 }
 
-// A data table of the pass's own counters, alike in form only to the other passes' and
-// structures' (see ldm_impls/common/structure_counters.h).
+// The horizon search's counters, declared once for HBAO and GTAO (hbao_kernel.h); what is
+// GTAO's own is what it searches and how its samples and steps are described.
 std::vector<WorkCounter> Gtao::work_counters() {
-  std::vector<WorkCounter> counters = gbuffer_work_counters("gbuffer");
-  const std::vector<WorkCounter> own = {
-      {"gtao", "fragments", WorkShape::Total, "fragments",
-       "gtao: fragments the full-screen horizon search shaded (every image pixel)"},
-      {"gtao", "covered_pixels", WorkShape::Total, "pixels", "gtao: image pixels that see a surface (searched)"},
-      {"gtao", "slices", WorkShape::Total, "slices",
-       "gtao: slices searched on both sides (of the slices per covered pixel, those on screen, with a "
-       "normal not normal to the slice and a radius of at least a pixel)"},
-      {"gtao", "samples", WorkShape::Total, "samples",
-       "gtao: G-buffer samples the horizon search read (slices x 2 sides x steps where no search leaves the image)"},
-      {"gtao", "horizon_rises", WorkShape::Total, "samples", "gtao: samples that raised a horizon (the ones that add occlusion)"},
-      {"gtao", "steps", WorkShape::Distribution, "samples",
-       "gtao: search steps (samples read) per covered pixel, over its slices' both sides"},
-  };
-  counters.insert(counters.end(), own.begin(), own.end());
-  for (WorkCounter c : hbao_blur_work_counters("denoise")) counters.push_back(std::move(c));
-  return counters;
+  return horizon_search_work_counters(
+      "gtao", "denoise",
+      {.searched = "slices",
+       .searched_what = "slices searched on both sides (of the slices per covered pixel, those on "
+                        "screen, with a normal not normal to the slice and a radius of at least a pixel)",
+       .samples_what = "G-buffer samples the horizon search read (slices x 2 sides x steps where no "
+                       "search leaves the image)",
+       .steps_what = "search steps (samples read) per covered pixel, over its slices' both sides"});
 }
 
 Gtao::~Gtao() = default;

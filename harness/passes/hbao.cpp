@@ -40,27 +40,16 @@ std::vector<ColumnSpec> Hbao::columns() {
   return ao_pass_columns(false, {}, true);
 }
 
-// A data table of the pass's own counters, alike in form only to the other passes' and
-// structures' (see ldm_impls/common/structure_counters.h).
+// The horizon search's counters, declared once for HBAO and GTAO (hbao_kernel.h); what is
+// HBAO's own is what it searches and how its samples and steps are described.
 std::vector<WorkCounter> Hbao::work_counters() {
-  std::vector<WorkCounter> counters = gbuffer_work_counters("gbuffer");
-  const std::vector<WorkCounter> own = {
-      {"hbao", "fragments", WorkShape::Total, "fragments",
-       "hbao: fragments the full-screen horizon search shaded (every image pixel)"},
-      {"hbao", "covered_pixels", WorkShape::Total, "pixels", "hbao: image pixels that see a surface (searched)"},
-      {"hbao", "directions", WorkShape::Total, "directions",
-       "hbao: directions marched (of N_HBAO per covered pixel, those whose tangent plus the angle bias "
-       "stays below the zenith)"},
-      {"hbao", "samples", WorkShape::Total, "samples",
-       "hbao: G-buffer samples the march read (directions x S_HBAO where no march leaves the image)"},
-      {"hbao", "horizon_rises", WorkShape::Total, "samples",
-       "hbao: samples that raised a horizon (the ones that add occlusion)"},
-      {"hbao", "steps", WorkShape::Distribution, "samples",
-       "hbao: march steps (samples read) per covered pixel, over its directions"},
-  };
-  counters.insert(counters.end(), own.begin(), own.end());
-  for (WorkCounter c : hbao_blur_work_counters("blur")) counters.push_back(std::move(c));
-  return counters;
+  return horizon_search_work_counters(
+      "hbao", "blur",
+      {.searched = "directions",
+       .searched_what = "directions marched (of N_HBAO per covered pixel, those whose tangent plus the "
+                        "angle bias stays below the zenith)",
+       .samples_what = "G-buffer samples the march read (directions x S_HBAO where no march leaves the image)",
+       .steps_what = "march steps (samples read) per covered pixel, over its directions"});
 }
 
 Hbao::~Hbao() = default;

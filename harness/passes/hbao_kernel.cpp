@@ -2,6 +2,7 @@
 
 #include "harness/gl/bindings.h"
 #include "harness/gl/shader_program.h"
+#include "harness/passes/gbuffer_pass.h"
 #include "harness/reference/pcg32.h"
 
 namespace ldm {
@@ -16,6 +17,24 @@ std::vector<WorkCounter> hbao_blur_work_counters(const std::string& subpass) {
                  "pixel's own is not counted)"},
   };
 }
+std::vector<WorkCounter> horizon_search_work_counters(const std::string& name,
+                                                      const std::string& smoothing,
+                                                      const HorizonSearchCounters& own) {
+  const std::string what = name + ": ";
+  return with_gbuffer_counters(
+      {
+          {name, "fragments", WorkShape::Total, "fragments",
+           what + "fragments the full-screen horizon search shaded (every image pixel)"},
+          {name, "covered_pixels", WorkShape::Total, "pixels", what + "image pixels that see a surface (searched)"},
+          {name, own.searched, WorkShape::Total, own.searched, what + own.searched_what},
+          {name, "samples", WorkShape::Total, "samples", what + own.samples_what},
+          {name, "horizon_rises", WorkShape::Total, "samples",
+           what + "samples that raised a horizon (the ones that add occlusion)"},
+          {name, "steps", WorkShape::Distribution, "samples", what + own.steps_what},
+      },
+      hbao_blur_work_counters(smoothing));
+}
+
 namespace {
 
 // The tiled random table's stream: fixed, so a jittered image is reproducible.

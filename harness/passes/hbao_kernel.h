@@ -9,6 +9,7 @@
 //    plane, in units of x's pixel footprint, so that AO does not bleed across depth edges.
 #include <array>
 #include <cstdint>
+#include <string>
 
 #include <glm/glm.hpp>
 
@@ -48,6 +49,18 @@ class HbaoKernel : public FullscreenAoKernel {
 // What hbao_blur.frag counts in the counting replay under `subpass` (HBAO's "blur", GTAO's
 // "denoise"): fragments shaded (two directions: twice the image's pixels) and taps weighed.
 std::vector<WorkCounter> hbao_blur_work_counters(const std::string& subpass);
+
+// What a horizon search counts besides what every one counts alike (fragments, covered
+// pixels, horizon rises): HBAO's directions or GTAO's slices (`searched`, its own unit),
+// the samples read and the steps per covered pixel, each described after "<name>: ".
+struct HorizonSearchCounters {
+  std::string searched, searched_what, samples_what, steps_what;
+};
+// The work_counters() of a screen-space AO pass: the G-buffer's, the horizon search's under
+// `name` ("hbao", "gtao"), then the smoothing's under `smoothing` ("blur", "denoise").
+std::vector<WorkCounter> horizon_search_work_counters(const std::string& name,
+                                                      const std::string& smoothing,
+                                                      const HorizonSearchCounters& own);
 
 class HbaoBlur {
  public:

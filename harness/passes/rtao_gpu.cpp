@@ -130,8 +130,7 @@ std::vector<ColumnSpec> RtaoGpu::columns() {
 // A data table of the pass's own counters, alike in form only to the other passes' and
 // structures' (see ldm_impls/common/structure_counters.h).
 std::vector<WorkCounter> RtaoGpu::work_counters() {
-  std::vector<WorkCounter> counters = gbuffer_work_counters("gbuffer");  // primary=raster
-  const std::vector<WorkCounter> own = {
+  return with_gbuffer_counters({  // the G-buffer's: primary=raster
       {"rtao_gpu_primary", "invocations", WorkShape::Total, "invocations",
        "rtao_gpu_primary: compute invocations, one primary ray each (every image pixel; primary=trace)"},
       {"rtao_gpu_primary", "nodes", WorkShape::Distribution, "nodes",
@@ -143,9 +142,7 @@ std::vector<WorkCounter> RtaoGpu::work_counters() {
       {"rtao_gpu", "nodes", WorkShape::Distribution, "nodes",
        "rtao_gpu: BVH inner nodes visited per AO ray (each tests both children's boxes)"},
       {"rtao_gpu", "triangles", WorkShape::Distribution, "triangles", "rtao_gpu: triangles tested per AO ray"},
-  };
-  counters.insert(counters.end(), own.begin(), own.end());
-  return counters;
+  });
 }
 
 RtaoGpu::~RtaoGpu() = default;

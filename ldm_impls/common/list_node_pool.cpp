@@ -1,4 +1,5 @@
 #include "ldm_impls/common/list_node_pool.h"
+#include "ldm_impls/common/structure_counters.h"
 #include "ldm_impls/common/sizing_strategy.h"
 
 #include <algorithm>
@@ -37,11 +38,10 @@ std::vector<WorkCounter> ListNodePool::query_work_counters() {
   // fragments arrived in, so every count is deterministic.
   return {
       nodes_visited_counter(),
-      {"", "bytes_loaded_heads", WorkShape::Total, "bytes",
-       "PSPPSLL or PPSLL: list heads its queries read (4 bytes per ldm_begin)"},
-      {"", "bytes_loaded_nodes", WorkShape::Total, "bytes",
-       "PSPPSLL or PPSLL: node bytes its queries read (a next index per ldm_next, a depth per "
-       "ldm_depth; 4 bytes each)"},
+      bytes_loaded("", "heads", "PSPPSLL or PPSLL: list heads its queries read (4 bytes per ldm_begin)"),
+      bytes_loaded("", "nodes",
+          "PSPPSLL or PPSLL: node bytes its queries read (a next index per ldm_next, a depth per "
+          "ldm_depth; 4 bytes each)"),
   };
 }
 

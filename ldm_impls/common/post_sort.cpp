@@ -1,5 +1,6 @@
 #include "ldm_impls/common/post_sort.h"
 #include "ldm_impls/common/sizing_strategy.h"
+#include "ldm_impls/common/structure_counters.h"
 
 #include <algorithm>
 
@@ -35,7 +36,6 @@ WorkCounter sort_invocations_counter() {
 }
 
 std::vector<WorkCounter> post_sort_work_counters(const std::vector<WorkCounter>& memory) {
-  constexpr WorkOrder kArrival = WorkOrder::ArrivalDependent;
   std::vector<WorkCounter> counters = {
       sort_invocations_counter(),
       {"sort", "list_length", WorkShape::Distribution, "entries",

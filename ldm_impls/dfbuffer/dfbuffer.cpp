@@ -26,42 +26,38 @@ DfBuffer::DfBuffer(StructureParams& params) { requested_local_ = read_sort_local
 // A data table of its own counters, alike in form only to the other structures' (see
 // ldm_impls/common/structure_counters.h).
 std::vector<WorkCounter> DfBuffer::work_counters() {
-  constexpr WorkOrder kArrival = WorkOrder::ArrivalDependent;
   std::vector<WorkCounter> own = {
       // shaders/ldm/dfbuffer/count.frag
       {"count", "atomic_add", WorkShape::Total, "atomics", "count: DF-buffer atomicAdd on a pixel's count (one per fragment)"},
       // scan_blocks.comp and scan_add.comp, every level
       {"prefix_sum", "invocations", WorkShape::Total, "invocations",
        "prefix_sum: compute invocations of the scan's dispatches (every level, scan and uniform add)"},
-      {"prefix_sum", "bytes_loaded_counts", WorkShape::Total, "bytes", "prefix_sum: counts read (4 bytes per pixel)"},
-      {"prefix_sum", "bytes_loaded_offsets", WorkShape::Total, "bytes",
-       "prefix_sum: offsets read by the uniform add (4 bytes per value of the blocks after the first)"},
-      {"prefix_sum", "bytes_stored_offsets", WorkShape::Total, "bytes",
-       "prefix_sum: offsets written (the scan's pixels + 1, and again by the uniform add)"},
-      {"prefix_sum", "bytes_loaded_scan_block_sums", WorkShape::Total, "bytes",
-       "prefix_sum: block sums read (higher levels' scans, the uniform add's block offsets)"},
-      {"prefix_sum", "bytes_stored_scan_block_sums", WorkShape::Total, "bytes",
-       "prefix_sum: block sums written (each block's sum, higher levels' scans and uniform adds)"},
+      bytes_loaded("prefix_sum", "counts", "counts read (4 bytes per pixel)"),
+      bytes_loaded("prefix_sum", "offsets",
+          "offsets read by the uniform add (4 bytes per value of the blocks after the first)"),
+      bytes_stored("prefix_sum", "offsets",
+          "offsets written (the scan's pixels + 1, and again by the uniform add)"),
+      bytes_loaded("prefix_sum", "scan_block_sums",
+          "block sums read (higher levels' scans, the uniform add's block offsets)"),
+      bytes_stored("prefix_sum", "scan_block_sums",
+          "block sums written (each block's sum, higher levels' scans and uniform adds)"),
       // build.frag
       {"construct", "atomic_add", WorkShape::Total, "atomics",
        "construct: DF-buffer atomicAdd decrementing a pixel's count (one per fragment) and "
        "atomic counter increments of lost fragments"},
-      {"construct", "bytes_loaded_offsets", WorkShape::Total, "bytes",
-       "construct: DF-buffer offsets read (8 bytes per fragment: the pixel's and the next)"},
-      {"construct", "bytes_stored_depths", WorkShape::Total, "bytes",
-       "construct: DF-buffer depths written (4 bytes per fragment stored)"},
+      bytes_loaded("construct", "offsets",
+          "DF-buffer offsets read (8 bytes per fragment: the pixel's and the next)"),
+      bytes_stored("construct", "depths", "DF-buffer depths written (4 bytes per fragment stored)"),
   };
   // sort.comp with ldm/common/post_sort.glsl and heap_sort.glsl
   const std::vector<WorkCounter> sort = post_sort_work_counters({
-      {"sort", "bytes_loaded_offsets", WorkShape::Total, "bytes", "sort: DF-buffer offsets read (8 bytes per pixel)"},
-      {"sort", "bytes_loaded_depths", WorkShape::Total, "bytes",
-       "sort: DF-buffer depths copied into the local array (4 bytes each; ranges of 2 up to local)"},
-      {"sort", "bytes_stored_depths", WorkShape::Total, "bytes",
-       "sort: DF-buffer depths written back from the local array (4 bytes each)"},
-      {"sort", "bytes_loaded_depths_heap", WorkShape::Total, "bytes",
-       "sort: DF-buffer depths the heap sort in place read (ranges longer than local)", kArrival},
-      {"sort", "bytes_stored_depths_heap", WorkShape::Total, "bytes",
-       "sort: DF-buffer depths the heap sort in place wrote", kArrival},
+      bytes_loaded("sort", "offsets", "DF-buffer offsets read (8 bytes per pixel)"),
+      bytes_loaded("sort", "depths",
+          "DF-buffer depths copied into the local array (4 bytes each; ranges of 2 up to local)"),
+      bytes_stored("sort", "depths", "DF-buffer depths written back from the local array (4 bytes each)"),
+      bytes_loaded("sort", "depths_heap",
+          "DF-buffer depths the heap sort in place read (ranges longer than local)", kArrival),
+      bytes_stored("sort", "depths_heap", "DF-buffer depths the heap sort in place wrote", kArrival),
   });
   own.insert(own.end(), sort.begin(), sort.end());
   return with_geometry_counters({"count", "construct"}, own);
@@ -72,10 +68,8 @@ std::vector<WorkCounter> DfBuffer::work_counters() {
 std::vector<WorkCounter> DfBuffer::query_work_counters() {
   return {
       ListNodePool::nodes_visited_counter(),
-      {"", "bytes_loaded_offsets", WorkShape::Total, "bytes",
-       "DF-buffer offsets its queries read (8 bytes per ldm_begin)"},
-      {"", "bytes_loaded_depths", WorkShape::Total, "bytes",
-       "DF-buffer depths its queries read (4 bytes per ldm_depth)"},
+      bytes_loaded("", "offsets", "DF-buffer offsets its queries read (8 bytes per ldm_begin)"),
+      bytes_loaded("", "depths", "DF-buffer depths its queries read (4 bytes per ldm_depth)"),
   };
 }
 

@@ -15,19 +15,15 @@ Ppfla::Ppfla(StructureParams& params) : requested_k_(read_fixed_array_k(params))
 // A data table of its own counters, alike in form only to the other structures' (see
 // ldm_impls/common/structure_counters.h).
 std::vector<WorkCounter> Ppfla::work_counters() {
-  constexpr WorkOrder kArrival = WorkOrder::ArrivalDependent;
   return with_geometry_counters({"construct"}, {
       // shaders/ldm/fixed_arrays/ppfla_build.frag: which entry a fragment takes depends on
       // the order they arrive, how many each pixel fills does not.
       {"construct", "atomic_add", WorkShape::Total, "atomics",
        "construct: atomicAdd on a pixel's count (one per fragment) and atomic counter increments "
        "of the fragments dropped beyond k"},
-      {"construct", "bytes_loaded_counts", WorkShape::Total, "bytes",
-       "construct: counts read (the atomicAdd's read, 4 bytes per fragment)"},
-      {"construct", "bytes_stored_counts", WorkShape::Total, "bytes",
-       "construct: counts written (the atomicAdd's write, 4 bytes per fragment)"},
-      {"construct", "bytes_stored_entries", WorkShape::Total, "bytes",
-       "construct: array entries written (4 bytes per fragment stored)"},
+      bytes_loaded("construct", "counts", "counts read (the atomicAdd's read, 4 bytes per fragment)"),
+      bytes_stored("construct", "counts", "counts written (the atomicAdd's write, 4 bytes per fragment)"),
+      bytes_stored("construct", "entries", "array entries written (4 bytes per fragment stored)"),
       {"construct", "fragments_dropped", WorkShape::Total, "fragments",
        "construct: fragments beyond their pixel's k entries, dropped (a lossy build)"},
       // shaders/ldm/fixed_arrays/ppfla_sort.comp with ldm/common/heap_sort.glsl: the heap
@@ -36,11 +32,9 @@ std::vector<WorkCounter> Ppfla::work_counters() {
       {"sort", "list_length", WorkShape::Distribution, "entries",
        "sort: entries a pixel's sort ordered (min(count, k); one value per pixel, empty ones "
        "included)"},
-      {"sort", "bytes_loaded_counts", WorkShape::Total, "bytes", "sort: counts read (4 bytes per pixel)"},
-      {"sort", "bytes_loaded_entries", WorkShape::Total, "bytes",
-       "sort: array entries the heap sort read (4 bytes each)", kArrival},
-      {"sort", "bytes_stored_entries", WorkShape::Total, "bytes",
-       "sort: array entries the heap sort wrote (4 bytes each)", kArrival},
+      bytes_loaded("sort", "counts", "counts read (4 bytes per pixel)"),
+      bytes_loaded("sort", "entries", "array entries the heap sort read (4 bytes each)", kArrival),
+      bytes_stored("sort", "entries", "array entries the heap sort wrote (4 bytes each)", kArrival),
       {"sort", "comparisons", WorkShape::Total, "comparisons",
        "sort: depth comparisons of the heap sort (ldm/common/heap_sort.glsl)", kArrival},
       {"sort", "moves", WorkShape::Total, "moves",
@@ -56,9 +50,8 @@ std::vector<WorkCounter> Ppfla::query_work_counters() {
        "array slots one query of PPFLA or PSPPFLA (an ldm_begin or ldm_next) moved to or read to "
        "find the pixel's next entry: 1, or 0 past the last (PPFLA, whose count tells where its "
        "entries end; PSPPFLA reads the empty entry after its last and scans 0 only past k)"},
-      {"", "bytes_loaded_counts", WorkShape::Total, "bytes", "PPFLA counts its queries read (one per ldm_begin)"},
-      {"", "bytes_loaded_entries", WorkShape::Total, "bytes",
-       "PPFLA or PSPPFLA array entries its queries read (4 bytes each)"},
+      bytes_loaded("", "counts", "PPFLA counts its queries read (one per ldm_begin)"),
+      bytes_loaded("", "entries", "PPFLA or PSPPFLA array entries its queries read (4 bytes each)"),
   };
 }
 

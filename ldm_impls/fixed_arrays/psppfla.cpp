@@ -25,11 +25,10 @@ std::vector<WorkCounter> Psppfla::work_counters() {
   return with_geometry_counters({"construct"}, {
       {"construct", "atomic_min", WorkShape::Total, "atomics",
        "construct: atomicMin of the insertion walks (one per entry walked)"},
-      {"construct", "bytes_loaded_entries", WorkShape::Total, "bytes",
-       "construct: array entries read by the atomicMin (4 bytes each)"},
-      {"construct", "bytes_stored_entries", WorkShape::Total, "bytes",
-       "construct: array entries written by the atomicMin (4 bytes each, counted whether or not it "
-       "changed the entry)"},
+      bytes_loaded("construct", "entries", "array entries read by the atomicMin (4 bytes each)"),
+      bytes_stored("construct", "entries",
+          "array entries written by the atomicMin (4 bytes each, counted whether or not it "
+          "changed the entry)"),
       {"construct", "slots_shifted", WorkShape::Distribution, "entries",
        "construct: entries one fragment's insertion replaced by a nearer depth, each carried on "
        "one slot (one value per fragment)",
@@ -37,10 +36,10 @@ std::vector<WorkCounter> Psppfla::work_counters() {
       {"construct", "atomic_add", WorkShape::Total, "atomics",
        "construct: atomic counter increments of the fragments dropped beyond k, and (previous_frame "
        "sizing) their atomicAdd on the pixel's overflow count"},
-      {"construct", "bytes_loaded_overflow_counts", WorkShape::Total, "bytes",
-       "construct: overflow counts read by their atomicAdd (previous_frame sizing, a lossy build)"},
-      {"construct", "bytes_stored_overflow_counts", WorkShape::Total, "bytes",
-       "construct: overflow counts written by their atomicAdd (previous_frame sizing, a lossy build)"},
+      bytes_loaded("construct", "overflow_counts",
+          "overflow counts read by their atomicAdd (previous_frame sizing, a lossy build)"),
+      bytes_stored("construct", "overflow_counts",
+          "overflow counts written by their atomicAdd (previous_frame sizing, a lossy build)"),
       {"construct", "fragments_dropped", WorkShape::Total, "fragments",
        "construct: fragments beyond their pixel's k entries, dropped (a lossy build)"},
   });

@@ -91,7 +91,6 @@ std::vector<WorkCounter> HaBuffer::work_counters() {
   // Counted by shaders/ldm/habuffer/ha_build.frag, once per fragment. Every insertion chain
   // depends on what arrived before it (which entry an atomicMax finds), so all but the
   // tickets are arrival-dependent; the table they end in is not (see query_work_counters()).
-  constexpr WorkOrder kArrival = WorkOrder::ArrivalDependent;
   return with_geometry_counters({"construct"}, {
       {"construct", "hash_probes", WorkShape::Distribution, "slots",
        "construct: slots one fragment's insertion tried (an atomicMax on the table each), "
@@ -114,18 +113,16 @@ std::vector<WorkCounter> HaBuffer::work_counters() {
       {"construct", "atomic_add_on_loss", WorkShape::Total, "atomics",
        "construct: atomic counter increments of insertions dropped at max_age or aborted (a "
        "lossy HA-buffer build only)", kArrival},
-      {"construct", "bytes_loaded_table", WorkShape::Total, "bytes",
-       "construct: table bytes read by the atomicMax (key_bits / 8 each)", kArrival},
-      {"construct", "bytes_stored_table", WorkShape::Total, "bytes",
-       "construct: table bytes written by the atomicMax (key_bits / 8 each, counted whether or "
-       "not it changed the key)", kArrival},
-      {"construct", "bytes_loaded_age_table", WorkShape::Total, "bytes",
-       "construct: age table bytes read by the atomicMax of each placement", kArrival},
-      {"construct", "bytes_stored_age_table", WorkShape::Total, "bytes",
-       "construct: age table bytes written by the atomicMax of each placement", kArrival},
-      {"construct", "bytes_loaded_ha_offsets", WorkShape::Total, "bytes",
-       "construct: offsets o_a read: one per slot tried, one per eviction (the evicted entry's pixel)",
-       kArrival},
+      bytes_loaded("construct", "table", "table bytes read by the atomicMax (key_bits / 8 each)", kArrival),
+      bytes_stored("construct", "table",
+          "table bytes written by the atomicMax (key_bits / 8 each, counted whether or "
+          "not it changed the key)", kArrival),
+      bytes_loaded("construct", "age_table",
+          "age table bytes read by the atomicMax of each placement", kArrival),
+      bytes_stored("construct", "age_table",
+          "age table bytes written by the atomicMax of each placement", kArrival),
+      bytes_loaded("construct", "ha_offsets",
+          "offsets o_a read: one per slot tried, one per eviction (the evicted entry's pixel)", kArrival),
   });
 }
 
@@ -141,11 +138,9 @@ std::vector<WorkCounter> HaBuffer::query_work_counters() {
       {"", "hash_probes", WorkShape::Distribution, "slots",
        "slots one query of the HA-buffer read (an ldm_begin or ldm_next seeking the pixel's next "
        "entry; 0 past its last); slots of other pixels' entries are skipped"},
-      {"", "bytes_loaded_table", WorkShape::Total, "bytes", "HA-buffer table bytes its queries read"},
-      {"", "bytes_loaded_ha_offsets", WorkShape::Total, "bytes",
-       "HA-buffer offsets o_a its queries read (one per probe)"},
-      {"", "bytes_loaded_age_table", WorkShape::Total, "bytes",
-       "HA-buffer age table bytes its queries read (one word per ldm_begin)"},
+      bytes_loaded("", "table", "HA-buffer table bytes its queries read"),
+      bytes_loaded("", "ha_offsets", "HA-buffer offsets o_a its queries read (one per probe)"),
+      bytes_loaded("", "age_table", "HA-buffer age table bytes its queries read (one word per ldm_begin)"),
   };
 }
 

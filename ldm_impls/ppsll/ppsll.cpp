@@ -25,27 +25,26 @@ std::vector<WorkCounter> Ppsll::work_counters() {
        "and PSPPSLL's abandoned insertions)"},
       {"construct", "atomic_exchange", WorkShape::Total, "atomics",
        "construct: PPSLL atomicExchange on a list head (one per fragment stored)"},
-      {"construct", "bytes_stored_nodes", WorkShape::Total, "bytes",
-       "construct: PSPPSLL or PPSLL node bytes written: each new node's depth and its next "
-       "index (8 bytes per fragment stored; PSPPSLL's rewrites after a lost compare-and-swap "
-       "apart)"},
+      bytes_stored("construct", "nodes",
+          "PSPPSLL or PPSLL node bytes written: each new node's depth and its next "
+          "index (8 bytes per fragment stored; PSPPSLL's rewrites after a lost compare-and-swap "
+          "apart)"),
   };
   // shaders/ldm/ppsll/sort.comp with ldm/common/post_sort.glsl: which nodes it reads and
   // writes depends only on the lists' lengths; how many comparisons and moves it needs
   // depends on the order the fragments were pushed in.
   const std::vector<WorkCounter> sort = post_sort_work_counters({
-      {"sort", "bytes_loaded_heads", WorkShape::Total, "bytes", "sort: PPSLL list heads read (4 bytes per pixel)"},
-      {"sort", "bytes_stored_heads", WorkShape::Total, "bytes",
-       "sort: PPSLL list heads rewritten by the merge sort in place (4 bytes per list longer than local)"},
-      {"sort", "bytes_loaded_nodes", WorkShape::Total, "bytes",
-       "sort: PPSLL node bytes read at every site but the merge sort's comparisons: the copy "
-       "into the local array, the write-back's walk, the merge sort's walks (4 bytes per depth "
-       "or next index)"},
-      {"sort", "bytes_stored_nodes", WorkShape::Total, "bytes",
-       "sort: PPSLL node bytes written: depths written back, next indices the merge sort relinked"},
-      {"sort", "bytes_loaded_nodes_compared", WorkShape::Total, "bytes",
-       "sort: PPSLL depths the merge sort in place read to compare (4 bytes each)",
-       WorkOrder::ArrivalDependent},
+      bytes_loaded("sort", "heads", "PPSLL list heads read (4 bytes per pixel)"),
+      bytes_stored("sort", "heads",
+          "PPSLL list heads rewritten by the merge sort in place (4 bytes per list longer than local)"),
+      bytes_loaded("sort", "nodes",
+          "PPSLL node bytes read at every site but the merge sort's comparisons: the copy "
+          "into the local array, the write-back's walk, the merge sort's walks (4 bytes per depth "
+          "or next index)"),
+      bytes_stored("sort", "nodes",
+          "PPSLL node bytes written: depths written back, next indices the merge sort relinked"),
+      bytes_loaded("sort", "nodes_compared",
+          "PPSLL depths the merge sort in place read to compare (4 bytes each)", WorkOrder::ArrivalDependent),
   });
   own.insert(own.end(), sort.begin(), sort.end());
   return with_geometry_counters({"construct"}, own);

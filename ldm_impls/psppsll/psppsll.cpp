@@ -14,7 +14,6 @@ Psppsll::Psppsll(StructureParams& params) : pool_("psppsll", params) {
 std::vector<WorkCounter> Psppsll::work_counters() {
   // shaders/ldm/psppsll/build.frag: where an insertion walks, and how often its
   // compare-and-swap loses, depends on the order the fragments arrive.
-  constexpr WorkOrder kArrival = WorkOrder::ArrivalDependent;
   return with_geometry_counters({"construct"}, {
       {"construct", "atomic_add", WorkShape::Total, "atomics",
        "construct: atomic counter increments (PSPPSLL, PPSLL: one node allocation per fragment, "
@@ -28,18 +27,16 @@ std::vector<WorkCounter> Psppsll::work_counters() {
       {"construct", "insert_steps", WorkShape::Distribution, "steps",
        "construct: iterations of one PSPPSLL insertion's loop (one per node passed or retry, "
        "plus the one that inserts; one value per fragment given a node)", kArrival},
-      {"construct", "bytes_loaded_heads", WorkShape::Total, "bytes",
-       "construct: PSPPSLL list heads read (the walk's start, 4 bytes per fragment)"},
-      {"construct", "bytes_loaded_nodes", WorkShape::Total, "bytes",
-       "construct: PSPPSLL node bytes the insertion walks read (depths and next indices, 4 bytes "
-       "each; compare-and-swaps not included)", kArrival},
-      {"construct", "bytes_stored_nodes", WorkShape::Total, "bytes",
-       "construct: PSPPSLL or PPSLL node bytes written: each new node's depth and its next "
-       "index (8 bytes per fragment stored; PSPPSLL's rewrites after a lost compare-and-swap "
-       "apart)"},
-      {"construct", "bytes_stored_nodes_relinked", WorkShape::Total, "bytes",
-       "construct: PSPPSLL next indices rewritten after a lost compare-and-swap (4 bytes each)",
-       kArrival},
+      bytes_loaded("construct", "heads", "PSPPSLL list heads read (the walk's start, 4 bytes per fragment)"),
+      bytes_loaded("construct", "nodes",
+          "PSPPSLL node bytes the insertion walks read (depths and next indices, 4 bytes "
+          "each; compare-and-swaps not included)", kArrival),
+      bytes_stored("construct", "nodes",
+          "PSPPSLL or PPSLL node bytes written: each new node's depth and its next "
+          "index (8 bytes per fragment stored; PSPPSLL's rewrites after a lost compare-and-swap "
+          "apart)"),
+      bytes_stored("construct", "nodes_relinked",
+          "PSPPSLL next indices rewritten after a lost compare-and-swap (4 bytes each)", kArrival),
   });
 }
 
