@@ -35,7 +35,7 @@ const std::set<std::string>& session_options() {
   return names;
 }
 
-std::vector<std::string> joined(std::vector<std::string> a, const std::vector<std::string>& b) {
+std::vector<std::string> concatenated(std::vector<std::string> a, const std::vector<std::string>& b) {
   a.insert(a.end(), b.begin(), b.end());
   return a;
 }
@@ -153,7 +153,7 @@ int run_interleaved_session(const InterleavedSession& s, std::ostream& log) {
   if (s.repetitions < 2) throw UserError("interleave: --repetitions must be at least 2 (pairs to test)");
   check_command(s.a_arguments);
   check_command(s.b_arguments);
-  const std::vector<std::string> commands[2] = {joined(s.command, s.a_arguments), joined(s.command, s.b_arguments)};
+  const std::vector<std::string> commands[2] = {concatenated(s.command, s.a_arguments), concatenated(s.command, s.b_arguments)};
   const std::vector<std::string> plans[2] = {planned_ids(s.binary_a, commands[0]),
                                              planned_ids(s.binary_b, commands[1])};
   const std::vector<std::string>& ids = plans[0];

@@ -19,7 +19,7 @@ std::string text_of(const Record& r, const std::string& key) {
   return s ? *s : std::string();
 }
 
-double number_of(const Record& r, const std::string& key) {
+double number_or_zero(const Record& r, const std::string& key) {
   const RecordValue* v = r.get(key);
   if (!v) return 0;
   if (const int64_t* i = std::get_if<int64_t>(v)) return double(*i);
@@ -88,8 +88,8 @@ Record combine_repetitions(const std::vector<Record>& repetitions, const std::st
     timing.target_met = timing.target_met && flag_of(rep, "time_target_met");
     if (record_status_rank(text_of(rep, "status")) > record_status_rank(status)) status = text_of(rep, "status");
     add_note(notes, text_of(rep, "status_detail"));
-    wall += number_of(rep, "wall_seconds");
-    for (const char* key : kSummed) sums[key] += number_of(rep, key);
+    wall += number_or_zero(rep, "wall_seconds");
+    for (const char* key : kSummed) sums[key] += number_or_zero(rep, key);
     if (j == 0) continue;
     for (const char* key : {"lists_checksum", "fragments"}) {
       const RecordValue* first = repetitions.front().get(key);

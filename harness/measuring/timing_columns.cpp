@@ -11,7 +11,7 @@
 namespace ldm {
 namespace {
 
-double number_of(const Record& r, const std::string& key) {
+double number_or_absent(const Record& r, const std::string& key) {
   const RecordValue* v = r.get(key);
   if (!v) return -1;
   if (const int64_t* i = std::get_if<int64_t>(v)) return double(*i);
@@ -62,7 +62,7 @@ void add_timing_columns(Record& r, const TimingOutcome& t) {
   if (build && raster && raster->median > 0) r.set(columns::kBuildVsRaster, build->median / raster->median);
   const TimingSummary* touch = find_summary(t.summaries, kRasterTouchSubpass);
   if (build && touch && touch->median > 0) r.set(columns::kBuildVsRasterTouch, build->median / touch->median);
-  const double fragments = number_of(r, "fragments");
+  const double fragments = number_or_absent(r, "fragments");
   if (build && build->median > 0 && fragments >= 0)
     r.set(columns::kFragmentsPerSecond, fragments / (build->median * 1e-3));
 }
@@ -75,7 +75,7 @@ void widen_time_intervals(Record& r, const RunToRunSpread* spread, const std::st
   const RecordValue* interval_kind = r.get("time_interval");
   const std::string* kind = interval_kind ? std::get_if<std::string>(interval_kind) : nullptr;
   if (kind && kind->find(kRunToRunSuffix) != std::string::npos) return;  // widened already
-  const double reps = number_of(r, "repetitions");
+  const double reps = number_or_absent(r, "repetitions");
   const size_t repetitions = reps >= 1 ? size_t(reps) : 1;
   const double z = normal_quantile(0.5 + kTimeConfidence / 2);
   const std::string suffix = "_ms_ci_low";
@@ -84,8 +84,8 @@ void widen_time_intervals(Record& r, const RunToRunSpread* spread, const std::st
     if (key.size() > suffix.size() && key.compare(key.size() - suffix.size(), suffix.size(), suffix) == 0)
       subpasses.push_back(key.substr(0, key.size() - suffix.size()));
   for (const std::string& sub : subpasses) {
-    const double median = number_of(r, sub + "_ms_median");
-    const double low = number_of(r, sub + "_ms_ci_low"), high = number_of(r, sub + "_ms_ci_high");
+    const double median = number_or_absent(r, sub + "_ms_median");
+    const double low = number_or_absent(r, sub + "_ms_ci_low"), high = number_or_absent(r, sub + "_ms_ci_high");
     if (!(median > 0) || !(low > 0) || !(high >= median)) continue;  // a 0 ms sub-pass has no spread
     const double within = std::max(std::log(median / low), std::log(high / median));
     const double h = widened_log_half_width(within, spread->spread, repetitions, z, processes);
@@ -93,8 +93,8 @@ void widen_time_intervals(Record& r, const RunToRunSpread* spread, const std::st
     r.set(sub + "_ms_ci_high", median * std::exp(h));
   }
   if (const RecordValue* half = r.get("time_half_width")) r.put("time_half_width_within_run", *half);
-  const double median = number_of(r, "frame_ms_median");
-  const double low = number_of(r, "frame_ms_ci_low"), high = number_of(r, "frame_ms_ci_high");
+  const double median = number_or_absent(r, "frame_ms_median");
+  const double low = number_or_absent(r, "frame_ms_ci_low"), high = number_or_absent(r, "frame_ms_ci_high");
   if (median > 0) r.set(columns::kTimeHalfWidth, relative_half_width(Interval{low, high, kTimeConfidence}, median));
   r.set(columns::kTimeInterval, (kind ? *kind : std::string()) + kRunToRunSuffix);
   r.set(columns::kTimeRunToRunSpread, spread->spread);

@@ -11,7 +11,7 @@
 namespace ldm {
 namespace {
 
-constexpr uint64_t kDefaultSeed = 0x5254414fu;  // "RTAO"
+constexpr uint64_t kRtaoDefaultSeed = 0x5254414fu;  // "RTAO"
 
 }  // namespace
 
@@ -34,7 +34,7 @@ std::vector<AxisSpec> Rtao::parameters() {
            .identity = false, .unit = "threads", .description = "CPU threads tracing (0: every core)",
            .column = "rtao_threads"},
           {.key = "seed", .kind = AxisKind::UInt, .min = 0, .max = double(uint64_t(1) << 53),  // exact in JSON
-           .default_value = std::to_string(kDefaultSeed),
+           .default_value = std::to_string(kRtaoDefaultSeed),
            .description = "seed of the sample stream (independent of the reference's halves)",
            .column = "rtao_seed"},
           ao_pass_parameter(AoAxis::DMax), ao_pass_parameter(AoAxis::Visibility)};

@@ -19,7 +19,7 @@
 namespace ldm {
 namespace {
 
-constexpr uint64_t kDefaultSeed = 0x52544147u;  // "RTAG"
+constexpr uint64_t kRtaoGpuDefaultSeed = 0x52544147u;  // "RTAG"
 constexpr int kGroupSize = 8;                   // the shader's local_size_x and _y
 
 constexpr uint32_t kNodesBinding = kPassBinding0;
@@ -96,7 +96,7 @@ std::vector<AxisSpec> RtaoGpu::parameters() {
            .unit = "samples per pixel", .description = "rays per pixel k (cosine-weighted, traced on the GPU)",
            .column = "rtao_gpu_spp"},
           {.key = "seed", .kind = AxisKind::UInt, .min = 0, .max = double(uint64_t(1) << 53),  // exact in JSON
-           .default_value = std::to_string(kDefaultSeed),
+           .default_value = std::to_string(kRtaoGpuDefaultSeed),
            .description = "seed of the sample stream (the CPU RTAO's numbers for the same seed)",
            .column = "rtao_gpu_seed"},
           {.key = "primary", .kind = AxisKind::Choice, .choices = {"trace", "raster"}, .default_value = "trace",

@@ -18,7 +18,7 @@ namespace {
 // 8- and 16-wide packets gain as much for intersect but less for occluded.
 constexpr uint32_t kBatchSize = 64;
 
-void validate(const AoSettings& ao) {
+void validate_ao_settings(const AoSettings& ao) {
   if (!(ao.d_max > 0.0f) || !std::isfinite(ao.d_max))
     throw UserError("ao.d_max must be positive and finite (got " + std::to_string(ao.d_max) + ")");
   if (!(ao.falloff_exponent >= 0.0f) || !std::isfinite(ao.falloff_exponent))
@@ -26,7 +26,7 @@ void validate(const AoSettings& ao) {
                     std::to_string(ao.falloff_exponent) + ")");
 }
 
-RTCRay make_ray(glm::vec3 origin, glm::vec3 direction, float t_far) {
+RTCRay make_occlusion_ray(glm::vec3 origin, glm::vec3 direction, float t_far) {
   RTCRay r;
   r.org_x = origin.x;
   r.org_y = origin.y;
@@ -52,7 +52,7 @@ AoEstimator::AoEstimator(const EmbreeScene& scene, const AoSettings& ao, int wid
       height_(height),
       camera_(camera_frame(scene.scene().camera, width, height)),
       ray_offset_(max_ray_offset(scene.scene())) {
-  validate(ao);
+  validate_ao_settings(ao);
   if (width <= 0 || height <= 0) throw UserError("AO reference: image size must be positive");
 }
 
@@ -69,7 +69,7 @@ void AoEstimator::trace_visibility(glm::vec3 origin, const glm::vec3* directions
     // Attenuated rays only need to reach d_max: anything farther has V = 1, like a miss.
     std::array<RTCRayHit, kBatchSize> rays;
     for (uint32_t i = 0; i < count; ++i) {
-      rays[i].ray = make_ray(origin, directions[i], ao_.d_max);
+      rays[i].ray = make_occlusion_ray(origin, directions[i], ao_.d_max);
       rays[i].hit.geomID = RTC_INVALID_GEOMETRY_ID;
     }
     rtcIntersect1M(scene_.handle(), &context, rays.data(), count, sizeof(RTCRayHit));
@@ -80,7 +80,7 @@ void AoEstimator::trace_visibility(glm::vec3 origin, const glm::vec3* directions
   } else {
     std::array<RTCRay, kBatchSize> rays;
     for (uint32_t i = 0; i < count; ++i)
-      rays[i] = make_ray(origin, directions[i], std::numeric_limits<float>::infinity());
+      rays[i] = make_occlusion_ray(origin, directions[i], std::numeric_limits<float>::infinity());
     rtcOccluded1M(scene_.handle(), &context, rays.data(), count, sizeof(RTCRay));
     for (uint32_t i = 0; i < count; ++i)
       visibility[i] = rays[i].tfar < 0.0f ? 0.0f : 1.0f;  // Embree sets tfar = -inf on a hit

@@ -13,7 +13,7 @@
 namespace ldm {
 namespace {
 
-void validate(const AoReferenceRequest& request) {
+void validate_ao_request(const AoReferenceRequest& request) {
   validate_reference_image_request("AO reference", request.width, request.height,
                                    request.threads);
 }
@@ -78,7 +78,7 @@ Image render_ao_half(const Scene& scene, const AoSettings& ao, int width, int he
 }
 
 ReferenceResult render_ao_reference(const Scene& scene, const AoReferenceRequest& request) {
-  validate(request);
+  validate_ao_request(request);
   const SppRule& rule = request.spp;
   validate_spp_rule(rule);
   scene.validate();
@@ -115,7 +115,7 @@ nlohmann::json ao_reference_inputs(const Scene& scene, const AoReferenceRequest&
 
 ReferenceResult cached_ao_reference(const Scene& scene, const AoReferenceRequest& request,
                                     const std::string& cache_dir) {
-  validate(request);
+  validate_ao_request(request);
   validate_spp_rule(request.spp);
   const nlohmann::json inputs = ao_reference_inputs(scene, request);
   if (auto cached = load_cached_reference(cache_dir, inputs)) {

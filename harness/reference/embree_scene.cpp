@@ -16,7 +16,7 @@ void throw_on_error(RTCDevice device, const char* what) {
     throw GpuError(std::string("Embree: ") + what + " failed (error " + std::to_string(code) + ")");
 }
 
-RTCRayHit make_ray(glm::vec3 origin, glm::vec3 direction, float t_near, float t_far) {
+RTCRayHit make_ray_hit(glm::vec3 origin, glm::vec3 direction, float t_near, float t_far) {
   RTCRayHit r;
   std::memset(&r, 0, sizeof r);
   r.ray.org_x = origin.x;
@@ -83,7 +83,7 @@ std::optional<RayHit> EmbreeScene::intersect(glm::vec3 origin, glm::vec3 directi
                                              float t_far) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  RTCRayHit r = make_ray(origin, direction, t_near, t_far);
+  RTCRayHit r = make_ray_hit(origin, direction, t_near, t_far);
   rtcIntersect1(rtc_scene_, &context, &r);
   if (r.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
   return RayHit{r.ray.tfar, r.hit.primID, r.hit.u, r.hit.v};
@@ -93,7 +93,7 @@ bool EmbreeScene::occluded(glm::vec3 origin, glm::vec3 direction, float t_near,
                            float t_far) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  RTCRayHit r = make_ray(origin, direction, t_near, t_far);
+  RTCRayHit r = make_ray_hit(origin, direction, t_near, t_far);
   rtcOccluded1(rtc_scene_, &context, &r.ray);
   return r.ray.tfar < 0.0f;  // Embree sets tfar = -inf on a hit
 }
@@ -105,7 +105,7 @@ std::vector<RayHit> EmbreeScene::all_hit_records(glm::vec3 origin, glm::vec3 dir
   rtcInitIntersectContext(&context.base);
   context.base.filter = collect_hit;
   context.hits = &hits;
-  RTCRayHit r = make_ray(origin, direction, t_near, t_far);
+  RTCRayHit r = make_ray_hit(origin, direction, t_near, t_far);
   rtcIntersect1(rtc_scene_, &context.base, &r);
   // A triangle referenced by several BVH leaves may be reported more than once.
   std::sort(hits.begin(), hits.end(),

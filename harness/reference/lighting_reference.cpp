@@ -13,7 +13,7 @@
 namespace ldm {
 namespace {
 
-void validate(const LightingReferenceRequest& request) {
+void validate_lighting_request(const LightingReferenceRequest& request) {
   validate_reference_image_request(std::string(to_string(request.component)) + " reference",
                                    request.width, request.height, request.threads);
   validate_spp_rule(request.spp);
@@ -84,7 +84,7 @@ Image render_lighting_half(const Scene& scene, LightingComponent component, int 
 
 ReferenceResult render_lighting_reference(const Scene& scene,
                                           const LightingReferenceRequest& request) {
-  validate(request);
+  validate_lighting_request(request);
   scene.validate();
   const Scene centred = centred_on_bounding_sphere(scene);
   const EmbreeScene embree(centred);  // one BVH for every pass of both halves
@@ -126,7 +126,7 @@ nlohmann::json lighting_reference_inputs(const Scene& scene,
 ReferenceResult cached_lighting_reference(const Scene& scene,
                                           const LightingReferenceRequest& request,
                                           const std::string& cache_dir) {
-  validate(request);
+  validate_lighting_request(request);
   const nlohmann::json inputs = lighting_reference_inputs(scene, request);
   if (auto cached = load_cached_reference(cache_dir, inputs)) {
     annotate_ray_offset(*cached, scene, 0.0, "");

@@ -20,7 +20,7 @@ namespace {
 // tile costs nothing next to its pixels.
 constexpr int kTileSize = 16;
 
-void validate(const PixelRenderSettings& s, int channels) {
+void validate_pixel_settings(const PixelRenderSettings& s, int channels) {
   if (s.width <= 0) throw UserError("render: width must be positive");
   if (s.height <= 0) throw UserError("render: height must be positive");
   if (s.spp == 0) throw UserError("render: spp must be at least 1");
@@ -45,7 +45,7 @@ int render_worker_count(int threads, int width, int height) {
 
 Image render_pixels(const PixelRenderSettings& settings, int channels,
                     const PixelEstimator& estimator) {
-  validate(settings, channels);
+  validate_pixel_settings(settings, channels);
   const int width = settings.width, height = settings.height;
   Image image(width, height, channels);
   const int tiles_x = (width + kTileSize - 1) / kTileSize;

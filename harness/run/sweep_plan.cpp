@@ -24,7 +24,7 @@ namespace {
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 
-[[noreturn]] void fail(const std::string& file, const std::string& where, const std::string& what) {
+[[noreturn]] void fail_plan(const std::string& file, const std::string& where, const std::string& what) {
   throw UserError(file + ": " + where + ": " + what);
 }
 
@@ -169,12 +169,12 @@ SweepPlan plan_sweep(const std::string& path, const RunSettings& base) {
     try {
       plan.scenes.emplace(resolved, load_scene(resolved));
     } catch (const UserError& e) {
-      fail(file, where, e.what());
+      fail_plan(file, where, e.what());
     }
   });
   const std::set<std::string> axes = axes_of(spec);
   if (axes.count("sizing_budget_mib") && !axes.count("sizing"))
-    fail(file, "axes.sizing_budget_mib", "is used only by the budget sizing policy; add \"sizing\": \"budget\"");
+    fail_plan(file, "axes.sizing_budget_mib", "is used only by the budget sizing policy; add \"sizing\": \"budget\"");
 
   RunSettings shared = base;
   apply_settings(spec.settings, shared);
@@ -202,7 +202,7 @@ SweepPlan plan_sweep(const std::string& path, const RunSettings& base) {
         throw UserError("the budget sizing policy needs sizing_budget_mib (an axis of MiB values)");
       validate_axes(s);
     } catch (const UserError& e) {
-      fail(file, "combination " + json(a).dump(), e.what());
+      fail_plan(file, "combination " + json(a).dump(), e.what());
     }
     for (Configuration config : expand_configurations(s)) {
       config.id_ = configuration_id(config.values, varied);
@@ -210,7 +210,7 @@ SweepPlan plan_sweep(const std::string& path, const RunSettings& base) {
       plan.configurations.push_back({config, s});
     }
   }
-  if (plan.configurations.empty()) fail(file, "(top level)", "the sweep has no configuration (everything excluded)");
+  if (plan.configurations.empty()) fail_plan(file, "(top level)", "the sweep has no configuration (everything excluded)");
   // A combination that names no scene runs the default one, also when only an include
   // block names scenes (the main axes then have none): load every scene a configuration uses.
   for (const auto& planned : plan.configurations)

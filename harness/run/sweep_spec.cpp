@@ -22,7 +22,7 @@ std::string number_text(double x) {
   return buffer;
 }
 
-[[noreturn]] void fail(const std::string& name, const std::string& path, const std::string& what) {
+[[noreturn]] void fail_spec(const std::string& name, const std::string& path, const std::string& what) {
   throw UserError(name + ": " + path + ": " + what);
 }
 
@@ -39,7 +39,7 @@ std::string checked(const AxisSpec& spec, const std::string& text, const std::st
   try {
     return canonical_axis_value(spec, text, path);
   } catch (const UserError& e) {
-    fail(name, path, std::string(e.what()).substr(path.size() + 2));
+    fail_spec(name, path, std::string(e.what()).substr(path.size() + 2));
   }
 }
 
@@ -51,53 +51,53 @@ json canonical_value(const AxisSpec& spec, bool parameter, const json& v, const 
   if (parameter) {
     // A comma would make it a list on the command line: in a file, lists are arrays.
     if (v.is_string() && v.get<std::string>().find(',') != std::string::npos)
-      fail(name, path, "a comma in a parameter value; give several values as an array");
+      fail_spec(name, path, "a comma in a parameter value; give several values as an array");
     std::string text;
     try {
       text = axis_text_of_json(v, path);
     } catch (const UserError& e) {
-      fail(name, path, std::string(e.what()).substr(path.size() + 2));
+      fail_spec(name, path, std::string(e.what()).substr(path.size() + 2));
     }
     return json(checked(spec, text, name, path));
   }
   const std::string what = spec.display_name();
   switch (spec.kind) {
     case AxisKind::UInt:
-      if (!v.is_number_integer()) fail(name, path, "expected an integer (" + what + "), got " + type_name(v));
+      if (!v.is_number_integer()) fail_spec(name, path, "expected an integer (" + what + "), got " + type_name(v));
       if (!v.is_number_unsigned() && v.get<int64_t>() < 0)
-        fail(name, path, what + " " + v.dump() + " is out of range [" + number_text(spec.min) + ", " +
+        fail_spec(name, path, what + " " + v.dump() + " is out of range [" + number_text(spec.min) + ", " +
                              number_text(spec.max) + "]");
       return axis_json_of_text(spec, checked(spec, std::to_string(v.get<uint64_t>()), name, path));
     case AxisKind::Real:
-      if (!v.is_number()) fail(name, path, "expected a number (" + what + "), got " + type_name(v));
+      if (!v.is_number()) fail_spec(name, path, "expected a number (" + what + "), got " + type_name(v));
       return axis_json_of_text(spec, checked(spec, axis_text_of_json(v, path), name, path));
     case AxisKind::ImageSize:
       if (v.is_number_unsigned())
         return json(checked(spec, std::to_string(std::min<uint64_t>(v.get<uint64_t>(), 1u << 30)), name, path));
       if (!v.is_string())
-        fail(name, path, "expected an image size \"WIDTHxHEIGHT\" or one integer, got " + type_name(v));
+        fail_spec(name, path, "expected an image size \"WIDTHxHEIGHT\" or one integer, got " + type_name(v));
       return json(checked(spec, v.get<std::string>(), name, path));
     case AxisKind::Bool:
-      if (!v.is_boolean()) fail(name, path, "expected true or false, got " + type_name(v));
+      if (!v.is_boolean()) fail_spec(name, path, "expected true or false, got " + type_name(v));
       return json(v.get<bool>());
     case AxisKind::Choice:
-      if (!v.is_string()) fail(name, path, "expected a " + what + " name, got " + type_name(v));
+      if (!v.is_string()) fail_spec(name, path, "expected a " + what + " name, got " + type_name(v));
       if (spec.key == "structures") {
         const auto names = axis_choices(spec);
         if (std::find(names.begin(), names.end(), v.get<std::string>()) == names.end())
-          fail(name, path, "unknown structure \"" + v.get<std::string>() + "\" (known: " + joined(names) + ", or all)");
+          fail_spec(name, path, "unknown structure \"" + v.get<std::string>() + "\" (known: " + joined(names) + ", or all)");
       } else {
         const auto names = axis_choices(spec);
         if (std::find(names.begin(), names.end(), v.get<std::string>()) == names.end())
-          fail(name, path, "unknown " + what + " \"" + v.get<std::string>() + "\" (known: " + joined(names) + ")");
+          fail_spec(name, path, "unknown " + what + " \"" + v.get<std::string>() + "\" (known: " + joined(names) + ")");
       }
       return v;
     case AxisKind::Text:
       if (!v.is_string() || v.get<std::string>().empty())
-        fail(name, path, "expected a non-empty string, got " + type_name(v));
+        fail_spec(name, path, "expected a non-empty string, got " + type_name(v));
       return v;
   }
-  fail(name, path, "unhandled axis kind");
+  fail_spec(name, path, "unhandled axis kind");
 }
 
 std::vector<std::string> axis_keys(const SweepVocabulary& v) {
@@ -114,26 +114,26 @@ const AxisSpec& axis_rule(const std::string& key, const SweepVocabulary& v, cons
   if (const AxisSpec* known = find_axis(v.axes, key)) return *known;
   const auto colon = key.find(':');
   if (colon == std::string::npos)
-    fail(name, path, "unknown axis \"" + key + "\" (axes: " + joined(axis_keys(v)) +
+    fail_spec(name, path, "unknown axis \"" + key + "\" (axes: " + joined(axis_keys(v)) +
                          ", or OWNER:KEY for a --param)");
   if (colon == 0 || colon + 1 >= key.size() || key.find(':', colon + 1) != std::string::npos)
-    fail(name, path, "expected OWNER:KEY (a --param of a structure or pass, e.g. \"ppfla:k\")");
+    fail_spec(name, path, "expected OWNER:KEY (a --param of a structure or pass, e.g. \"ppfla:k\")");
   const std::string owner = key.substr(0, colon), param = key.substr(colon + 1);
   const auto declared = v.parameters.find(owner);
   if (declared == v.parameters.end()) {
     std::vector<std::string> owners;
     for (const auto& [o, specs] : v.parameters) owners.push_back(o);
-    fail(name, path, "unknown structure or pass \"" + owner + "\" (known: " + joined(owners) + ")");
+    fail_spec(name, path, "unknown structure or pass \"" + owner + "\" (known: " + joined(owners) + ")");
   }
   const AxisSpec* spec = find_axis(declared->second, param);
   std::vector<std::string> keys;
   for (const auto& s : declared->second)
     if (s.pass_parameter.empty()) keys.push_back(s.key);
   if (!spec)
-    fail(name, path, owner + " has no parameter \"" + param + "\" (its parameters: " +
+    fail_spec(name, path, owner + " has no parameter \"" + param + "\" (its parameters: " +
                          (keys.empty() ? std::string("none") : joined(keys)) + ")");
   if (!spec->pass_parameter.empty())
-    fail(name, path, "set it with the axis of the same setting (\"" + [&] {
+    fail_spec(name, path, "set it with the axis of the same setting (\"" + [&] {
       for (const auto& a : v.axes)
         if (a.pass_parameter == param) return a.key;
       return param;
@@ -149,7 +149,7 @@ std::vector<json> axis_values(const std::string& key, const json& value, const S
   bool parameter = false;
   const AxisSpec& rule = axis_rule(key, vocabulary, name, path, parameter);
   const json items = value.is_array() ? value : json::array({value});
-  if (items.empty()) fail(name, path, "an axis needs at least one value");
+  if (items.empty()) fail_spec(name, path, "an axis needs at least one value");
   std::vector<json> out;
   for (size_t i = 0; i < items.size(); ++i) {
     const std::string item_path = value.is_array() ? path + "[" + std::to_string(i) + "]" : path;
@@ -160,14 +160,14 @@ std::vector<json> axis_values(const std::string& key, const json& value, const S
     }
     json v = canonical_value(rule, parameter, items[i], name, item_path);
     if (std::find(out.begin(), out.end(), v) != out.end())
-      fail(name, item_path, v.dump() + " appears twice");
+      fail_spec(name, item_path, v.dump() + " appears twice");
     out.push_back(std::move(v));
   }
   return out;
 }
 
 void require_object(const json& v, const std::string& name, const std::string& path) {
-  if (!v.is_object()) fail(name, path, "expected an object, got " + type_name(v));
+  if (!v.is_object()) fail_spec(name, path, "expected an object, got " + type_name(v));
 }
 
 // axis -> values, the form of the axes, of include blocks and of exclude filters.
@@ -208,28 +208,28 @@ void check_setting_value(const SettingRule& rule, const json& value, const std::
                          const std::string& path) {
   switch (rule.kind) {
     case SettingRule::Kind::Flag:
-      if (!value.is_boolean()) fail(name, path, "expected true or false, got " + type_name(value));
+      if (!value.is_boolean()) fail_spec(name, path, "expected true or false, got " + type_name(value));
       return;
     case SettingRule::Kind::Choice:
       if (!value.is_string() ||
           std::find(rule.choices.begin(), rule.choices.end(), value.get<std::string>()) == rule.choices.end())
-        fail(name, path, "expected one of " + joined(rule.choices) + ", got " + value.dump());
+        fail_spec(name, path, "expected one of " + joined(rule.choices) + ", got " + value.dump());
       return;
     case SettingRule::Kind::Integer:
       if (!value.is_number_unsigned() || double(value.get<uint64_t>()) > rule.max ||
           double(value.get<uint64_t>()) < rule.min)
-        fail(name, path, "expected an integer in [" + number_text(rule.min) + ", " + number_text(rule.max) +
+        fail_spec(name, path, "expected an integer in [" + number_text(rule.min) + ", " + number_text(rule.max) +
                              "], got " + value.dump());
       return;
     case SettingRule::Kind::Real: {
       if (rule.positive) {
         if (!value.is_number() || !(value.get<double>() > 0) || !std::isfinite(value.get<double>()))
-          fail(name, path, "expected a positive number, got " + value.dump());
+          fail_spec(name, path, "expected a positive number, got " + value.dump());
         return;
       }
       const double v = value.is_number() ? value.get<double>() : -1;
       if (!value.is_number() || !(v >= rule.min) || v > rule.max)
-        fail(name, path, "expected a number in [" + number_text(rule.min) + ", " + number_text(rule.max) +
+        fail_spec(name, path, "expected a number in [" + number_text(rule.min) + ", " + number_text(rule.max) +
                              "], got " + value.dump());
       return;
     }
@@ -256,7 +256,7 @@ void check_setting_group(const json& object, const std::vector<SettingRule>& rul
     }
     std::vector<std::string> known = setting_keys(rules, group);
     if (group.empty()) known.push_back("comment");
-    fail(name, item_path, "unknown key (known: " + joined(known) + ")");
+    fail_spec(name, item_path, "unknown key (known: " + joined(known) + ")");
   }
 }
 
@@ -267,7 +267,7 @@ void check_settings(const json& settings, const std::vector<SettingRule>& rules,
     const json& value = settings["reference"];
     if (value.contains("spp") && value.contains("max_spp") &&
         value["spp"].get<uint64_t>() > value["max_spp"].get<uint64_t>())
-      fail(name, "settings.reference.spp", "exceeds settings.reference.max_spp");
+      fail_spec(name, "settings.reference.spp", "exceeds settings.reference.max_spp");
   }
 }
 
@@ -306,13 +306,13 @@ SweepSpec parse_sweep_spec(const std::string& text, const std::string& name,
     if (key == "description" || key == "comment") {
       const bool text_or_lines = value.is_string() ||
           (value.is_array() && std::all_of(value.begin(), value.end(), [](const json& l) { return l.is_string(); }));
-      if (!text_or_lines) fail(name, key, "expected a string or an array of strings");
+      if (!text_or_lines) fail_spec(name, key, "expected a string or an array of strings");
       if (key == "description" && value.is_string()) spec.description = value.get<std::string>();
       continue;
     }
-    fail(name, key, "unknown key (known: description, comment, axes, include, exclude, settings)");
+    fail_spec(name, key, "unknown key (known: description, comment, axes, include, exclude, settings)");
   }
-  if (!root.contains("axes")) fail(name, "axes", "missing (the object of axes to sweep)");
+  if (!root.contains("axes")) fail_spec(name, "axes", "missing (the object of axes to sweep)");
   const auto axes = axis_block(root["axes"], vocabulary, name, "axes");
   for (const auto& [key, values] : axes) spec.axes.emplace_back(key, values);
   spec.axis_order = order;
@@ -323,17 +323,17 @@ SweepSpec parse_sweep_spec(const std::string& text, const std::string& name,
   for (const char* list : {"include", "exclude"}) {
     if (!root.contains(list)) continue;
     const json& entries = root[list];
-    if (!entries.is_array()) fail(name, list, "expected an array of objects, got " + type_name(entries));
+    if (!entries.is_array()) fail_spec(name, list, "expected an array of objects, got " + type_name(entries));
     for (size_t i = 0; i < entries.size(); ++i) {
       const std::string path = std::string(list) + "[" + std::to_string(i) + "]";
       auto block = axis_block(entries[i], vocabulary, name, path);
-      if (block.empty()) fail(name, path, "names no axis");
+      if (block.empty()) fail_spec(name, path, "names no axis");
       for (const auto& [key, values] : block) {
         (void)values;
         // A filter on an axis the sweep does not vary would compare with a default it
         // cannot see; an include block may add any axis (its first values are new).
         if (std::string(list) == "exclude" && !axes.count(key))
-          fail(name, path + "." + key, "not an axis of this sweep (axes: " + [&] {
+          fail_spec(name, path + "." + key, "not an axis of this sweep (axes: " + [&] {
             std::vector<std::string> keys;
             for (const auto& a : spec.axes) keys.push_back(a.first);
             return joined(keys);

@@ -14,7 +14,7 @@ void floor_square(MeshBuilder& b, float half, float y, uint32_t material) {
   b.quad({-half, y, half}, {half, y, half}, {half, y, -half}, {-half, y, -half}, material);
 }
 
-void read_ao(GeneratorParams& params, Scene& scene, float default_d_max) {
+void read_generator_ao(GeneratorParams& params, Scene& scene, float default_d_max) {
   scene.ao.attenuated = params.boolean("attenuated", true);
   scene.ao.d_max = params.number("d_max", default_d_max, 1e-6f, 1e6f);
   scene.ao.normal_offset_pixels = params.number("normal_offset", 0.0f, 0.0f, 100.0f);
@@ -39,7 +39,7 @@ Scene make_plane_scene(GeneratorParams& params) {
   floor_square(b, half, 0.0f, b.material("grey", glm::vec3(0.5f)));
   set_camera(scene, {0.0f, 1.0f, 0.0f}, {0.0f, 0.0f, 0.0f}, 60.0f);
   scene.light.position = {0.0f, 3.0f, 0.0f};
-  read_ao(params, scene, 1.0f);
+  read_generator_ao(params, scene, 1.0f);
   return scene;
 }
 
@@ -56,7 +56,7 @@ Scene make_parallel_planes_scene(GeneratorParams& params) {
   // The camera hangs just under the ceiling and looks straight down at the floor.
   set_camera(scene, {0.0f, 0.9f * h, 0.0f}, {0.0f, 0.0f, 0.0f}, 60.0f);
   scene.light.position = {0.0f, 0.8f * h, 0.0f};
-  read_ao(params, scene, 2.0f * h);
+  read_generator_ao(params, scene, 2.0f * h);
   return scene;
 }
 
@@ -74,7 +74,7 @@ Scene make_wall_scene(GeneratorParams& params) {
   // Looking straight down at the strip 0 < x < 1 next to the wall.
   set_camera(scene, {0.6f, 1.2f, 0.0f}, {0.6f, 0.0f, 0.0f}, 50.0f);
   scene.light.position = {1.0f, 3.0f, 0.0f};
-  read_ao(params, scene, 1.0f);
+  read_generator_ao(params, scene, 1.0f);
   return scene;
 }
 
@@ -115,7 +115,7 @@ Scene make_spot_bounce_scene(GeneratorParams& params) {
   scene.camera.target = {0.0f, 0.5f * light_height, 0.0f};
   scene.camera.up = {0.0f, 1.0f, 0.0f};
   scene.camera.fov_y_deg = 60.0f;
-  read_ao(params, scene, 1.0f);
+  read_generator_ao(params, scene, 1.0f);
   return scene;
 }
 
@@ -139,7 +139,7 @@ Scene make_closed_sphere_scene(GeneratorParams& params) {
   scene.light.inner_angle_deg = 30.0f;
   scene.light.outer_angle_deg = 45.0f;
   set_camera(scene, {0.0f, 0.5f * radius, 0.3f * radius}, {0.0f, -radius, -0.2f * radius}, 70.0f);
-  read_ao(params, scene, 0.2f * radius);
+  read_generator_ao(params, scene, 0.2f * radius);
   return scene;
 }
 

@@ -9,11 +9,11 @@
 
 #include "harness/scene/generators.h"
 #include "harness/scene/mesh_builder.h"
+#include <numbers>
 
 namespace ldm {
 namespace {
 
-constexpr float kPi = 3.14159265358979323846f;
 
 // SplitMix64: a small, fully specified generator, so that a seed gives the same strands on
 // every platform and library version (std::uniform_*_distribution does not promise that).
@@ -24,7 +24,7 @@ class StrandRandom {
     return float(next() >> 40) * (1.0f / 16777216.0f);
   }
   glm::vec3 unit_vector() {
-    const float z = 2.0f * uniform() - 1.0f, phi = 2.0f * kPi * uniform();
+    const float z = 2.0f * uniform() - 1.0f, phi = 2.0f * std::numbers::pi_v<float> * uniform();
     const float s = std::sqrt(std::max(0.0f, 1.0f - z * z));
     return {s * std::cos(phi), s * std::sin(phi), z};
   }
@@ -90,7 +90,7 @@ void add_strand(MeshBuilder& b, StrandRandom& random, const StrandShape& s, uint
     const glm::vec3 v = glm::cross(t, u);
     std::vector<glm::vec3> ring;
     for (int k = 0; k < s.sides; ++k) {
-      const float a = 2.0f * kPi * float(k) / float(s.sides);
+      const float a = 2.0f * std::numbers::pi_v<float> * float(k) / float(s.sides);
       ring.push_back(centres[i] + s.tube_radius * (std::cos(a) * u + std::sin(a) * v));
     }
     rings.push_back(std::move(ring));

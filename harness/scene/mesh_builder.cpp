@@ -1,10 +1,10 @@
 #include "harness/scene/mesh_builder.h"
 
 #include <cmath>
+#include <numbers>
 
 namespace ldm {
 namespace {
-constexpr float kPi = 3.14159265358979323846f;
 }
 
 uint32_t MeshBuilder::material(const std::string& name, glm::vec3 albedo) {
@@ -53,8 +53,8 @@ void MeshBuilder::cylinder(glm::vec3 base, float radius, float height, int sides
                            uint32_t material) {
   const glm::vec3 top = base + glm::vec3(0, height, 0);
   for (int i = 0; i < sides; ++i) {
-    const float a0 = 2 * kPi * float(i) / float(sides);
-    const float a1 = 2 * kPi * float(i + 1) / float(sides);
+    const float a0 = 2 * std::numbers::pi_v<float> * float(i) / float(sides);
+    const float a1 = 2 * std::numbers::pi_v<float> * float(i + 1) / float(sides);
     const glm::vec3 r0(radius * std::cos(a0), 0, -radius * std::sin(a0));
     const glm::vec3 r1(radius * std::cos(a1), 0, -radius * std::sin(a1));
     quad(base + r0, base + r1, top + r1, top + r0, material);
@@ -68,7 +68,7 @@ void MeshBuilder::arch(glm::vec3 centre, glm::vec3 along, glm::vec3 depth_dir, f
   const glm::vec3 up(0, 1, 0);
   const glm::vec3 back = depth_dir * depth;
   auto ring = [&](float radius, int i) {
-    const float a = kPi * float(i) / float(segments);
+    const float a = std::numbers::pi_v<float> * float(i) / float(segments);
     return centre + radius * (std::cos(a) * along + std::sin(a) * up);
   };
   // Orientation: the front face's normal must point to -depth_dir.
@@ -92,8 +92,8 @@ void MeshBuilder::arch(glm::vec3 centre, glm::vec3 along, glm::vec3 depth_dir, f
 void MeshBuilder::sphere(glm::vec3 centre, float radius, int segments, uint32_t material) {
   const int rings = std::max(2, segments / 2);
   auto point = [&](int ring, int seg) {
-    const float theta = kPi * float(ring) / float(rings);
-    const float phi = 2 * kPi * float(seg) / float(segments);
+    const float theta = std::numbers::pi_v<float> * float(ring) / float(rings);
+    const float phi = 2 * std::numbers::pi_v<float> * float(seg) / float(segments);
     return centre + radius * glm::vec3(std::sin(theta) * std::cos(phi), std::cos(theta),
                                        -std::sin(theta) * std::sin(phi));
   };
@@ -113,7 +113,7 @@ void MeshBuilder::curtain(glm::vec3 top_left, glm::vec3 top_right, float height,
     const float u = float(col) / float(columns);
     const float v = float(row) / float(rows);
     const glm::vec3 along = glm::mix(top_left, top_right, u);
-    const float fold = amplitude * std::sin(2 * kPi * float(folds) * u);
+    const float fold = amplitude * std::sin(2 * std::numbers::pi_v<float> * float(folds) * u);
     return along + fold * fold_dir - glm::vec3(0, v * height, 0);
   };
   for (int r = 0; r < rows; ++r)

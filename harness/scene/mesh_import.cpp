@@ -18,6 +18,7 @@
 #include "harness/util/hash.h"
 #include "harness/util/isolated_call.h"
 #include "harness/util/json_input.h"
+#include "harness/util/text.h"
 
 namespace ldm {
 namespace {
@@ -35,14 +36,8 @@ constexpr uint64_t kMaxImportedTriangles = uint64_t(1) << 27;
 // A long import (the 4 MB IFC house takes a second) is fine; a hang is not.
 constexpr double kImportSeconds = 600;
 
-std::string format_float(float x) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%g", double(x));
-  return buffer;
-}
-
 std::string format_point(glm::vec3 p) {
-  return "(" + format_float(p.x) + ", " + format_float(p.y) + ", " + format_float(p.z) + ")";
+  return "(" + format_significant(p.x) + ", " + format_significant(p.y) + ", " + format_significant(p.z) + ")";
 }
 
 bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
@@ -242,7 +237,7 @@ void check_obj_placement(const std::string& text, const std::string& path,
       throw UserError(path + ":" + std::to_string(syntax.vertex_lines[i]) + ": the vertex lies at " +
                       format_point(p) + " after " + context +
                       "'s scale and translate, beyond the representable scene extent (|x| <= " +
-                      format_float(kMaxSceneCoordinate) + ")");
+                      format_significant(kMaxSceneCoordinate) + ")");
   }
 }
 
@@ -322,7 +317,7 @@ void append_imported_model(Scene& scene, const ImportedModel& model, const std::
           throw UserError(where + ": " + place + ": vertex " + std::to_string(i) + " lies at " +
                           format_point(glm::vec3(placed)) + " after the node transforms and " + context +
                           "'s scale and translate, beyond the representable scene extent (|x| <= " +
-                          format_float(kMaxSceneCoordinate) + ")");
+                          format_significant(kMaxSceneCoordinate) + ")");
         return std::pair(p, in_file);
       };
 
@@ -391,7 +386,7 @@ void append_imported_model(Scene& scene, const ImportedModel& model, const std::
     throw UserError(where + ": " + std::to_string(collapsed_by_placement) + " of its " +
                     std::to_string(degenerate) + " triangles have an area in the file but none after " +
                     context + "'s scale and translate: they place the mesh at coordinates up to " +
-                    format_float(largest_placed) + ", where 32-bit floats are " + format_float(spacing) +
+                    format_significant(largest_placed) + ", where 32-bit floats are " + format_significant(spacing) +
                     " apart, more than the mesh's own size; move it nearer the origin or scale it up");
   }
   if (triangles == 0 && degenerate > 0)

@@ -8,15 +8,10 @@
 
 #include "harness/util/error.h"
 #include "harness/util/hash.h"
+#include "harness/util/text.h"
 
 namespace ldm {
 namespace {
-
-std::string format_float(float x) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%g", double(x));
-  return buffer;
-}
 
 }  // namespace
 
@@ -115,8 +110,8 @@ void Scene::validate() const {
     const float largest = std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)});
     if (largest > kMaxSceneCoordinate)
       throw UserError(where + ": vertex " + std::to_string(i) + " has a coordinate of magnitude " +
-                      format_float(largest) + ", beyond the representable scene extent (|x| <= " +
-                      format_float(kMaxSceneCoordinate) + ")");
+                      format_significant(largest) + ", beyond the representable scene extent (|x| <= " +
+                      format_significant(kMaxSceneCoordinate) + ")");
   }
   const auto vertex_count = mesh.positions.size();
   for (const auto& t : mesh.triangles)

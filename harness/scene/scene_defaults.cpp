@@ -2,11 +2,11 @@
 
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 
 namespace ldm {
 namespace {
 
-constexpr float kPi = 3.14159265358979323846f;
 
 std::string format(const char* pattern, double value) {
   char text[96];
@@ -29,7 +29,7 @@ void derive_size_defaults(Scene& scene, const GivenSettings& given) {
   if (!given.camera) {
     Camera& camera = scene.camera;
     camera.fov_y_deg = kDerivedFovYDeg;
-    const float distance = kDerivedFramingMargin * r / std::sin(0.5f * kDerivedFovYDeg * kPi / 180.0f);
+    const float distance = kDerivedFramingMargin * r / std::sin(0.5f * kDerivedFovYDeg * std::numbers::pi_v<float> / 180.0f);
     camera.target = c;
     camera.eye = c + glm::normalize(kCameraDirection) * distance;
     camera.up = glm::vec3(0.0f, 1.0f, 0.0f);
@@ -42,7 +42,7 @@ void derive_size_defaults(Scene& scene, const GivenSettings& given) {
     const float distance = glm::length(to_centre);
     light.direction = to_centre / distance;
     // The sphere seen from the light subtends asin(R / d); 5 degrees more reach its rim.
-    light.outer_angle_deg = std::asin(r / distance) * 180.0f / kPi + 5.0f;
+    light.outer_angle_deg = std::asin(r / distance) * 180.0f / std::numbers::pi_v<float> + 5.0f;
     light.inner_angle_deg = 0.75f * light.outer_angle_deg;
     light.intensity = glm::vec3(distance * distance);  // E = I / d^2 = 1 W/m^2 at C
     scene.sources.light = "derived (a spot above the " + radius + ", 1 W/m^2 at its centre)";

@@ -142,7 +142,7 @@ void read_light(const Fields& f, SpotLight& light, glm::dvec3 origin_offset) {
     f.fail("outer_angle_deg", "needs 0 <= inner_angle_deg <= outer_angle_deg <= 180");
 }
 
-void read_ao(const Fields& f, AoSettings& ao) {
+void read_ao_fields(const Fields& f, AoSettings& ao) {
   f.only({"attenuated", "d_max", "falloff_exponent", "normal_offset"});
   ao.attenuated = f.boolean("attenuated", ao.attenuated);
   // Checked by the axes' own declarations (harness/scene/ao_axes.cpp), as --d-max and
@@ -324,7 +324,7 @@ Scene parse_scene_file(const std::string& text, const std::string& path) {
     scene.sources.light = "scene file";
   }
   if (top.has("ao")) {
-    read_ao(top.child("ao"), scene.ao);
+    read_ao_fields(top.child("ao"), scene.ao);
     if (root.at("ao").is_object() && root.at("ao").contains("d_max")) scene.sources.d_max = "scene file";
   }
   scene.source_hash = source.value();

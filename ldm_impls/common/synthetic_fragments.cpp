@@ -9,7 +9,7 @@
 
 namespace ldm {
 namespace {
-constexpr uint64_t kGroupSize = 64;  // local_size_x of synthetic_fragments.comp
+constexpr uint64_t kSyntheticGroupSize = 64;  // local_size_x of synthetic_fragments.comp
 }  // namespace
 
 SyntheticFragmentSource::SyntheticFragmentSource(const ViewSet& views,
@@ -51,7 +51,7 @@ void SyntheticFragmentSource::run(const GlProgram& program) const {
   program.use();
   fragments_.bind_storage(kSyntheticFragmentsBinding);
   retries_.bind_storage(kSyntheticRetryBinding);
-  dispatch_linear_groups(groups_for(list_.size(), kGroupSize));
+  dispatch_linear_groups(groups_for(list_.size(), kSyntheticGroupSize));
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_ATOMIC_COUNTER_BARRIER_BIT |
                   GL_BUFFER_UPDATE_BARRIER_BIT);
 }

@@ -6,7 +6,7 @@
 namespace ldm {
 
 namespace {
-constexpr uint64_t kGroupSize = 256;  // local_size_x of reduce_uint.comp
+constexpr uint64_t kReductionGroupSize = 256;  // local_size_x of reduce_uint.comp
 constexpr uint64_t kItemsPerInvocation = 32;
 }  // namespace
 
@@ -26,7 +26,7 @@ UintReductionResult UintReduction::run(const GlBuffer& buffer, uint64_t items,
   program_.set("reduce_items", unsigned(items));
   program_.set("reduce_words_per_item", unsigned(words_per_item));
   program_.set("reduce_empty", unsigned(empty));
-  dispatch_linear_groups(groups_for(items, kGroupSize * kItemsPerInvocation));
+  dispatch_linear_groups(groups_for(items, kReductionGroupSize * kItemsPerInvocation));
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
   uint32_t words[3] = {};
   result_.download(words, sizeof words);
