@@ -82,7 +82,13 @@ RunToRunSpread pool_with_earlier_probes(const RunToRunSpread& fresh, const std::
   const RunToRunSpread across = spread_from_processes(processes);
   const double sum_of_squares = rms_sum_of_squares + (across.pairs ? across.spread * across.spread * double(across.pairs) : 0);
   const size_t pairs = rms_pairs + across.pairs;
-  if (pairs) out.spread = std::sqrt(sum_of_squares / double(pairs));
+  // Probes with their medians alone: their spread as computed (the root of its own square
+  // would differ in the last bits, and a probe pooled with nothing must keep its value).
+  if (rms_pairs == 0) {
+    if (across.pairs) out.spread = across.spread;
+  } else if (pairs) {
+    out.spread = std::sqrt(sum_of_squares / double(pairs));
+  }
   out.pairs = pairs;
   out.processes = process_count;
   out.pooled_probes = pooled;
