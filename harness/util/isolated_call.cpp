@@ -65,7 +65,10 @@ bool write_all(int fd, const char* data, size_t size) {
     dup2(null, STDERR_FILENO);
     close(null);
   }
-  if (limits.address_space_bytes > 0 && !kAddressSanitizer) {
+  // The cap is what the caller measured (mesh_import.cpp: what the parent has mapped plus
+  // half the machine's memory), so it holds under AddressSanitizer too, whose shadow and
+  // allocator regions were mapped before the fork and count in what the parent has mapped.
+  if (limits.address_space_bytes > 0) {
     const rlimit limit{limits.address_space_bytes, limits.address_space_bytes};
     setrlimit(RLIMIT_AS, &limit);
   }

@@ -32,7 +32,8 @@ struct IsolationLimits {
   double seconds = 600;  // wall-clock limit for the child
   // Address-space limit of the child (RLIMIT_AS), so that a file that makes the importer
   // allocate without bound fails in the child instead of exhausting the machine. 0: none.
-  // Ignored under AddressSanitizer, whose shadow memory needs terabytes of address space.
+  // Under AddressSanitizer, whose shadow takes terabytes of address space, a cap is only
+  // meaningful above what the process has mapped already (mesh_import.cpp measures it).
   unsigned long long address_space_bytes = 0;
 };
 

@@ -414,21 +414,19 @@ TEST(ImportIsolation, AFileThatExhaustsTheImportersMemoryIsARefusal) {
   REQUIRE_TEST_MODELS();
   // assimp-testmodels' own hostile file: an OFF claiming 353,535,235,358 vertices. In this
   // process Assimp would reserve without bound (it ran for minutes filling memory); in the
-  // child, whose address space is limited, the allocation fails and the import is refused
-  // (under AddressSanitizer, which needs the address space, its allocator ends the child:
-  // refused as a crash).
+  // child, whose address space is limited, the allocation fails and the import is refused.
   const std::string file = (kModels / "invalid/OutOfMemory.off").string();
-  const auto start = std::chrono::steady_clock::now();
   const std::string message = user_error([&] { load_scene(file); });
   expect_contains(message, {"OutOfMemory.off", "Assimp"});
-  EXPECT_TRUE(message.find("bad_alloc") != std::string::npos || message.find("crashed") != std::string::npos) << message;
+  // How it was refused, not how fast (no check here depends on the machine's speed; ctest's
+  // timeout bounds a child that never stops): the allocation fails in the child's capped
+  // address space. Under AddressSanitizer the cap holds too (it counts the shadow the parent
+  // had mapped; uncapped, the child filled pages for 52-130 s), but ASan's operator new
+  // reports the failed allocation and ends the child (its death status) instead of throwing.
 #if defined(__SANITIZE_ADDRESS__)
-  // Under AddressSanitizer (scripts/sanitize.sh) the child has no address-space limit and
-  // Assimp fills pages for about a minute (measured 52-78 s on 2 shared cores) before ASan's
-  // allocator refuses it: slower, the same refusal.
-  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(400));
+  EXPECT_NE(message.find("crashed on it (exit status 97)"), std::string::npos) << message;
 #else
-  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(60));
+  EXPECT_NE(message.find("bad_alloc"), std::string::npos) << message;
 #endif
   // The empty and malformed ones: refusals naming the file, never a crash of this process.
   for (const char* name : {"invalid/empty.ply", "invalid/empty.off", "invalid/empty.3ds", "invalid/malformed.obj"})
@@ -448,13 +446,14 @@ TEST(ImportIsolation, AFileAssimpCrashesOrHangsOnIsARefusalNamingTheFile) {
   const std::string aborts = write_file(dir, "aborts.off", fuzz_input("assimp-aborts.off"));
   const std::string message = user_error([&] { load_scene(aborts); });
   expect_contains(message, {"aborts.off", "importer (Assimp", "crashed", "SIGABRT"});
+  // The child that hangs is ended at its 1 s limit: the refusal says so (were it not ended,
+  // the test would hang to ctest's timeout; no wall-clock bound here, which a slow machine
+  // could fail).
   Scene scene;
-  const auto start = std::chrono::steady_clock::now();
   expect_contains(user_error([&] {
                     import_mesh_bytes_into(scene, fuzz_input("assimp-hangs.ply"), "ply", "hangs.ply", 1.0, "test");
                   }),
                   {"hangs.ply", "took longer than 1 s"});
-  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(20));
 }
 
 TEST(MeshScene, DefaultsFollowTheScenesSize) {
