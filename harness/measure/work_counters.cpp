@@ -247,12 +247,25 @@ std::vector<std::pair<std::string, RecordValue>> WorkCounterBuffer::read(
   return fields;
 }
 
+namespace {
+bool& counting_scope_alive() {
+  static bool alive = false;
+  return alive;
+}
+}  // namespace
+
 WorkCountingScope::WorkCountingScope(const ShaderDefines& defines) {
   static ShaderDefines active;
   active = defines;
   set_program_wide_defines(&active);
+  counting_scope_alive() = true;
 }
 
-WorkCountingScope::~WorkCountingScope() { set_program_wide_defines(nullptr); }
+WorkCountingScope::~WorkCountingScope() {
+  set_program_wide_defines(nullptr);
+  counting_scope_alive() = false;
+}
+
+bool WorkCountingScope::active() { return counting_scope_alive(); }
 
 }  // namespace ldm

@@ -140,6 +140,10 @@ class WorkCountingScope {
  public:
   explicit WorkCountingScope(const ShaderDefines& defines);
   ~WorkCountingScope();
+  // Whether a scope is alive: what a pass prepares now is the counting replay's (a pass whose
+  // counting needs more than its shaders' counting variants, such as a target to count
+  // into, sets it up then).
+  static bool active();
   WorkCountingScope(const WorkCountingScope&) = delete;
   WorkCountingScope& operator=(const WorkCountingScope&) = delete;
 };

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "harness/gl/bindings.h"
+#include "harness/measure/work_counters.h"
 #include "harness/passes/ldm_trace_defines.h"
 #include "harness/scene/camera.h"
 #include "harness/util/error.h"
@@ -129,6 +130,15 @@ PhotonLighting::PhotonLighting(const LdmStructure& structure, const BuildInputs&
   light_vp_ = camera_view_projection(light_camera_, r, r, scene.bounding_sphere());
   camera_vp_ = camera_view_projection(scene.camera, width, height, scene.bounding_sphere());
   indirect_fb_.attach_color(0, indirect_);
+  // The counting replay's splat also blends its fragment counts into a second target
+  // (photon_splat.frag, splat_fragment_count.comp); a measured splat draws into one.
+  counting_ = WorkCountingScope::active();
+  if (counting_) {
+    splat_counts_ = GlTexture2D(GL_RG32F, width, height);
+    indirect_fb_.attach_color(1, splat_counts_);
+    const GLenum targets[] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    glNamedFramebufferDrawBuffers(indirect_fb_.id(), 2, targets);
+  }
   indirect_fb_.check_complete("indirect target");
   direct_fb_.attach_color(0, direct_);
   direct_fb_.check_complete("direct target");
@@ -216,6 +226,12 @@ void PhotonLighting::compile() {
     return program;
   };
   splat_program_ = build_splat("passes/indirect/photon_splat.frag", plain);
+  if (counting_) {
+    splat_count_program_ = build_program(
+        {{GL_COMPUTE_SHADER, "passes/indirect/splat_fragment_count.comp", {}}}, plain);
+    splat_count_program_.set("width", width_);
+    splat_count_program_.set("height", height_);
+  }
   direct_program_ = build_program({{GL_VERTEX_SHADER, "passes/fullscreen.vert", {}},
                                    {GL_FRAGMENT_SHADER, "passes/indirect/direct_light.frag", {}}},
                                   plain);
@@ -277,6 +293,14 @@ void PhotonLighting::read_counts() {
 void PhotonLighting::splat(const GBufferPass& camera) {
   const float zero[4] = {0, 0, 0, 0};
   glClearNamedFramebufferfv(indirect_fb_.id(), GL_COLOR, 0, zero);
+  if (counting_) {
+    // A pixel gets at most one fragment per splat: below 2^24 splats, its blended count is an
+    // exact float integer.
+    if (capacity_ >= (uint64_t(1) << 24))
+      throw GpuError("indirect pass: the counting replay counts splat fragments per pixel in 32-bit floats, "
+                     "exact below 2^24 splats; the photon buffer holds " + std::to_string(capacity_));
+    glClearNamedFramebufferfv(indirect_fb_.id(), GL_COLOR, 1, zero);
+  }
   draw_count_program_.use();
   draw_count_program_.set("photon_capacity", unsigned(capacity_));
   counters_.bind_storage(kCountersBinding);
@@ -294,6 +318,13 @@ void PhotonLighting::splat(const GBufferPass& camera) {
   glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
   glDisable(GL_BLEND);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  if (counting_) {  // the blended counts, summed into the splatting sub-pass's counters
+    glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
+    splat_count_program_.use();
+    glBindTextureUnit(0, splat_counts_.id());
+    glDispatchCompute(GLuint((width_ + 63) / 64), 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
+  }
   check_gl("photon splatting");
 }
 

@@ -8,7 +8,9 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <sstream>
 #include <map>
 #include <string>
 
@@ -25,11 +27,11 @@ using Records = std::map<std::string, nlohmann::json>;  // by config_id
 
 // `ldmbench run ARGS` into a fresh folder: its records, each checked ok (or lossy, where
 // `lossy_ok`) with no problem of the counting replay.
-Records run_records(const std::string& args, bool lossy_ok = false) {
+Records run_records(const std::string& args, bool lossy_ok = false, const std::string& environment = "") {
   const fs::path out = fs::path(test::make_temp_dir("ldm-pass-work")) / "run";
   const test::Outcome run = test::ldmbench(
       "run " + args + " --frames 1 --warmup 0 --time-target 0 --no-images --no-reference --out " +
-      out.string() + " 2>&1");
+      out.string() + " 2>&1", environment);
   EXPECT_EQ(run.status, 0) << run.output;
   const auto json = nlohmann::json::parse(test::read_text(out / "records.json"));
   Records records;
@@ -281,6 +283,50 @@ TEST(PassWork, SplatFragmentsGrowWithTheSquareOfTheFootprintScale) {
   EXPECT_LE(ratio, 5.0);
   EXPECT_GE(kernel_ratio, 2.5);
   EXPECT_LE(kernel_ratio, 5.0);
+}
+
+// `text` of the shader file `file` (under `shaders`) replaced by `with`, checked to be there once.
+void patch_shader(const fs::path& shaders, const std::string& file, const std::string& text, const std::string& with) {
+  std::stringstream in;
+  in << std::ifstream(shaders / file).rdbuf();
+  std::string source = in.str();
+  const size_t at = source.find(text);
+  ASSERT_NE(at, std::string::npos) << file << " no longer holds:\n" << text;
+  ASSERT_EQ(source.find(text, at + 1), std::string::npos) << file << " holds twice:\n" << text;
+  source.replace(at, text.size(), with);
+  std::ofstream(shaders / file) << source;
+}
+
+// The splat's fragments are counted by blending (photon_splat.frag writes its counts to a
+// second target, splat_fragment_count.comp sums it): the same totals as one atomic per
+// fragment, the way they were counted before, here in a patched copy of the shaders
+// (LDM_SHADER_DIR) whose sum adds nothing, on both scenes, at two footprint scales and two
+// structures, with photons over the background and outside the kernels. That it changes no
+// image (a rejected fragment adds zero radiance) run_records checks: the replay compares its
+// images with the measured frames' and the record says so.
+TEST(PassWork, SplatFragmentsCountedByBlendingEqualOneAtomicPerFragment) {
+  const fs::path copy = fs::path(test::make_temp_dir("ldm-splat-atomics")) / "shaders";
+  fs::copy(fs::path(LDM_TEST_SOURCE_DIR) / ".." / "shaders", copy, fs::copy_options::recursive);
+  patch_shader(copy, "passes/indirect/photon_splat.frag", "  out_splat_count = vec2(1.0, 0.0);\n",
+               "  out_splat_count = vec2(1.0, 0.0);\n  if (!gl_HelperInvocation) work_add(fragments, 1);\n");
+  patch_shader(copy, "passes/indirect/photon_splat.frag", "  out_splat_count.y = 1.0;\n",
+               "  out_splat_count.y = 1.0;\n  if (!gl_HelperInvocation) work_add(fragments_in_kernel, 1);\n");
+  patch_shader(copy, "passes/indirect/splat_fragment_count.comp",
+               "  work_add_words(uint(WORK_fragments), fragments_lo, fragments_hi);\n"
+               "  work_add_words(uint(WORK_fragments_in_kernel), in_kernel_lo, in_kernel_hi);\n",
+               "");
+  const std::string args = "--scene cornell,atrium --structure psppsll,ppfla --pass indirect -N 4 -R 32 "
+                           "--image-size 96x80 --param indirect:r_light=32 --param indirect:s=1,4";
+  const Records blended = run_records(args), atomics = run_records(args, false, "LDM_SHADER_DIR=" + copy.string());
+  ASSERT_EQ(blended.size(), 8u);
+  ASSERT_EQ(atomics.size(), blended.size());
+  for (const auto& [id, r] : blended) {
+    const nlohmann::json& a = atomics.at(id);
+    EXPECT_GT(count(r, "work_splatting_fragments"), count(r, "work_splatting_fragments_in_kernel")) << id;
+    EXPECT_GT(count(r, "work_splatting_fragments_in_kernel"), 0) << id;
+    EXPECT_EQ(count(r, "work_splatting_fragments"), count(a, "work_splatting_fragments")) << id;
+    EXPECT_EQ(count(r, "work_splatting_fragments_in_kernel"), count(a, "work_splatting_fragments_in_kernel")) << id;
+  }
 }
 
 }  // namespace
