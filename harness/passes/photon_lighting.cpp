@@ -227,6 +227,9 @@ void PhotonLighting::compile() {
   };
   splat_program_ = build_splat("passes/indirect/photon_splat.frag", plain);
   if (counting_) {
+    ShaderDefines atomics = plain;
+    atomics.set("SPLAT_COUNT_BY_ATOMICS", 1);
+    splat_by_atomics_program_ = build_splat("passes/indirect/photon_splat.frag", atomics);
     splat_count_program_ = build_program(
         {{GL_COMPUTE_SHADER, "passes/indirect/splat_fragment_count.comp", {}}}, plain);
     splat_count_program_.set("width", width_);
@@ -293,14 +296,10 @@ void PhotonLighting::read_counts() {
 void PhotonLighting::splat(const GBufferPass& camera) {
   const float zero[4] = {0, 0, 0, 0};
   glClearNamedFramebufferfv(indirect_fb_.id(), GL_COLOR, 0, zero);
-  if (counting_) {
-    // A pixel gets at most one fragment per splat: below 2^24 splats, its blended count is an
-    // exact float integer.
-    if (capacity_ >= (uint64_t(1) << 24))
-      throw GpuError("indirect pass: the counting replay counts splat fragments per pixel in 32-bit floats, "
-                     "exact below 2^24 splats; the photon buffer holds " + std::to_string(capacity_));
-    glClearNamedFramebufferfv(indirect_fb_.id(), GL_COLOR, 1, zero);
-  }
+  // A pixel gets at most one fragment per splat: up to 2^24 splats, its blended count is an
+  // exact float integer; beyond, the counting replay counts with one atomic per fragment.
+  const bool count_by_blending = counting_ && capacity_ <= (uint64_t(1) << 24);
+  if (count_by_blending) glClearNamedFramebufferfv(indirect_fb_.id(), GL_COLOR, 1, zero);
   draw_count_program_.use();
   draw_count_program_.set("photon_capacity", unsigned(capacity_));
   counters_.bind_storage(kCountersBinding);
@@ -311,14 +310,14 @@ void PhotonLighting::splat(const GBufferPass& camera) {
   photons_.bind_storage(kPhotonsBinding);
   glBindTextureUnit(0, camera.positions().id());
   glBindTextureUnit(1, camera.albedo().id());
-  splat_program_.use();
+  (counting_ && !count_by_blending ? splat_by_atomics_program_ : splat_program_).use();
   glBindVertexArray(empty_vao_.id());
   glBindBuffer(GL_DRAW_INDIRECT_BUFFER, draw_command_.id());
   glDrawArraysIndirect(GL_POINTS, nullptr);
   glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
   glDisable(GL_BLEND);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  if (counting_) {  // the blended counts, summed into the splatting sub-pass's counters
+  if (count_by_blending) {  // the blended counts, summed into the splatting sub-pass's counters
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     splat_count_program_.use();
     glBindTextureUnit(0, splat_counts_.id());

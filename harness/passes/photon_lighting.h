@@ -235,10 +235,11 @@ class PhotonLighting {
   GlTexture2D indirect_, direct_, sum_;
   GlFramebuffer indirect_fb_, direct_fb_, sum_fb_;
   // The counting replay's (prepared inside a WorkCountingScope): the splat's fragment counts,
-  // blended, and their sum into the work counters.
+  // blended, and their sum into the work counters; the splat counting with atomics, for
+  // photon buffers too large for blended float counts.
   bool counting_ = false;
   GlTexture2D splat_counts_;
-  GlProgram splat_count_program_;
+  GlProgram splat_count_program_, splat_by_atomics_program_;
   GlVertexArray empty_vao_;
   GlBuffer photons_, counters_, tally_, draw_command_;
   uint64_t capacity_ = 0;

@@ -1,9 +1,9 @@
 // The counting replay's splat fragments (photon_splat.frag under LDM_WORK_COUNT blends 1 per
 // fragment into x and 1 per fragment inside the kernel into y of a 32-bit float target):
 // summed here, one column of pixels per invocation, into the splatting sub-pass's
-// `fragments` and `fragments_in_kernel`. A pixel's count is an exact float integer while it
-// is below 2^24, which the pass guarantees (a pixel gets at most one fragment per splat, and
-// it splats fewer photons than that).
+// `fragments` and `fragments_in_kernel`. A pixel's count is an exact float integer up to
+// 2^24, which the pass guarantees: a pixel gets at most one fragment per splat, and with more
+// photons than that it counts with atomics instead (photon_splat.frag).
 #include "common/work_counters.glsl"
 layout(local_size_x = 64) in;
 layout(binding = 0) uniform sampler2D splat_counts;
