@@ -20,24 +20,9 @@ extern "C" void __sanitizer_set_death_callback(void (*callback)(void)) __attribu
 namespace ldm {
 namespace {
 
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kAddressSanitizer = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr bool kAddressSanitizer = true;
-#else
-constexpr bool kAddressSanitizer = false;
-#endif
-#else
-constexpr bool kAddressSanitizer = false;
-#endif
-
-// Exit status of a child whose sanitizer reported an error in the work.
-constexpr int kSanitizerDeath = 97;
-
 constexpr char kReturned = 'R', kThrew = 'T';
 
-void die_of_sanitizer_report() { _exit(kSanitizerDeath); }
+void die_of_sanitizer_report() { _exit(kSanitizerDeathStatus); }
 
 bool write_all(int fd, const char* data, size_t size) {
   while (size > 0) {

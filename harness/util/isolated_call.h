@@ -13,6 +13,10 @@
 
 namespace ldm {
 
+// Exit status of a child whose sanitizer (where one is linked) reported an error in the work,
+// a failed allocation included: a Crashed outcome with this exit_status.
+inline constexpr int kSanitizerDeathStatus = 97;
+
 struct IsolatedOutcome {
   enum class Kind {
     Returned,   // `work` returned: `bytes` holds its result
