@@ -299,18 +299,18 @@ void patch_shader(const fs::path& shaders, const std::string& file, const std::s
 
 // The splat's fragments are counted by blending (photon_splat.frag writes its counts to a
 // second target, splat_fragment_count.comp sums it): the same totals as one atomic per
-// fragment, the way they were counted before, here in a patched copy of the shaders
-// (LDM_SHADER_DIR) whose sum adds nothing, on both scenes, at two footprint scales and two
-// structures, with photons over the background and outside the kernels. That it changes no
-// image (a rejected fragment adds zero radiance) run_records checks: the replay compares its
-// images with the measured frames' and the record says so.
+// fragment, the counting variant the pass uses beyond 2^24 photons (SPLAT_COUNT_BY_ATOMICS),
+// forced here in a patched copy of the shaders (LDM_SHADER_DIR) whose sum adds nothing, on
+// both scenes, at two footprint scales and two structures, with photons over the
+// background and outside the kernels. That it changes no image (a rejected fragment adds
+// zero radiance) run_records checks: the replay compares its images with the measured
+// frames' and the record says so.
 TEST(PassWork, SplatFragmentsCountedByBlendingEqualOneAtomicPerFragment) {
   const fs::path copy = fs::path(test::make_temp_dir("ldm-splat-atomics")) / "shaders";
   fs::copy(fs::path(LDM_TEST_SOURCE_DIR) / ".." / "shaders", copy, fs::copy_options::recursive);
-  patch_shader(copy, "passes/indirect/photon_splat.frag", "  out_splat_count = vec2(1.0, 0.0);\n",
-               "  out_splat_count = vec2(1.0, 0.0);\n  if (!gl_HelperInvocation) work_add(fragments, 1);\n");
-  patch_shader(copy, "passes/indirect/photon_splat.frag", "  out_splat_count.y = 1.0;\n",
-               "  out_splat_count.y = 1.0;\n  if (!gl_HelperInvocation) work_add(fragments_in_kernel, 1);\n");
+  patch_shader(copy, "passes/indirect/photon_splat.frag", "#if WORK_COUNTING && !SPLAT_COUNT_BY_ATOMICS\n",
+               "#ifndef SPLAT_COUNT_BY_ATOMICS\n#define SPLAT_COUNT_BY_ATOMICS 1\n#endif\n"
+               "#if WORK_COUNTING && !SPLAT_COUNT_BY_ATOMICS\n");
   patch_shader(copy, "passes/indirect/splat_fragment_count.comp",
                "  work_add_words(uint(WORK_fragments), fragments_lo, fragments_hi);\n"
                "  work_add_words(uint(WORK_fragments_in_kernel), in_kernel_lo, in_kernel_hi);\n",
