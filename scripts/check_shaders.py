@@ -22,12 +22,13 @@ The full check, in four parts:
    change a value in the code, not the code. A pass that refuses a value it declares (the
    indirect pass takes only the default AO visibility) runs without it, as
    `ldmbench sweep --dry-run` says; a value no pass takes fails. Tiny sizes: the runs only
-   need each program built once. The sweep runs under llvmpipe and under zink (over
-   lavapipe; its GL_NV_shader_atomic_int64 builds the HA-buffer's 64-bit keys), at the same
-   time. Then the test binaries that build programs no run does (the synthetic fragment
-   source that runs fragment shaders as compute shaders, the driver self-test's failing
-   variant, the indirect pass's probes), and `ldmbench view`'s point cloud on a virtual X
-   server (llvmpipe).
+   need each program built once. Under llvmpipe, in shards run at once (one per core), with
+   the test binaries that build programs no run does (the synthetic fragment source that
+   runs fragment shaders as compute shaders, the driver self-test's failing variant, the
+   indirect pass's probes) and `ldmbench view`'s point cloud on a virtual X server. Then
+   under zink (over lavapipe) the configurations llvmpipe could not build: its
+   GL_NV_shader_atomic_int64 builds the HA-buffer's 64-bit keys. The rest is the same code
+   under zink (its sources differ only in sizes from the storage limits).
 2. The runs' records: every configuration of the covering sweep built (a status other than
    failed) under at least one of the two drivers, so that no value the registry lists goes
    unchecked because its run failed.
@@ -236,14 +237,7 @@ def run_logged(command, env, log_path, ok_codes=(0,)):
     return status
 
 
-def covering_runs(driver, build, sweep, sweep_file, dump, scratch):
-    """One driver's share of part 1; returns its records."""
-    work = scratch / driver
-    work.mkdir()
-    env = driver_env(driver, work)
-    env["LDM_SHADER_DUMP"] = str(dump)
-    ldmbench = build / "ldmbench"
-    t0 = time.monotonic()
+def renderer_check(ldmbench, driver, env):
     info = subprocess.run([ldmbench, "info"], env=env, capture_output=True, text=True)
     renderer = re.search(r"^renderer: (.*)$", info.stdout, re.M)
     if info.returncode != 0 or not renderer or not renderer.group(1).startswith(driver):
@@ -251,27 +245,73 @@ def covering_runs(driver, build, sweep, sweep_file, dump, scratch):
                           f"{renderer.group(1) if renderer else 'nothing'}, not {driver} (zink: are "
                           "mesa-vulkan-drivers and libvulkan1 installed? scripts/setup.sh)\n" +
                           info.stdout + info.stderr)
-    # Exit 3: some configurations failed (key_bits=64 on llvmpipe): part 2 judges them.
-    run_logged([ldmbench, "sweep", sweep_file, "--out", work / "run", "--cache-dir", work / "cache"],
-               env, work / "sweep.log", ok_codes=(0, 3))
+
+
+def run_tests(binary, tests, build, env, log_path):
+    """One of TEST_PROGRAMS; every pattern must match a test that ran."""
+    run_logged([build / "tests" / binary, f"--gtest_filter={tests}"], env, log_path)
+    ran = re.findall(r"^\[ RUN +\] (\S+)", Path(log_path).read_text(), re.M)
+    for pattern in tests.split(":"):
+        if not any(fnmatch.fnmatchcase(name, pattern) for name in ran):
+            raise CannotCheck(f"{binary} --gtest_filter={tests}: no test matches {pattern} "
+                              "(renamed? scripts/check_shaders.py names the tests that build "
+                              "programs no run builds)")
+
+
+def covering_runs_llvmpipe(build, sweep, sweep_file, dump, scratch, jobs):
+    """Part 1 under llvmpipe: the covering sweep as `jobs` shards, the test binaries and the
+    viewer, all at once (each process compiles on one core: compiling is most of the time).
+    Returns the sweep's records."""
+    work = scratch / "llvmpipe"
+    work.mkdir()
+    env = driver_env("llvmpipe", work)
+    env["LDM_SHADER_DUMP"] = str(dump)
+    ldmbench = build / "ldmbench"
+    t0 = time.monotonic()
+    renderer_check(ldmbench, "llvmpipe", env)
+    if not shutil.which("xvfb-run"):
+        raise CannotCheck("xvfb-run is not installed (scripts/setup.sh installs xvfb): "
+                          "`ldmbench view`'s programs need a window")
+    shards = max(1, jobs)
+    # Exit 3: some configurations failed (key_bits=64 on llvmpipe): zink builds them below.
+    tasks = [lambda i=i: run_logged(
+                 [ldmbench, "sweep", sweep_file, "--shard", f"{i}/{shards}", "--out",
+                  work / f"run-{i}", "--cache-dir", work / "cache"],
+                 env, work / f"sweep-{i}.log", ok_codes=(0, 3)) for i in range(shards)]
+    tasks += [lambda b=b, t=t: run_tests(b, t, build, env, work / f"{b}.log")
+              for b, t in TEST_PROGRAMS]
+    tasks.append(lambda: run_logged(["xvfb-run", "-a", "-s", "-screen 0 640x480x24",
+                                     *viewer_command(ldmbench, sweep["axes"]["structures"])],
+                                    env, work / "view.log"))
+    with concurrent.futures.ThreadPoolExecutor(shards) as pool:
+        for f in [pool.submit(t) for t in tasks]:
+            f.result()
+    records = [r for i in range(shards) for r in ldmrecords.read(work / f"run-{i}")]
+    log(f"llvmpipe: {len(records)} configurations in {shards} shards, {len(TEST_PROGRAMS)} test "
+        f"binaries and the viewer in {time.monotonic() - t0:.0f} s")
+    return records
+
+
+def covering_runs_zink(build, sweep_file, ids, dump, scratch):
+    """Part 1 under zink: the configurations llvmpipe could not build (its
+    GL_NV_shader_atomic_int64 builds the HA-buffer's 64-bit keys), and nothing else: every
+    other program is the same source under both drivers (zink-tests.sh compiles them through
+    zink). Returns their records."""
+    work = scratch / "zink"
+    work.mkdir()
+    if not ids:
+        log("zink: nothing to build (llvmpipe built every configuration)")
+        return []
+    env = driver_env("zink", work)
+    env["LDM_SHADER_DUMP"] = str(dump)
+    ldmbench = build / "ldmbench"
+    t0 = time.monotonic()
+    renderer_check(ldmbench, "zink", env)
+    run_logged([ldmbench, "sweep", sweep_file, "--step", ",".join(ids), "--out", work / "run",
+                "--cache-dir", work / "cache"], env, work / "sweep.log", ok_codes=(0, 3))
     records = ldmrecords.read(work / "run")
-    for binary, tests in TEST_PROGRAMS:
-        run_logged([build / "tests" / binary, f"--gtest_filter={tests}"], env,
-                   work / f"{binary}.log")
-        ran = re.findall(r"^\[ RUN +\] (\S+)", (work / f"{binary}.log").read_text(), re.M)
-        for pattern in tests.split(":"):
-            if not any(fnmatch.fnmatchcase(name, pattern) for name in ran):
-                raise CannotCheck(f"{binary} --gtest_filter={tests}: no test matches {pattern} "
-                                  "(renamed? scripts/check_shaders.py names the tests that build "
-                                  "programs no run builds)")
-    if driver == "llvmpipe":
-        if not shutil.which("xvfb-run"):
-            raise CannotCheck("xvfb-run is not installed (scripts/setup.sh installs xvfb): "
-                              "`ldmbench view`'s programs need a window")
-        run_logged(["xvfb-run", "-a", "-s", "-screen 0 640x480x24",
-                    *viewer_command(ldmbench, sweep["axes"]["structures"])], env, work / "view.log")
-    log(f"{driver}: {len(records)} configurations and {len(TEST_PROGRAMS)} test binaries"
-        f"{' and the viewer' if driver == 'llvmpipe' else ''} in {time.monotonic() - t0:.0f} s")
+    log(f"zink: the {len(records)} configurations llvmpipe could not build in "
+        f"{time.monotonic() - t0:.0f} s")
     return records
 
 
@@ -702,13 +742,13 @@ def main():
             sweep_file = scratch / "covering-sweep.json"
             sweep_file.write_text(json.dumps(sweep, indent=1) + "\n")
             log(f"covering sweep {sweep_file}: every structure x pass, and {len(sweep['include'])} "
-                "axis values one at a time, under llvmpipe and zink")
+                "axis values one at a time")
             for p, values in sorted(refused.items()):
                 log(f"  {p} refuses " + "; ".join(c for c, _ in values) + f" ({values[0][1]})")
-            with concurrent.futures.ThreadPoolExecutor(2) as pool:
-                futures = {d: pool.submit(covering_runs, d, build, sweep, sweep_file, dump, scratch)
-                           for d in ("llvmpipe", "zink")}
-                records = {d: f.result() for d, f in futures.items()}
+            records = {"llvmpipe": covering_runs_llvmpipe(build, sweep, sweep_file, dump,
+                                                          scratch, args.jobs)}
+            unbuilt = [r["config_id"] for r in records["llvmpipe"] if r["status"] == "failed"]
+            records["zink"] = covering_runs_zink(build, sweep_file, unbuilt, dump, scratch)
             configurations = check_records(records)
             log(f"{configurations} configurations, each built under at least one driver")
             check_dump(dump, Path(args.shaders), args.jobs)
