@@ -35,7 +35,17 @@ uniform uint inspect_block_mode;
 uniform uint inspect_block_stride;
 uniform uint inspect_block_phase;
 
-shared uint block_hash;
+#if !LDM_INSPECT_DUMP
+// Each invocation's share of the totals, summed per workgroup before any global atomic: one
+// atomic per workgroup and total instead of one per pixel (llvmpipe runs an atomic as a loop
+// over its SIMD lanes; six per pixel were most of a check's time).
+// Shares 0-5 are added to inspect_totals[kShareTotal[i]] (length, pixel visited, unsorted,
+// ties, over-long, checksum low word), 6 is xor-ed into the checksum's high word, 7 is the
+// block's hash.
+const uint kShares = 8u;
+const uint kShareTotal[kShares] = uint[](0u, 6u, 1u, 7u, 2u, 3u, 4u, 0u);
+shared uint shares[kShares][gl_WorkGroupSize.x];
+#endif
 
 uint mix_hash(uint h, uint v) {
   h ^= v;
@@ -52,10 +62,6 @@ void main() {
   const uint local = block * gl_WorkGroupSize.x + gl_LocalInvocationID.x;
   const bool in_range = local < inspect_pixel_count;
   const uint pixel = inspect_first_pixel + local;
-#if !LDM_INSPECT_DUMP
-  if (gl_LocalInvocationID.x == 0u) block_hash = 0u;
-  barrier();
-#endif
   uint length = 0u;
 #if LDM_INSPECT_DUMP
   uint out_at = in_range ? inspect_data[local] : 0u;
@@ -81,25 +87,35 @@ void main() {
     }
   }
 #if !LDM_INSPECT_DUMP
-  if (in_range) {
-    if (inspect_store_lengths != 0u) inspect_data[local] = length;
-    atomicAdd(inspect_totals[0], length);
-    atomicAdd(inspect_totals[6], 1u);
-    if (!sorted) atomicAdd(inspect_totals[1], 1u);
-    if (ties > 0u) atomicAdd(inspect_totals[7], ties);
-    if (length > LDM_MAX_LIST_LENGTH) atomicAdd(inspect_totals[2], 1u);
-    if (length > 0u) {
-      atomicAdd(inspect_totals[3], mix_hash(hash, pixel));
-      atomicXor(inspect_totals[4], mix_hash(hash * 0x9e3779b9u, pixel + 0x68bc21ebu));
-      // Position-dependent, so that lists swapped between pixels change the block's hash.
-      atomicAdd(block_hash, mix_hash(hash ^ (length * 0x85ebca6bu), pixel));
-    }
-  }
+  const uint me = gl_LocalInvocationID.x;
+  if (in_range && inspect_store_lengths != 0u) inspect_data[local] = length;
+  const bool listed = in_range && length > 0u;
+  shares[0][me] = in_range ? length : 0u;
+  shares[1][me] = in_range ? 1u : 0u;
+  shares[2][me] = in_range && !sorted ? 1u : 0u;
+  shares[3][me] = in_range ? ties : 0u;
+  shares[4][me] = in_range && length > LDM_MAX_LIST_LENGTH ? 1u : 0u;
+  shares[5][me] = listed ? mix_hash(hash, pixel) : 0u;
+  shares[6][me] = listed ? mix_hash(hash * 0x9e3779b9u, pixel + 0x68bc21ebu) : 0u;
+  // Position-dependent, so that lists swapped between pixels change the block's hash.
+  shares[7][me] = listed ? mix_hash(hash ^ (length * 0x85ebca6bu), pixel) : 0u;
   barrier();
-  if (gl_LocalInvocationID.x == 0u && block * gl_WorkGroupSize.x < inspect_pixel_count) {
-    if (inspect_block_mode == 1u) inspect_block_hash[block] = block_hash;
-    if (inspect_block_mode == 2u && inspect_block_hash[block] != block_hash)
-      atomicAdd(inspect_totals[5], 1u);
+  // Invocation i combines share i of the workgroup (sums wrap as the atomics did; the
+  // second checksum word is an xor), then adds it to its total once.
+  if (me < kShares) {
+    uint combined = 0u;
+    for (uint i = 0u; i < gl_WorkGroupSize.x; ++i)
+      combined = me == 6u ? combined ^ shares[me][i] : combined + shares[me][i];
+    if (me == 7u) {
+      if (block * gl_WorkGroupSize.x < inspect_pixel_count) {
+        if (inspect_block_mode == 1u) inspect_block_hash[block] = combined;
+        if (inspect_block_mode == 2u && inspect_block_hash[block] != combined)
+          atomicAdd(inspect_totals[5], 1u);
+      }
+    } else if (combined != 0u) {
+      if (me == 6u) atomicXor(inspect_totals[kShareTotal[me]], combined);
+      else atomicAdd(inspect_totals[kShareTotal[me]], combined);
+    }
   }
 #endif
 }
