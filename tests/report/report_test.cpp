@@ -43,7 +43,7 @@ fs::path small_run() {
   const fs::path run = fs::path(test::make_temp_dir("ldm-report-run")) / "run";
   const Outcome o = ldmbench(
       "run --scene cornell --structure psppsll,ppfla --pass ao,hbao -N 4,8 -R 32 --width 32 "
-      "--height 32 --frames 2 --warmup 1 --reference-spp 16 --param ppfla:k=3 --cache-dir " +
+      "--height 32 --frames 2 --warmup 1 --time-target 0 --reference-spp 16 --param ppfla:k=3 --cache-dir " +
       test::make_temp_dir("ldm-report-cache") + " --out " + run.string());
   EXPECT_EQ(o.status, 0) << o.output;
   return run;
@@ -362,7 +362,7 @@ TEST(ReportFigures, NoTextOverlapsInTheFiguresOfRealRuns) {
   const fs::path dir = test::make_temp_dir("ldm-report-overlap");
   const Outcome mesh = ldmbench("run --scene " + std::string(LDM_TEST_SOURCE_DIR) +
                                 "/../scenes/meshes/torus_knot.obj --structure psppsll -N 4,8 -R 32 --width 64 "
-                                "--height 64 --frames 2 --warmup 1 --reference-spp 16 --cache-dir " +
+                                "--height 64 --frames 2 --warmup 1 --time-target 0 --reference-spp 16 --cache-dir " +
                                 (dir / "cache").string() + " --out " + (dir / "knot").string());
   ASSERT_EQ(mesh.status, 0) << mesh.output;
   const Outcome axes = shell(std::string(LDM_BINARY_PATH) + " axes --json > " + (dir / "axes.json").string());

@@ -36,7 +36,8 @@ struct RunResult {
 RunResult run(const std::string& args) {
   RunResult r;
   r.out = fs::path(test::make_temp_dir("ldm-workloads")) / "run";
-  r.outcome = test::ldmbench("run " + args + " --frames 1 --warmup 0 --out " + r.out.string());
+  // Exactly one measured frame (no time target): these tests judge what a run records, not its time.
+  r.outcome = test::ldmbench("run " + args + " --frames 1 --warmup 0 --time-target 0 --out " + r.out.string());
   const std::string text = test::read_text((r.out / "records.json").string());
   if (!text.empty()) r.records = json::parse(text)["records"];
   return r;
