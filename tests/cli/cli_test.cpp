@@ -123,7 +123,7 @@ TEST(Cli, LossyConfigurationIsFlaggedNotPassedOff) {
 TEST(Cli, RecordsCarryTheSizingPolicyAndWhatItCost) {
   const fs::path out = fs::path(test::make_temp_dir("ldm-cli")) / "sizing";
   const Outcome o = ldmbench("run --scene atrium --structure psppsll,dfbuffer -N 4 -R 32 "
-                             "--width 32 --height 32 --frames 2 --warmup 0 --no-reference "
+                             "--width 32 --height 32 --frames 2 --warmup 0 --time-target 0 --no-reference "
                              "--no-images --sizing oracle,census,previous_frame,budget "
                              "--sizing-budget-mib 1 --out " + out.string());
   ASSERT_EQ(o.status, 0) << o.output;

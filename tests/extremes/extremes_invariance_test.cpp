@@ -94,7 +94,7 @@ Table read_csv(const fs::path& path) {
 // `ldmbench run --scene SCENES ARGS` at 16x16 pixels, one frame, no reference, into `out`.
 test::Outcome run_small(const std::string& scenes, const std::string& args, const fs::path& out) {
   return test::ldmbench("run --scene " + scenes + " " + args +
-                        " --width 16 --height 16 --frames 1 --warmup 0 --no-reference --out " + out.string());
+                        " --width 16 --height 16 --frames 1 --warmup 0 --time-target 0 --no-reference --out " + out.string());
 }
 
 std::string cell(const std::map<std::string, std::string>& row, const std::string& column) {
@@ -135,7 +135,7 @@ void expect_invariant(const std::vector<Placement>& placements, const std::strin
   const fs::path out = dir / "out";
   const test::Outcome o = test::ldmbench(
       "run --scene " + scenes + " --pass " + passes +
-      " -N 8 -R 64 --width 32 --height 32 --frames 1 --warmup 0 --reference-spp 64 "
+      " -N 8 -R 64 --width 32 --height 32 --frames 1 --warmup 0 --time-target 0 --reference-spp 64 "
       "--param rtao:spp=8 --param rtao_gpu:spp=8 --cache-dir " + (dir / "cache").string() +
       " --out " + out.string());
   ASSERT_EQ(o.status, 0) << o.output;

@@ -376,7 +376,7 @@ TEST(SweepCli, RunRedoesFailedConfigurationsWhenAsked) {
   const int too_big = int(std::ceil(std::sqrt(double(block) / 4.0 / 64))) + 1;
   const fs::path out = f.dir / "run";
   const std::string run = "run -N 64 -R " + std::to_string(too_big) +
-                          ",16 --width 32 --height 32 --frames 1 --warmup 0 --no-reference --no-images --out " +
+                          ",16 --width 32 --height 32 --frames 1 --warmup 0 --time-target 0 --no-reference --no-images --out " +
                           out.string();
   ASSERT_EQ(ldmbench(run).status, 3);
   const Outcome redone = ldmbench(run + " --redo-failed");
