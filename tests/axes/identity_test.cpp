@@ -113,7 +113,7 @@ TEST(Identity, ARunIntoTheSameFolderAfterASceneEditIsRefusedNotResumed) {
   const fs::path file = dir / "scene.json";
   write(file, scene.dump(2));
   const std::string run = "run --scene " + file.string() +
-                          " -N 4 -R 16 --width 16 --height 16 --frames 1 --warmup 0 --no-reference "
+                          " -N 4 -R 16 --width 16 --height 16 --frames 1 --time-target 0 --warmup 0 --no-reference "
                           "--no-images --out " + (dir / "out").string();
   const test::Outcome first = test::ldmbench(run);
   ASSERT_EQ(first.status, 0) << first.output;

@@ -30,7 +30,7 @@ TEST(Cli, MainJobWritesRecordsAndImages) {
   const fs::path out = fs::path(test::make_temp_dir("ldm-cli")) / "run";
   const std::string cache = test::make_temp_dir("ldm-cache");
   const Outcome o = ldmbench("run --scene cornell --structure psppsll --pass ao -N 4 -R 32 "
-                             "--width 48 --height 40 --frames 2 --warmup 1 --reference-spp 64 "
+                             "--width 48 --height 40 --frames 2 --time-target 0 --warmup 1 --reference-spp 64 "
                              "--cache-dir " + cache + " --out " + out.string());
   ASSERT_EQ(o.status, 0) << o.output;
   EXPECT_NE(o.output.find("records: "), std::string::npos);
@@ -76,7 +76,7 @@ TEST(Cli, MainJobWritesRecordsAndImages) {
     EXPECT_TRUE(fs::is_regular_file(out / r[key].get<std::string>())) << key;
   // A second run takes the reference from the cache and measures the same error.
   const fs::path again = fs::path(test::make_temp_dir("ldm-cli")) / "again";
-  ASSERT_EQ(ldmbench("run --scene cornell -N 4 -R 32 --width 48 --height 40 --frames 1 "
+  ASSERT_EQ(ldmbench("run --scene cornell -N 4 -R 32 --width 48 --height 40 --frames 1 --time-target 0 "
                      "--warmup 0 --reference-spp 64 --cache-dir " + cache + " --out " +
                      again.string()).status, 0);
   const auto r2 = nlohmann::json::parse(read_text(again / "records.json"))["records"][0];
@@ -97,7 +97,7 @@ TEST(Cli, SweepRecordsAFailedConfigurationAndGoesOn) {
   ASSERT_LE(too_big, 8192);
   const fs::path out = fs::path(test::make_temp_dir("ldm-cli")) / "sweep";
   const Outcome o = ldmbench("run --scene cornell -N " + std::to_string(n) + " -R " +
-                             std::to_string(too_big) + ",16 --width 32 --height 32 --frames 1 "
+                             std::to_string(too_big) + ",16 --width 32 --height 32 --frames 1 --time-target 0 "
                              "--warmup 0 --no-reference --out " + out.string());
   EXPECT_EQ(o.status, 3) << o.output;
   const auto json = nlohmann::json::parse(read_text(out / "records.json"));
@@ -110,7 +110,7 @@ TEST(Cli, SweepRecordsAFailedConfigurationAndGoesOn) {
 
 TEST(Cli, LossyConfigurationIsFlaggedNotPassedOff) {
   const fs::path out = fs::path(test::make_temp_dir("ldm-cli")) / "lossy";
-  const Outcome o = ldmbench("run --scene cornell -N 4 -R 32 --width 32 --height 32 --frames 1 "
+  const Outcome o = ldmbench("run --scene cornell -N 4 -R 32 --width 32 --height 32 --frames 1 --time-target 0 "
                              "--warmup 0 --param psppsll:capacity=1000 "
                              "--no-reference --out " + out.string());
   EXPECT_EQ(o.status, 0) << o.output;
@@ -245,7 +245,7 @@ TEST(Cli, GpuChoiceIsCheckedAndListed) {
 TEST(Cli, TraceAndEstimatorAreAxesScoredAgainstOneReference) {
   const fs::path out = fs::path(test::make_temp_dir("ldm-cli")) / "traces";
   const std::string cache = test::make_temp_dir("ldm-cache");
-  const Outcome o = ldmbench("run --scene cornell -N 4 -R 32 --width 32 --height 32 --frames 1 "
+  const Outcome o = ldmbench("run --scene cornell -N 4 -R 32 --width 32 --height 32 --frames 1 --time-target 0 "
                              "--warmup 0 --reference-spp 16 --trace listing5,interval,plane "
                              "--ao-estimator eq13,normalized --cache-dir " + cache +
                              " --out " + out.string());

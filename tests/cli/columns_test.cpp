@@ -113,7 +113,7 @@ TEST(Columns, EveryColumnOfARunIsDescribed) {
   std::string output;
   const int status = test::run_command(
       std::string(LDM_BINARY_PATH) + " run --scene cornell --structure all -N 2 -R 16 "
-      "--width 16 --height 16 --frames 1 --warmup 0 --param ppfla:k=1 --reference-spp 4 "
+      "--width 16 --height 16 --frames 1 --time-target 0 --warmup 0 --param ppfla:k=1 --reference-spp 4 "
       "--cache-dir " + (dir / "cache").string() + " --out " + (dir / "run").string(), &output);
   ASSERT_EQ(status, 0) << output;
   std::istringstream csv(read_file(dir / "run" / "records.csv"));

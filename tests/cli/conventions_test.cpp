@@ -93,7 +93,7 @@ class ReferenceCacheDefault : public ::testing::Test {
  protected:
   // A tiny AO run with a reference, in `dir`, after the shell assignments `environment`.
   Outcome run(const std::string& environment, const std::string& extra = "") {
-    return ldmbench("run -N 2 -R 8 --width 16 --height 16 --frames 1 --warmup 0 --reference-spp 4 "
+    return ldmbench("run -N 2 -R 8 --width 16 --height 16 --frames 1 --time-target 0 --warmup 0 --reference-spp 4 "
                     "--no-images --out " + (dir / ("run" + std::to_string(++runs))).string() + " " + extra,
                     "cd " + dir.string() + " && env -u XDG_CACHE_HOME -u HOME " + environment);
   }

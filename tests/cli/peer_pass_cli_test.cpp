@@ -18,7 +18,7 @@ namespace fs = std::filesystem;
 TEST(PeerPassCli, HbaoRecordIsCompleteAndScored) {
   const nlohmann::json records =
       test::run_records("peer", "--scene cornell --structure psppsll,dfbuffer --pass hbao --param hbao:steps=4 "
-                                "--param hbao:blur=0,2 --width 32 --height 32 --frames 2 --warmup 1 --reference-spp 16")
+                                "--param hbao:blur=0,2 --width 32 --height 32 --frames 2 --time-target 0 --warmup 1 --reference-spp 16")
           .records;
   ASSERT_EQ(records.size(), 2u) << "one configuration per blur, not one per structure";
   for (size_t i = 0; i < 2; ++i) {
@@ -45,7 +45,7 @@ TEST(PeerPassCli, HbaoRecordIsCompleteAndScored) {
 TEST(PeerPassCli, RtaoSppAxisRecordsCpuTime) {
   const nlohmann::json records =
       test::run_records("peer-rtao", "--scene cornell --pass rtao --param rtao:spp=1,4 --param rtao:threads=1 "
-                                     "--width 32 --height 32 --frames 2 --warmup 0 --reference-spp 64")
+                                     "--width 32 --height 32 --frames 2 --time-target 0 --warmup 0 --reference-spp 64")
           .records;
   ASSERT_EQ(records.size(), 2u) << "one configuration per spp";
   for (size_t i = 0; i < 2; ++i) {

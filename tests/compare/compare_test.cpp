@@ -564,7 +564,7 @@ TEST(CompareCommand, ExitCodeFollowsFailOn) {
 // no regression, whatever --fail-on asks (issue 31).
 TEST(CompareCommand, ARunUnderZinkAgainstLlvmpipeIsACrossDriverComparison) {
   const fs::path tmp = test::make_temp_dir("ldm-compare-drivers");
-  const std::string args = "run --scene cornell --structure ppfla -N 4 -R 32 --image-size 32x32 --frames 2 "
+  const std::string args = "run --scene cornell --structure ppfla -N 4 -R 32 --image-size 32x32 --frames 2 --time-target 0 "
                            "--warmup 1 --no-reference --no-images --out ";
   Outcome o = ldmbench(args + (tmp / "llvmpipe").string(), "env -u MESA_LOADER_DRIVER_OVERRIDE");
   ASSERT_EQ(o.status, 0) << o.output;

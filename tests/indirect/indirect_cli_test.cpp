@@ -20,7 +20,7 @@ namespace fs = std::filesystem;
 TEST(IndirectCli, RecordsAreCompleteAndScoredTwice) {
   const test::RunRecords run = test::run_records(
       "indirect", "--scene cornell --structure psppsll,dfbuffer --pass indirect -N 4 -R 32 --param indirect:s=2,6 "
-                  "--param indirect:r_light=16 --width 24 --height 24 --frames 1 --warmup 1 --reference-spp 8");
+                  "--param indirect:r_light=16 --width 24 --height 24 --frames 1 --time-target 0 --warmup 1 --reference-spp 8");
   ASSERT_EQ(run.records.size(), 4u) << "2 structures x 2 values of s";
   std::set<std::string> ids;
   for (const auto& r : run.records) {

@@ -52,7 +52,7 @@ TEST(PeersCli, RunTakesBothPasses) {
   const std::string cache = test::make_temp_dir("ldm-peers-cache");
   const test::Outcome run = test::ldmbench(
       "run --scene cornell --pass gtao,rtao_gpu --param gtao:slices=2 --param rtao_gpu:spp=2 "
-      "--width 24 --height 24 --frames 1 --warmup 1 --reference-spp 8 --cache-dir " + cache +
+      "--width 24 --height 24 --frames 1 --time-target 0 --warmup 1 --reference-spp 8 --cache-dir " + cache +
       " --out " + out.string() + " 2>&1");
   ASSERT_EQ(run.status, 0) << run.output;
   const auto json = nlohmann::json::parse(test::read_text(out / "records.json"));
@@ -81,7 +81,7 @@ TEST(PeersCli, RtaoGpuPastTheLoopLimitIsInvalid) {
   const fs::path dir = test::make_temp_dir("ldm-peers-limit");
   const test::Outcome run = test::ldmbench(
       "run --scene plane --pass rtao_gpu --param rtao_gpu:spp=40000 --width 16 --height 16 "
-      "--frames 1 --warmup 0 --no-reference --out " + (dir / "run").string() + " 2>&1");
+      "--frames 1 --time-target 0 --warmup 0 --no-reference --out " + (dir / "run").string() + " 2>&1");
   const auto json = nlohmann::json::parse(test::read_text(dir / "run" / "records.json"));
   ASSERT_EQ(json["records"].size(), 1u) << run.output;
   const auto& r = json["records"][0];
