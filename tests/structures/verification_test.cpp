@@ -4,6 +4,8 @@
 // (no full check), as it is by the full check of --verify every.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <cstring>
 #include <vector>
 
@@ -128,6 +130,49 @@ TEST_P(Verification, ANewStorageIsCheckedInFullAndBecomesTheReference) {
   EXPECT_EQ(c.verifier.counts().full, 2u);
   EXPECT_EQ(c.verifier.counts().sampled, 2u);
   EXPECT_EQ(c.health.checksum_changes(), 1u) << "a sample compared with the first build's hashes";
+}
+
+// The inspector's FNV-1a step on 32-bit words (shaders/ldm/inspect.comp's mix_hash).
+uint32_t cpu_mix_hash(uint32_t h, uint32_t v) {
+  h ^= v;
+  h *= 0x01000193u;
+  h ^= h >> 15;
+  return h;
+}
+
+// The check's totals and checksum, which the shader sums per workgroup in shared memory
+// before one atomic each, recomputed on the CPU from the lists the inspector reads back: a
+// combination that lost or mixed up a share (an add taken for an xor, one pixel's share
+// dropped) would still be self-consistent between builds, and only this catches it.
+TEST_P(Verification, TheCheckIsTheListsCountedAndHashedOnTheCpu) {
+  CheckedBuilds c(structure(), VerifyMode::Sampled);
+  const LdmIntegrity gpu = c.inspector.check();
+  uint64_t nodes = 0, unsorted = 0, ties = 0;
+  uint32_t low = 0, high = 0;
+  for (uint32_t v = 0; v < c.f.views.size(); ++v) {
+    const std::vector<std::vector<float>> lists = c.inspector.read_back(v);
+    ASSERT_EQ(lists.size(), c.f.views.pixels_per_view());
+    for (size_t p = 0; p < lists.size(); ++p) {
+      const uint32_t pixel = uint32_t(v * c.f.views.pixels_per_view() + p);
+      uint32_t hash = 0x811c9dc5u;
+      for (size_t i = 0; i < lists[p].size(); ++i) {
+        uint32_t bits;
+        std::memcpy(&bits, &lists[p][i], sizeof bits);
+        hash = cpu_mix_hash(hash, bits);
+        if (i > 0 && lists[p][i] == lists[p][i - 1]) ++ties;
+      }
+      nodes += lists[p].size();
+      if (!std::is_sorted(lists[p].begin(), lists[p].end())) ++unsorted;
+      if (lists[p].empty()) continue;
+      low += cpu_mix_hash(hash, pixel);
+      high ^= cpu_mix_hash(hash * 0x9e3779b9u, pixel + 0x68bc21ebu);
+    }
+  }
+  ASSERT_GT(nodes, 0u);
+  EXPECT_EQ(gpu.fragments, nodes);
+  EXPECT_EQ(gpu.unsorted_pixels, unsorted);
+  EXPECT_EQ(gpu.tied_depths, ties);
+  EXPECT_EQ(gpu.checksum, (uint64_t(high) << 32) | low);
 }
 
 TEST(VerifyMode, NamesRoundTripAndBadOnesAreRefusedByName) {
