@@ -27,6 +27,8 @@ constexpr uint32_t kInspectBlocksBinding = kPassBinding0 + 7;
 // The counting replay's work counters (harness/measure/work_counters.h): bound only there,
 // beside everything a structure or pass binds.
 constexpr uint32_t kWorkCountersBinding = kPassBinding0 + 8;
+// The largest pixel of the counting replay's blended totals (ldm_impls/common/blended_work_counts.h).
+constexpr uint32_t kBlendedLargestBinding = kPassBinding0 + 9;
 
 ShaderDefines binding_defines();
 

@@ -248,24 +248,39 @@ std::vector<std::pair<std::string, RecordValue>> WorkCounterBuffer::read(
 }
 
 namespace {
-bool& counting_scope_alive() {
-  static bool alive = false;
-  return alive;
+struct CountingScopeState {
+  bool alive = false;
+  bool blend_totals = false;
+  std::vector<std::string> inexact_blends;
+};
+CountingScopeState& counting_scope() {
+  static CountingScopeState state;
+  return state;
 }
 }  // namespace
 
-WorkCountingScope::WorkCountingScope(const ShaderDefines& defines) {
+WorkCountingScope::WorkCountingScope(const ShaderDefines& defines, bool blend_totals) {
   static ShaderDefines active;
   active = defines;
   set_program_wide_defines(&active);
-  counting_scope_alive() = true;
+  counting_scope() = {true, blend_totals, {}};
 }
 
 WorkCountingScope::~WorkCountingScope() {
   set_program_wide_defines(nullptr);
-  counting_scope_alive() = false;
+  counting_scope().alive = false;
 }
 
-bool WorkCountingScope::active() { return counting_scope_alive(); }
+bool WorkCountingScope::blending_totals() { return counting_scope().alive && counting_scope().blend_totals; }
+
+void WorkCountingScope::report_inexact_blend(const std::string& where) {
+  if (counting_scope().alive) counting_scope().inexact_blends.push_back(where);
+}
+
+const std::vector<std::string>& WorkCountingScope::inexact_blends() const {
+  return counting_scope().inexact_blends;
+}
+
+bool WorkCountingScope::active() { return counting_scope().alive; }
 
 }  // namespace ldm

@@ -138,12 +138,22 @@ class WorkCounterBuffer : public SubpassObserver {
 // counting replay's.
 class WorkCountingScope {
  public:
-  explicit WorkCountingScope(const ShaderDefines& defines);
+  // `blend_totals`: whether the LDM geometry pass's fragment stages may count their totals by
+  // additive blending instead of atomics (ldm_impls/common/blended_work_counts.h); off, every
+  // counting site is an atomic.
+  explicit WorkCountingScope(const ShaderDefines& defines, bool blend_totals = true);
   ~WorkCountingScope();
   // Whether a scope is alive: what a pass prepares now is the counting replay's (a pass whose
   // counting needs more than its shaders' counting variants, such as a target to count
   // into, sets it up then).
   static bool active();
+  // Whether the alive scope lets totals be counted by blending.
+  static bool blending_totals();
+  // A blended total reached the float value up to which its sums are exact: the counts of
+  // this scope may be wrong, so the replay is run again with blending off. `where` names it.
+  static void report_inexact_blend(const std::string& where);
+  // What was reported while this scope was alive.
+  const std::vector<std::string>& inexact_blends() const;
   WorkCountingScope(const WorkCountingScope&) = delete;
   WorkCountingScope& operator=(const WorkCountingScope&) = delete;
 };

@@ -265,9 +265,16 @@ void MeasurementSession::count_work() {
   timer.set_observer(&counts);
   std::unique_ptr<LdmStructure> structure;
   std::unique_ptr<SizingDriver> sizer;
-  std::unique_ptr<Pass> pass = make_request_pass(s.request);
-  {
-    WorkCountingScope counting(counts.defines());
+  std::unique_ptr<Pass> pass;
+  // The replay, its construction totals counted by blending where it may
+  // (ldm_impls/common/blended_work_counts.h); what it reports where a blended sum may have
+  // passed the float range in which it is exact.
+  const auto replay = [&](bool blend_totals) {
+    WorkCountingScope counting(counts.defines(), blend_totals);
+    pass.reset();  // a pass and a sizer refer to the structure: gone before it
+    sizer.reset();
+    structure.reset();
+    pass = make_request_pass(s.request);
     // The replay's structure, sizing and pass take the measured instances' buffers where
     // they ask for the same ones (already allocated at their settled sizes and touched:
     // gl_objects.h) instead of allocating new storage. The measured instances' contents are
@@ -314,6 +321,15 @@ void MeasurementSession::count_work() {
       counts.clear();
       frame();
     }
+    return counting.inexact_blends();
+  };
+  const std::vector<std::string> inexact = replay(true);
+  if (!inexact.empty()) {
+    // Rare (a pixel's total past 2^24 needs thousands of fragments over the views): counted
+    // again, every site an atomic, so that the record's counts are exact.
+    std::fprintf(stderr, "the counting replay of %s: %s; counted again with atomics\n",
+                 s.m.structure.empty() ? "the pass" : s.m.structure.c_str(), inexact.front().c_str());
+    replay(false);
   }
   s.m.work = counts.read(&s.work_problems);
   s.m.work_counted = true;

@@ -10,12 +10,15 @@ LdmRasterizer::LdmRasterizer(uint32_t resolution) : resolution_(resolution) {
 }
 
 void LdmRasterizer::rasterize(const GpuScene& scene, const GpuViewSet& views,
-                              const GlProgram& program) const {
-  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
+                              const GlProgram& program, const BlendedWorkTargets* blended) const {
+  glDisable(GL_BLEND);
+  if (blended)
+    blended->begin();
+  else
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
   glViewport(0, 0, GLsizei(resolution_), GLsizei(resolution_));
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);
-  glDisable(GL_BLEND);
   glDisable(GL_MULTISAMPLE);
   views.bind();
   program.use();
@@ -25,6 +28,7 @@ void LdmRasterizer::rasterize(const GpuScene& scene, const GpuViewSet& views,
   glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_ATOMIC_COUNTER_BARRIER_BIT |
                   GL_BUFFER_UPDATE_BARRIER_BIT);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  if (blended) blended->end_and_sum();
 }
 
 GlProgram build_ldm_raster_program(const std::string& fragment_file, const ShaderDefines& defines) {
@@ -40,11 +44,26 @@ RasterFragmentSource::RasterFragmentSource(const GpuScene& scene, const GpuViewS
 
 GlProgram RasterFragmentSource::build_program(const std::string& fragment_file,
                                               const ShaderDefines& defines) const {
-  return build_ldm_raster_program(fragment_file, defines);
+  const uint32_t resolution = views_.views().resolution;
+  ShaderDefines all = binding_defines();
+  all.values.insert(all.values.end(), defines.values.begin(), defines.values.end());
+  BlendedTotals totals = blended_totals_of(fragment_file, all, resolution);
+  if (totals.empty()) {
+    GlProgram program = build_ldm_raster_program(fragment_file, defines);
+    blended_.erase(program.id());
+    return program;
+  }
+  ShaderDefines blending = defines;
+  const ShaderDefines channels = blend_defines(totals);
+  blending.values.insert(blending.values.end(), channels.values.begin(), channels.values.end());
+  GlProgram program = build_ldm_raster_program(fragment_file, blending);
+  blended_[program.id()] = std::make_unique<BlendedWorkTargets>(resolution, std::move(totals));
+  return program;
 }
 
 void RasterFragmentSource::run(const GlProgram& program) const {
-  rasterizer_.rasterize(scene_, views_, program);
+  const auto blended = blended_.find(program.id());
+  rasterizer_.rasterize(scene_, views_, program, blended == blended_.end() ? nullptr : blended->second.get());
 }
 
 }  // namespace ldm

@@ -1,10 +1,13 @@
 #pragma once
 #include <cstdint>
+#include <map>
+#include <memory>
 
 #include "harness/gl/gl_objects.h"
 #include "harness/gl/shader_program.h"
 #include "harness/scene/gpu_scene.h"
 #include "harness/views/view_set.h"
+#include "ldm_impls/common/blended_work_counts.h"
 #include "ldm_impls/common/fragment_source.h"
 
 namespace ldm {
@@ -17,8 +20,11 @@ class LdmRasterizer {
  public:
   explicit LdmRasterizer(uint32_t resolution);
   // `program` must use shaders/ldm/ldm_raster.vert (build_ldm_raster_program). Ends with a
-  // storage/atomic-counter barrier so later passes see every write.
-  void rasterize(const GpuScene& scene, const GpuViewSet& views, const GlProgram& program) const;
+  // storage/atomic-counter barrier so later passes see every write. With `blended` (a
+  // counting variant that counts its totals by blending), draws into its targets and sums
+  // them after the draw.
+  void rasterize(const GpuScene& scene, const GpuViewSet& views, const GlProgram& program,
+                 const BlendedWorkTargets* blended = nullptr) const;
 
  private:
   uint32_t resolution_;
@@ -42,6 +48,10 @@ class RasterFragmentSource : public FragmentSource {
   const GpuScene& scene_;
   const GpuViewSet& views_;
   LdmRasterizer rasterizer_;
+  // The counting variants built here that count their totals by blending, by program name:
+  // every program run() is given was built here, which sets (or erases) its entry, so a
+  // name the driver reuses never finds another program's targets.
+  mutable std::map<GLuint, std::unique_ptr<BlendedWorkTargets>> blended_;
 };
 
 }  // namespace ldm

@@ -48,8 +48,28 @@ void work_sample_at(uint slot, uint value) {
   }
 }
 
-#define work_add(name, n) work_add_at(uint(WORK_##name), uint(n))
 #define work_sample(name, value) work_sample_at(uint(WORK_##name), uint(value))
+
+#if defined(WORK_BLEND_TARGETS) && !defined(WORK_ATOMICS_ONLY)
+// Totals counted by blending (a fragment stage of the LDM geometry pass in the counting
+// replay: ldm_impls/common/blended_work_counts.h). Each total the shader adds has a channel
+// (WORK_CHANNEL_<name>) of WORK_BLEND_TARGETS 32-bit float targets that the draw blends
+// additively; the rasterizer sums them into the sub-pass's counters after the draw. A
+// per-fragment atomic costs llvmpipe 15-19 ns per fragment and site (a loop over its SIMD
+// lanes); a fragment's outputs cost nothing per site. Distributions keep their atomics.
+// WORK_BLEND_BEGIN() zeroes the outputs: it must run before anything adds, in every
+// invocation that writes (LDM_SKIP_HELPER_INVOCATIONS, which starts every such main()).
+// Other stages of the program define WORK_ATOMICS_ONLY before including this.
+layout(location = 0) out vec4 work_blended[WORK_BLEND_TARGETS];
+#define WORK_BLEND_BEGIN() \
+  for (int work_target = 0; work_target < WORK_BLEND_TARGETS; ++work_target) \
+    work_blended[work_target] = vec4(0.0)
+#define work_add(name, n) \
+  (work_blended[WORK_CHANNEL_##name / 4][WORK_CHANNEL_##name % 4] += float(uint(n)))
+#else
+#define WORK_BLEND_BEGIN()
+#define work_add(name, n) work_add_at(uint(WORK_##name), uint(n))
+#endif
 
 // Tallies: counting in a hot loop that has no end of its own (a structure's query, called
 // per node a pass visits), summed in a private variable and added once per invocation by
@@ -112,6 +132,7 @@ void work_sample_flush_at(uint slot, WorkSampleTally tally) {
 
 #define work_add(name, n)
 #define work_sample(name, value)
+#define WORK_BLEND_BEGIN()
 #define WORK_TALLY(var)
 #define work_tally(var, n)
 #define work_add_tally(name, var)

@@ -38,8 +38,10 @@ uint ldm_fragment_pixel() {
 // not take part: their stores and atomics have no effect and return undefined values, so an
 // insertion loop in one would only spin to its step bound. Every LDM fragment shader that
 // writes storage starts its main() with this.
-// (It is also where the counting replay counts the fragments shaded.)
+// (It is also where the counting replay counts the fragments shaded, and where a counting
+// variant that counts by blending zeroes its outputs: work_counters.glsl.)
 #define LDM_SKIP_HELPER_INVOCATIONS \
+  WORK_BLEND_BEGIN();                      \
   if (gl_HelperInvocation) return;         \
   work_add(fragments, 1)
 

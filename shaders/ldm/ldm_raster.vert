@@ -6,6 +6,9 @@
 // construction must rasterise exactly the same fragments, although they are different
 // programs; without it a compiler may evaluate the projection differently per program.
 #include "common/ldm_views.glsl"
+// A counting variant whose fragment stage counts by blending (WORK_BLEND_TARGETS) still
+// counts this stage's vertices with atomics: a vertex has no target to blend into.
+#define WORK_ATOMICS_ONLY 1
 #include "common/work_counters.glsl"
 
 layout(location = 0) in vec3 in_position;
