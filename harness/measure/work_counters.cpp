@@ -180,21 +180,40 @@ void WorkCounterBuffer::subpass_begun(const std::string& subpass) {
   if (found == block_of_.end()) undeclared_seen_.push_back(subpass);
   began_.insert(subpass);
   ran_[block] = true;
+  running_ = block;
+  in_subpass_ = true;
   bind_block(block);
-  for (size_t i = 0; i < statistic_queries_.size(); ++i)
-    glBeginQuery(pipeline_statistics()[i].target, statistic_queries_[i]);
+  begin_statistics();
 }
 
-void WorkCounterBuffer::subpass_ended(const std::string& subpass) {
-  const auto found = block_of_.find(subpass);
-  const size_t block = found == block_of_.end() ? scratch_ : found->second;
+void WorkCounterBuffer::subpass_ended(const std::string& /*subpass*/) {
+  end_statistics();
+  running_ = scratch_;
+  in_subpass_ = false;
+  bind_block(scratch_);
+}
+
+void WorkCounterBuffer::begin_statistics() {
+  for (size_t i = 0; i < statistic_queries_.size(); ++i)
+    glBeginQuery(pipeline_statistics()[i].target, statistic_queries_[i]);
+  statistics_running_ = !statistic_queries_.empty();
+}
+
+void WorkCounterBuffer::end_statistics() {
+  if (!statistics_running_) return;
+  statistics_running_ = false;
   for (size_t i = 0; i < statistic_queries_.size(); ++i) glEndQuery(pipeline_statistics()[i].target);
   for (size_t i = 0; i < statistic_queries_.size(); ++i) {  // the replay may wait: it is untimed
     GLuint64 value = 0;
     glGetQueryObjectui64v(statistic_queries_[i], GL_QUERY_RESULT, &value);
-    if (block < statistic_sums_.size()) statistic_sums_[block][i] += value;
+    if (running_ < statistic_sums_.size()) statistic_sums_[running_][i] += value;
   }
-  bind_block(scratch_);
+}
+
+void WorkCounterBuffer::pause_statistics() { end_statistics(); }
+
+void WorkCounterBuffer::resume_statistics() {
+  if (in_subpass_) begin_statistics();
 }
 
 std::vector<std::pair<std::string, RecordValue>> WorkCounterBuffer::read(
@@ -251,6 +270,7 @@ namespace {
 struct CountingScopeState {
   bool alive = false;
   bool blend_totals = false;
+  WorkCounterBuffer* counts = nullptr;
   std::vector<std::string> inexact_blends;
 };
 CountingScopeState& counting_scope() {
@@ -259,11 +279,12 @@ CountingScopeState& counting_scope() {
 }
 }  // namespace
 
-WorkCountingScope::WorkCountingScope(const ShaderDefines& defines, bool blend_totals) {
+WorkCountingScope::WorkCountingScope(const ShaderDefines& defines, bool blend_totals,
+                                     WorkCounterBuffer* counts) {
   static ShaderDefines active;
   active = defines;
   set_program_wide_defines(&active);
-  counting_scope() = {true, blend_totals, {}};
+  counting_scope() = {true, blend_totals, counts, {}};
 }
 
 WorkCountingScope::~WorkCountingScope() {
@@ -282,5 +303,14 @@ const std::vector<std::string>& WorkCountingScope::inexact_blends() const {
 }
 
 bool WorkCountingScope::active() { return counting_scope().alive; }
+
+UncountedGpuWork::UncountedGpuWork()
+    : counts_(counting_scope().alive ? counting_scope().counts : nullptr) {
+  if (counts_) counts_->pause_statistics();
+}
+
+UncountedGpuWork::~UncountedGpuWork() {
+  if (counts_) counts_->resume_statistics();
+}
 
 }  // namespace ldm

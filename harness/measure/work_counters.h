@@ -106,6 +106,12 @@ class WorkCounterBuffer : public SubpassObserver {
   void subpass_ended(const std::string& subpass) override;
   // Whether a sub-pass of this name (declared or not) began since clear().
   bool began(const std::string& subpass) const { return began_.count(subpass) != 0; }
+  // Leave the counting's own GPU work (summing blended totals into the counters) out of the
+  // driver's statistics of the running sub-pass: its queries end before it and begin again
+  // after, both parts added to the sub-pass's sums. Calls pair up; nothing while no sub-pass
+  // runs or the driver has no statistics.
+  void pause_statistics();
+  void resume_statistics();
 
   // The record fields of every declared counter whose sub-pass ran since clear()
   // (distributions of no samples are left out), and, in `problems`, sub-passes that counted
@@ -116,6 +122,8 @@ class WorkCounterBuffer : public SubpassObserver {
 
  private:
   void bind_block(size_t block) const;
+  void begin_statistics();
+  void end_statistics();  // into the running block's sums
   std::vector<WorkCounter> counters_;
   // Pipeline statistics: one query per statistic, begun and ended with each declared
   // sub-pass, its result added to the sub-pass's sums (empty: the driver has none).
@@ -128,6 +136,9 @@ class WorkCounterBuffer : public SubpassObserver {
   std::vector<bool> ran_;                       // per block: begun since clear()
   uint32_t block_words_ = 0;                    // padded to the buffer offset alignment
   size_t scratch_ = 0;                          // the last block
+  size_t running_ = 0;                          // the block of the running sub-pass
+  bool in_subpass_ = false;                     // a sub-pass runs (begun, not ended)
+  bool statistics_running_ = false;             // its queries are begun
   GlBuffer buffer_;
 };
 
@@ -141,7 +152,10 @@ class WorkCountingScope {
   // `blend_totals`: whether the LDM geometry pass's fragment stages may count their totals by
   // additive blending instead of atomics (ldm_impls/common/blended_work_counts.h); off, every
   // counting site is an atomic.
-  explicit WorkCountingScope(const ShaderDefines& defines, bool blend_totals = true);
+  // `counts`: the buffer counting (its statistics paused around the counting's own GPU work:
+  // UncountedGpuWork); null: none to pause.
+  explicit WorkCountingScope(const ShaderDefines& defines, bool blend_totals = true,
+                             WorkCounterBuffer* counts = nullptr);
   ~WorkCountingScope();
   // Whether a scope is alive: what a pass prepares now is the counting replay's (a pass whose
   // counting needs more than its shaders' counting variants, such as a target to count
@@ -156,6 +170,20 @@ class WorkCountingScope {
   const std::vector<std::string>& inexact_blends() const;
   WorkCountingScope(const WorkCountingScope&) = delete;
   WorkCountingScope& operator=(const WorkCountingScope&) = delete;
+};
+
+// While alive, the GPU work issued is the counting's own (a sum of blended totals into the
+// counters), not the counted frame's: left out of the driver's pipeline statistics of the
+// running sub-pass (WorkCounterBuffer::pause_statistics). Nothing outside a counting scope.
+class UncountedGpuWork {
+ public:
+  UncountedGpuWork();
+  ~UncountedGpuWork();
+  UncountedGpuWork(const UncountedGpuWork&) = delete;
+  UncountedGpuWork& operator=(const UncountedGpuWork&) = delete;
+
+ private:
+  WorkCounterBuffer* counts_;
 };
 
 }  // namespace ldm

@@ -270,7 +270,7 @@ void MeasurementSession::count_work() {
   // (ldm_impls/common/blended_work_counts.h); what it reports where a blended sum may have
   // passed the float range in which it is exact.
   const auto replay = [&](bool blend_totals) {
-    WorkCountingScope counting(counts.defines(), blend_totals);
+    WorkCountingScope counting(counts.defines(), blend_totals, &counts);
     pass.reset();  // a pass and a sizer refer to the structure: gone before it
     sizer.reset();
     structure.reset();

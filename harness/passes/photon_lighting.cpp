@@ -318,6 +318,7 @@ void PhotonLighting::splat(const GBufferPass& camera) {
   glDisable(GL_BLEND);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   if (count_by_blending) {  // the blended counts, summed into the splatting sub-pass's counters
+    const UncountedGpuWork counting_own_work;  // not the splat's: out of the driver's statistics
     glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
     splat_count_program_.use();
     glBindTextureUnit(0, splat_counts_.id());

@@ -116,6 +116,7 @@ void BlendedWorkTargets::begin() const {
 
 void BlendedWorkTargets::end_and_sum() const {
   glDisable(GL_BLEND);
+  const UncountedGpuWork counting_own_work;  // not the build's: out of the driver's statistics
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT);
   largest_.clear_to_zero();
   sum_program_.use();
