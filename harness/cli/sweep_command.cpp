@@ -9,6 +9,7 @@
 #include "harness/run/sweep_plan.h"
 #include "harness/cli/commands.h"
 #include "harness/gl/egl_context.h"
+#include "harness/settings/run_setting_options.h"
 #include "harness/util/error.h"
 #include "harness/util/files.h"
 
@@ -17,8 +18,9 @@ namespace {
 
 struct SweepOptions {
   std::string file, out_dir, shard = "0/1", cache_dir, platform = "auto";
-  std::string isolation, step, interleaved_session, calibration;
-  int repetitions = 0;  // 0: the file's (settings.timing.repetitions)
+  std::string step, interleaved_session, calibration;
+  // --repetitions and --isolation, declared with the run-wide settings they override.
+  RunSettingOverrides timing;
   bool overwrite = false, redo_failed = false, dry_run = false, gl_debug = false;
   GpuOption gpu;
   bool memory_plan = false;
@@ -122,14 +124,7 @@ Runner add_sweep_command(CLI::App& app, const std::string& command_line,
       ->capture_default_str();
   add_gpu_option(sweep, o->gpu);
   sweep->add_flag("--gl-debug", o->gl_debug, "Print OpenGL debug messages");
-  auto* repetitions = sweep->add_option("--repetitions", o->repetitions,
-                    "Independent repetitions of every configuration (default: the file's "
-                    "settings.timing.repetitions, else 1)")
-      ->check(CLI::Range(1, 1000));
-  auto* isolation = sweep->add_option("--isolation", o->isolation,
-                    "What keeps repetitions independent: context or process (default: the file's, "
-                    "else context)")
-      ->check(CLI::IsMember({"context", "process"}));
+  add_run_setting_overrides(sweep, o->timing, {"timing.repetitions", "timing.isolation"}, "the file");
   auto* step = sweep->add_option("--step", o->step,
                     "Measure only the next repetition of each of these configuration ids "
                     "(ID[,ID...]) and stop (the children of --isolation process and `ldmbench "
@@ -140,8 +135,8 @@ Runner add_sweep_command(CLI::App& app, const std::string& command_line,
   auto* session = sweep->add_option("--interleaved-session", o->interleaved_session,
                     "The `ldmbench interleave` session this run belongs to (recorded)");
   // A memory plan measures nothing: options about measuring or resuming would be ignored.
-  for (CLI::Option* measuring : {redo_failed, overwrite, repetitions, isolation, step, session})
-    memory_plan->excludes(measuring);
+  for (CLI::Option* measuring : {redo_failed, overwrite, step, session}) memory_plan->excludes(measuring);
+  for (CLI::Option* measuring : o->timing.options) memory_plan->excludes(measuring);
 
   return [o, command_line, arguments]() {
     const Shard shard = parse_shard(o->shard);
@@ -167,9 +162,10 @@ Runner add_sweep_command(CLI::App& app, const std::string& command_line,
     run.out_dir = o->out_dir;
     run.overwrite = o->overwrite;
     run.redo_failed = o->redo_failed;
-    const RunSettings& first = plan.configurations.front().settings;
-    run.repetitions = o->repetitions ? o->repetitions : first.repetitions;
-    run.isolation = o->isolation.empty() ? first.isolation : parse_repetition_isolation(o->isolation);
+    RunSettings timing = plan.configurations.front().settings;  // the file's, then the options'
+    apply_run_setting_overrides(o->timing, timing);
+    run.repetitions = timing.repetitions;
+    run.isolation = timing.isolation;
     run.arguments = arguments;
     run.step = o->step;
     run.calibration = parse_calibration_choice(o->calibration, std::getenv("LDM_CALIBRATION"));

@@ -54,14 +54,7 @@ void describe_configuration(Record& r, const Configuration& config, const RunSet
 MeasurementRequest measurement_request(const Configuration& config, const RunSettings& settings,
                                        const DeviceInfo& device) {
   MeasurementRequest request;
-  request.structure = config.structure;
-  request.structure_params = config.params;
-  request.sizing = config.sizing;
-  request.pass = config.pass;
-  request.pass_params = config.pass_params;
-  request.axes = config.values;
-  request.views = config.views;
-  request.resolution = config.resolution;
+  request.configuration = config;
   request.width = settings.width;
   request.height = settings.height;
   request.warmup = settings.warmup;

@@ -22,6 +22,7 @@
 #include "harness/measure/timing_stats.h"
 #include "harness/passes/pass.h"
 #include "harness/scene/scene.h"
+#include "harness/settings/run_settings.h"
 #include "ldm_impls/common/build_health.h"
 #include "ldm_impls/common/build_verifier.h"
 #include "ldm_impls/common/fragment_census.h"
@@ -29,18 +30,24 @@
 
 namespace ldm {
 
+// What a request measures unless told otherwise (tests and benchmarks set what they vary):
+// the AO pass, N 32, R_LDM 128, the previous_frame sizing policy, no axis values.
+inline Configuration default_measured_configuration() {
+  Configuration c;
+  c.pass = "ao";
+  c.views = 32;
+  c.resolution = 128;
+  c.sizing = {SizingPolicy::PreviousFrame};
+  return c;
+}
+
 struct MeasurementRequest {
-  std::string structure;
-  std::map<std::string, std::string> structure_params;
-  // How the structure learns its sizes (ldm_impls/common/sizing.h); the default is the
-  // run's (docs/reference/structures.md).
-  SizingSettings sizing = {SizingPolicy::PreviousFrame};
-  std::string pass = "ao";
-  std::map<std::string, std::string> pass_params;
-  // The configuration's value of every axis (Configuration::values): handed to the pass
-  // (PassInputs::axes), where an axis declared for it is read.
-  AxisValues axes;
-  uint32_t views = 32, resolution = 128;
+  // What is measured, as the sweep planned it (harness/settings/run_settings.h): the
+  // structure and its parameters, the pass and its parameters, N, R_LDM and the sizing
+  // policy read through the configuration's typed views, and every axis's value
+  // (Configuration::values) handed to the pass (PassInputs::axes), where an axis declared
+  // for it is read. Carried whole, never copied field by field.
+  Configuration configuration = default_measured_configuration();
   int width = 256, height = 256;
   // At least `frames` measured frames, then more until `precision` is met or its cap
   // reached (harness/measure/frame_stop_rule.h); precision.target 0: exactly `frames`.

@@ -55,7 +55,8 @@ void add_frame_sums(FrameTimes& times, const std::vector<std::string>& pass_subp
 }
 
 std::unique_ptr<Pass> make_request_pass(const MeasurementRequest& request) {
-  return make_pass(request.pass, StructureParams(request.pass_params, "--pass " + request.pass));
+  const Configuration& config = request.configuration;
+  return make_pass(config.pass, StructureParams(config.pass_params, "--pass " + config.pass));
 }
 
 }  // namespace
@@ -101,10 +102,10 @@ struct MeasurementSession::State {
     const GlBufferOwnerScope owner(pass_storage());
     if (setup)
       pass->prepare({setup->scene, *setup->gpu_scene, setup->inputs.get(), structure.get(),
-                     request.width, request.height, &request.axes});
+                     request.width, request.height, &request.configuration.values});
     else
       pass->prepare({*peer_scene, *peer_gpu_scene, nullptr, nullptr, request.width,
-                     request.height, &request.axes});
+                     request.height, &request.configuration.values});
   }
 };
 
@@ -118,10 +119,11 @@ MeasurementSession::MeasurementSession(const Scene& scene, const MeasurementRequ
   state_ = std::make_unique<State>(request, std::move(pass), timer_source);
   State& s = *state_;
   Measurement& m = s.m;
+  const Configuration& config = request.configuration;
   m.scene_name = scene.name;
   m.scene_hash = hex64(scene.content_hash());
   m.triangles = scene.mesh.triangle_count();
-  m.pass = request.pass;
+  m.pass = config.pass;
   m.pass_settings = s.pass->describe(scene);
   for (const auto& sub : s.pass->subpasses()) m.pass_subpasses.push_back(sub.name);
   m.scene_attributes = needs.scene_attributes.describe(scene.derived_normal_triangles, scene.mesh.triangle_count());
@@ -141,10 +143,10 @@ MeasurementSession::MeasurementSession(const Scene& scene, const MeasurementRequ
     return;
   }
 
-  m.structure = request.structure;
+  m.structure = config.structure;
   // Only what the pass reads is uploaded, and the structure stores only its payload.
-  s.setup = std::make_unique<LdmSetup>(scene, needs.scene_attributes, request.views,
-                                       request.resolution, needs.payload, request.sizing);
+  s.setup = std::make_unique<LdmSetup>(scene, needs.scene_attributes, config.views, config.resolution,
+                                       needs.payload, config.sizing);
   const FragmentCensus& census = s.setup->census;
   const BuildInputs& in = *s.setup->inputs;
   m.scene_gpu_bytes = s.setup->gpu_scene->bytes();
@@ -153,9 +155,9 @@ MeasurementSession::MeasurementSession(const Scene& scene, const MeasurementRequ
 
   try {
     const GlBufferOwnerScope owner(s.structure_storage());
-    s.structure = s.setup->prepare(request.structure, request.structure_params);
+    s.structure = s.setup->prepare(config.structure, config.params);
   } catch (const StorageBlockExceeded& e) {  // say what would fit, from the census
-    throw explained_refusal(e, census, request.views, request.resolution);
+    throw explained_refusal(e, census, config.views, config.resolution);
   }
   s.baseline = std::make_unique<RasterBaseline>(*s.setup->raster, s.setup->views);
   s.prepare_pass();
@@ -199,7 +201,8 @@ FrameTimes MeasurementSession::run_frame() {
       const GlBufferOwnerScope owner(s.structure_storage());  // a resize's new storage
       s.sizer->build(&s.timer);  // the structure's build() under its sizing policy
     } catch (const StorageBlockExceeded& e) {  // grown past the device: say what would fit
-      throw explained_refusal(e, s.setup->census, s.request.views, s.request.resolution);
+      throw explained_refusal(e, s.setup->census, s.request.configuration.views,
+                              s.request.configuration.resolution);
     }
   }
   {
@@ -260,7 +263,7 @@ void MeasurementSession::count_work() {
   // results, memory in use and losses first, so that the record keeps theirs.
   s.before_replay = measured_result();
   const auto start = std::chrono::steady_clock::now();
-  WorkCounterBuffer counts(configuration_work_counters(s.m.structure, s.request.pass));
+  WorkCounterBuffer counts(configuration_work_counters(s.m.structure, s.request.configuration.pass));
   GpuTimer timer(TimerSource::CpuWallClock);  // only to tell the counters the sub-passes
   timer.set_observer(&counts);
   std::unique_ptr<LdmStructure> structure;
@@ -283,17 +286,17 @@ void MeasurementSession::count_work() {
     if (s.setup) {
       {
         const GlBufferLoanScope loan(s.structure_storage());
-        structure = s.setup->prepare(s.request.structure, s.request.structure_params);
+        structure = s.setup->prepare(s.request.configuration.structure, s.request.configuration.params);
         sizer = std::make_unique<SizingDriver>(*structure, *s.setup->inputs);
       }
       const GlBufferLoanScope loan(s.pass_storage());
       pass->prepare({s.setup->scene, *s.setup->gpu_scene, s.setup->inputs.get(), structure.get(),
-                     s.request.width, s.request.height, &s.request.axes});
+                     s.request.width, s.request.height, &s.request.configuration.values});
       pass->continue_sizing_from(*s.pass);
     } else {
       const GlBufferLoanScope loan(s.pass_storage());
       pass->prepare({*s.peer_scene, *s.peer_gpu_scene, nullptr, nullptr, s.request.width,
-                     s.request.height, &s.request.axes});
+                     s.request.height, &s.request.configuration.values});
     }
     auto frame = [&] {
       timer.begin_frame();
@@ -385,7 +388,7 @@ Measurement MeasurementSession::measured_result() const {
   m.images = s.pass->images();
   m.pass_results = s.pass->results();
   m.coverage = s.pass->coverage();
-  if (m.images.empty()) throw std::logic_error("pass " + s.request.pass + " produced no image");
+  if (m.images.empty()) throw std::logic_error("pass " + s.request.configuration.pass + " produced no image");
   const std::vector<std::string> problems = image_problems(m.images);
   if (!s.setup) {
     // The image's own problems and the pass's (e.g. a GPU ray tracer the device's loop limit

@@ -1,5 +1,6 @@
 #include "harness/settings/run_setting_options.h"
 
+#include <stdexcept>
 #include <type_traits>
 #include <variant>
 
@@ -48,6 +49,39 @@ void apply_run_setting_options(const RunSettingOptions& options, RunSettings& se
       const auto given = options.texts.find(setting.path);
       if (given != options.texts.end()) text->set(settings, given->second);
     }
+}
+
+void add_run_setting_overrides(CLI::App* command, RunSettingOverrides& overrides,
+                               const std::vector<std::string>& paths, const std::string& default_from) {
+  for (const std::string& path : paths) {
+    const RunSetting* setting = find_run_setting(path);
+    if (!setting || setting->kind == SettingRule::Kind::Flag)
+      throw std::logic_error("no run-wide setting '" + path + "' to override");
+    CLI::Option* option = command->add_option(
+        setting->flag, overrides.given[path],
+        setting->help + " (default: " + default_from + "'s settings." + path + ")");
+    if (setting->kind == SettingRule::Kind::Choice) option->check(CLI::IsMember(setting->choices));
+    if (setting->kind == SettingRule::Kind::Integer) option->type_name("INT");
+    if (setting->kind == SettingRule::Kind::Real) option->type_name("FLOAT");
+    if (setting->kind == SettingRule::Kind::Integer && setting->cli_range)
+      option->check(CLI::Range(int64_t(setting->min), int64_t(setting->max)));
+    if (setting->kind == SettingRule::Kind::Real)
+      option->check(setting->positive ? CLI::Validator(CLI::PositiveNumber) : CLI::Range(setting->min, setting->max));
+    overrides.options.push_back(option);
+  }
+}
+
+void apply_run_setting_overrides(const RunSettingOverrides& overrides, RunSettings& settings) {
+  for (const auto& [path, text] : overrides.given) {
+    if (text.empty()) continue;
+    const RunSetting& setting = *find_run_setting(path);
+    if (setting.kind == SettingRule::Kind::Integer)
+      set_run_setting_json(setting, settings, nlohmann::json(uint32_t(std::stoul(text))));
+    else if (setting.kind == SettingRule::Kind::Real)
+      set_run_setting_json(setting, settings, nlohmann::json(std::stod(text)));
+    else
+      set_run_setting_json(setting, settings, nlohmann::json(text));
+  }
 }
 
 }  // namespace ldm

@@ -136,14 +136,15 @@ TEST(IndirectPass, DegenerateDifferentialsAreCountedNeverNaN) {
 MeasurementRequest small_request(std::map<std::string, std::string> pass_params, SizingPolicy policy) {
   test::gl_context();
   MeasurementRequest request;
-  request.structure = "psppsll";
-  request.pass = "indirect";
-  request.pass_params = std::move(pass_params);
-  request.pass_params["r_light"] = "16";
-  request.sizing = {policy};
-  request.sizing.budget_bytes = 1u << 20;
-  request.views = 4;
-  request.resolution = 32;
+  Configuration& config = request.configuration;
+  config.structure = "psppsll";
+  config.pass = "indirect";
+  config.pass_params = std::move(pass_params);
+  config.pass_params["r_light"] = "16";
+  config.sizing = {policy};
+  config.sizing.budget_bytes = 1u << 20;
+  config.views = 4;
+  config.resolution = 32;
   request.width = request.height = 48;
   request.warmup = 1;
   request.frames = 1;

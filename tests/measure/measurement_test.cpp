@@ -122,7 +122,7 @@ TEST(PassRegistry, AoIsRegisteredAndParametersAreChecked) {
 
 TEST(Measurement, KeepsEveryFrameAndSplitsBuildFromThePass) {
   MeasurementRequest request = test::measurement_request("dfbuffer", 4, 32, 32, 1, 3);
-  request.sizing.policy = SizingPolicy::PreviousFrame;  // its read-back is part of the build
+  request.configuration.sizing.policy = SizingPolicy::PreviousFrame;  // its read-back is part of the build
   int seen = 0;
   request.on_frame = [&](const FrameTimes&) { ++seen; };
   const Measurement m = measure(load_scene("cornell"), request);

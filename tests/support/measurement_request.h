@@ -15,9 +15,9 @@ inline MeasurementRequest measurement_request(const std::string& structure, uint
                                               int frames) {
   gl_context();
   MeasurementRequest request;
-  request.structure = structure;
-  request.views = views;
-  request.resolution = resolution;
+  request.configuration.structure = structure;
+  request.configuration.views = views;
+  request.configuration.resolution = resolution;
   request.width = request.height = size;
   request.warmup = warmup;
   request.frames = frames;

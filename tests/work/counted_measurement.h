@@ -39,11 +39,11 @@ inline Counted count(const std::string& structure, uint32_t views, uint32_t reso
   test::gl_context();
   static const Scene scene = load_scene("cornell");
   MeasurementRequest request;
-  request.structure = structure;
-  request.structure_params = params;
-  request.pass = "ao";
-  request.views = views;
-  request.resolution = resolution;
+  request.configuration.structure = structure;
+  request.configuration.params = params;
+  request.configuration.pass = "ao";
+  request.configuration.views = views;
+  request.configuration.resolution = resolution;
   request.width = 48;
   request.height = 40;
   request.warmup = 1;
