@@ -55,8 +55,6 @@ MeasurementRequest measurement_request(const Configuration& config, const RunSet
                                        const DeviceInfo& device) {
   MeasurementRequest request;
   request.configuration = config;
-  request.width = settings.width;
-  request.height = settings.height;
   request.warmup = settings.warmup;
   request.frames = settings.frames;
   request.count_work = settings.count_work;

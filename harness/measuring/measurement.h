@@ -37,18 +37,18 @@ inline Configuration default_measured_configuration() {
   c.pass = "ao";
   c.views = 32;
   c.resolution = 128;
+  c.width = c.height = 256;
   c.sizing = {SizingPolicy::PreviousFrame};
   return c;
 }
 
 struct MeasurementRequest {
   // What is measured, as the sweep planned it (harness/settings/run_settings.h): the
-  // structure and its parameters, the pass and its parameters, N, R_LDM and the sizing
-  // policy read through the configuration's typed views, and every axis's value
+  // structure and its parameters, the pass and its parameters, N, R_LDM, the image size and
+  // the sizing policy read through the configuration's typed views, and every axis's value
   // (Configuration::values) handed to the pass (PassInputs::axes), where an axis declared
   // for it is read. Carried whole, never copied field by field.
   Configuration configuration = default_measured_configuration();
-  int width = 256, height = 256;
   // At least `frames` measured frames, then more until `precision` is met or its cap
   // reached (harness/measure/frame_stop_rule.h); precision.target 0: exactly `frames`.
   int warmup = 2, frames = 5;

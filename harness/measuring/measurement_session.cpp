@@ -100,17 +100,19 @@ struct MeasurementSession::State {
   const void* pass_storage() const { return &pass; }
   void prepare_pass() {
     const GlBufferOwnerScope owner(pass_storage());
+    const Configuration& config = request.configuration;
     if (setup)
-      pass->prepare({setup->scene, *setup->gpu_scene, setup->inputs.get(), structure.get(),
-                     request.width, request.height, &request.configuration.values});
+      pass->prepare({setup->scene, *setup->gpu_scene, setup->inputs.get(), structure.get(), config.width,
+                     config.height, &config.values});
     else
-      pass->prepare({*peer_scene, *peer_gpu_scene, nullptr, nullptr, request.width,
-                     request.height, &request.configuration.values});
+      pass->prepare({*peer_scene, *peer_gpu_scene, nullptr, nullptr, config.width, config.height, &config.values});
   }
 };
 
 MeasurementSession::MeasurementSession(const Scene& scene, const MeasurementRequest& request)
     : state_() {
+  if (request.configuration.width <= 0 || request.configuration.height <= 0)
+    throw std::logic_error("the configuration " + request.configuration.id() + " has no image size");
   auto pass = make_request_pass(request);
   const PassRequirements needs = pass->requirements();
   // A CPU pass's time is the CPU's wall time, and its device the CPU: a GPU timer would
@@ -259,11 +261,12 @@ size_t differing_values(const Image& a, const Image& b, double tolerance) {
 void MeasurementSession::count_work() {
   State& s = *state_;
   if (s.pass->requirements().runs_on_cpu) return;  // no shader to count (the CPU ray tracer)
+  const Configuration& config = s.request.configuration;
   // The replay borrows the measured buffers and overwrites them: read the measured frames'
   // results, memory in use and losses first, so that the record keeps theirs.
   s.before_replay = measured_result();
   const auto start = std::chrono::steady_clock::now();
-  WorkCounterBuffer counts(configuration_work_counters(s.m.structure, s.request.configuration.pass));
+  WorkCounterBuffer counts(configuration_work_counters(s.m.structure, config.pass));
   GpuTimer timer(TimerSource::CpuWallClock);  // only to tell the counters the sub-passes
   timer.set_observer(&counts);
   std::unique_ptr<LdmStructure> structure;
@@ -286,17 +289,17 @@ void MeasurementSession::count_work() {
     if (s.setup) {
       {
         const GlBufferLoanScope loan(s.structure_storage());
-        structure = s.setup->prepare(s.request.configuration.structure, s.request.configuration.params);
+        structure = s.setup->prepare(config.structure, config.params);
         sizer = std::make_unique<SizingDriver>(*structure, *s.setup->inputs);
       }
       const GlBufferLoanScope loan(s.pass_storage());
-      pass->prepare({s.setup->scene, *s.setup->gpu_scene, s.setup->inputs.get(), structure.get(),
-                     s.request.width, s.request.height, &s.request.configuration.values});
+      pass->prepare({s.setup->scene, *s.setup->gpu_scene, s.setup->inputs.get(), structure.get(), config.width,
+                     config.height, &config.values});
       pass->continue_sizing_from(*s.pass);
     } else {
       const GlBufferLoanScope loan(s.pass_storage());
-      pass->prepare({*s.peer_scene, *s.peer_gpu_scene, nullptr, nullptr, s.request.width,
-                     s.request.height, &s.request.configuration.values});
+      pass->prepare({*s.peer_scene, *s.peer_gpu_scene, nullptr, nullptr, config.width, config.height,
+                     &config.values});
     }
     auto frame = [&] {
       timer.begin_frame();

@@ -281,6 +281,11 @@ Configuration configuration_of(const AxisValues& values) {
   c.structure = values.count("structures") ? value_of(values, "structures") : std::string(kNoStructure);
   if (values.count("views")) c.views = to_u32(value_of(values, "views"));
   if (values.count("r_ldm")) c.resolution = to_u32(value_of(values, "r_ldm"));
+  if (values.count("image_size")) {  // canonical "WxH" (axis.cpp checked it)
+    const std::string size = value_of(values, "image_size");
+    c.width = int(to_u32(size.substr(0, size.find('x'))));
+    c.height = int(to_u32(size.substr(size.find('x') + 1)));
+  }
   if (values.count("d_max")) c.d_max = std::strtof(value_of(values, "d_max").c_str(), nullptr);
   if (values.count("visibility")) c.visibility = parse_visibility_name(value_of(values, "visibility"));
   if (values.count("trace")) c.trace = parse_ao_trace(value_of(values, "trace"));

@@ -87,6 +87,7 @@ struct Configuration {
   std::string pass;
   uint32_t views = 0;
   uint32_t resolution = 0;
+  int width = 0, height = 0;  // the output image (image_size)
   std::optional<float> d_max;
   Visibility visibility = Visibility::Scene;
   AoTrace trace = kDefaultAoTrace;

@@ -145,7 +145,7 @@ MeasurementRequest small_request(std::map<std::string, std::string> pass_params,
   config.sizing.budget_bytes = 1u << 20;
   config.views = 4;
   config.resolution = 32;
-  request.width = request.height = 48;
+  request.configuration.width = request.configuration.height = 48;
   request.warmup = 1;
   request.frames = 1;
   return request;

@@ -18,7 +18,7 @@ inline MeasurementRequest measurement_request(const std::string& structure, uint
   request.configuration.structure = structure;
   request.configuration.views = views;
   request.configuration.resolution = resolution;
-  request.width = request.height = size;
+  request.configuration.width = request.configuration.height = size;
   request.warmup = warmup;
   request.frames = frames;
   return request;

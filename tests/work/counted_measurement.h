@@ -44,8 +44,8 @@ inline Counted count(const std::string& structure, uint32_t views, uint32_t reso
   request.configuration.pass = "ao";
   request.configuration.views = views;
   request.configuration.resolution = resolution;
-  request.width = 48;
-  request.height = 40;
+  request.configuration.width = 48;
+  request.configuration.height = 40;
   request.warmup = 1;
   request.frames = 2;
   Counted c{measure(scene, request), {}};
