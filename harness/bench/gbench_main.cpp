@@ -39,6 +39,7 @@
 #include <set>
 #include <sstream>
 
+#include "harness/records/harness_columns.h"
 #include "harness/settings/harness_axes.h"
 #include "harness/measuring/measure_configuration.h"
 #include "harness/measuring/measurement.h"
@@ -249,17 +250,17 @@ void run_measurement(benchmark::State& state, const Scene* scene, Configuration 
         if (name == "frame") state.SetIterationTime(ms * 1e-3);
     };
     const Measurement m = measure(*scene, request);
-    if (m.status == BuildStatus::Invalid) {
-      state.SkipWithError(("invalid build: " + m.status_detail).c_str());
+    if (m.status() == BuildStatus::Invalid) {
+      state.SkipWithError(("invalid build: " + m.status_detail()).c_str());
       return;
     }
     // Counters that are 0 in every repetition are left out: Google Benchmark's cv aggregate
     // of them is 0/0, which it writes as a NaN that is not JSON (compare.py then fails).
     for (const TimingSummary& s : m.summaries())
       if (s.median > 0) state.counters[s.subpass + "_ms"] = s.median;
-    state.counters["fragments"] = double(m.census.fragments);
-    if (m.last_build.fragments_lost > 0) state.counters["fragments_lost"] = double(m.last_build.fragments_lost);
-    state.counters["bytes_allocated"] = double(m.bytes_allocated());
+    state.counters["fragments"] = m.number(columns::kFragments);
+    if (m.count(columns::kFragmentsLost) > 0) state.counters["fragments_lost"] = m.number(columns::kFragmentsLost);
+    state.counters["bytes_allocated"] = m.number(columns::kBytesAllocated);
     state.SetLabel(g_context->device().gl_renderer);
   } catch (const std::exception& e) {
     state.SkipWithError(e.what());

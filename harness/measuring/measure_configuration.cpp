@@ -64,83 +64,6 @@ MeasurementRequest measurement_request(const Configuration& config, const RunSet
   return request;
 }
 
-void add_measurement(Record& r, const Measurement& m, const AxisValues& values, const TimePrecision& precision) {
-  r.set(kSceneName, m.scene_name);
-  r.set(kSceneHash, m.scene_hash);
-  r.set(kTriangles, m.triangles);
-  for (const auto& [key, value] : m.pass_settings) r.put(key, value);
-  // Every parameter's own column, by one loop over the pass's declarations: what the
-  // configuration gives, else the declared default.
-  for (const auto& [column, value] : pass_parameter_values(m.pass, values)) r.put(column, value);
-  for (const auto& [key, value] : m.pass_results) r.put(key, value);
-  r.set(kSceneAttributes, m.scene_attributes);
-  r.set(kSceneGpuBytes, m.scene_gpu_bytes);
-  r.set(kPayload, m.payload);
-  r.set(kFragments, m.census.fragments);
-  r.set(kMaxDepthComplexity, m.census.max_depth_complexity);
-  r.set(kMeanDepthComplexity, m.census.mean_depth_complexity);
-  r.set(kNonemptyPixelFraction, m.census.nonempty_pixel_fraction);
-  r.set(kTimer, timer_source_name(m.timer));
-  if (!m.device.empty()) r.set(kDevice, m.device);  // a CPU pass: the CPU, not GL_RENDERER
-
-  r.set(kStatus, build_status_name(m.status));
-  r.set(kStatusDetail, m.status_detail);
-  r.set(kFragmentsStored, m.last_build.fragments_stored);
-  r.set(kFragmentsLost, m.last_build.fragments_lost);
-  r.set(kOverflow, m.overflow);
-  r.set(kChecksumChanges, m.checksum_changes);
-  r.set(kTiedDepths, m.tied_depths);
-  r.set(kListsChecksum, hex64(m.lists_checksum));
-  if (!m.verify_mode.empty()) {  // a structure's builds were checked
-    r.set(kVerifyMode, m.verify_mode);
-    r.set(kVerifyStride, m.verify_stride);
-    r.set(kVerifyFullChecks, m.verify_counts.full);
-    r.set(kVerifySampledChecks, m.verify_counts.sampled);
-    r.set(kVerifySampledPixels, m.verify_counts.sampled_pixels);
-    r.set(kVerifyMs, m.verify_measured_ms);
-    r.set(kVerifyWarmupMs, m.verify_warmup_ms);
-  }
-  for (const auto& [name, value] : m.last_build.counters) r.set("counter_" + name, value);
-  for (const auto& [key, value] : m.sizing) r.set("sizing_" + key, value);
-  r.set(kSizingRebuilds, m.sizing_rebuilds);
-  r.set(kSizingRebuildsMeasured, m.sizing_rebuilds_measured);
-  r.set(kSizingReallocations, m.sizing_reallocations);
-
-  r.set(kRasterTouchFragments, m.raster_touch_fragments);
-  const TimingSeries series = m.series();
-  if (const std::vector<double>* baseline = series.find(kRasterBaselineSubpass))
-    r.set(kBaselineFrames, baseline->size());
-  TimingOutcome timing;
-  timing.summaries = m.summaries();
-  timing.frames_per_repetition = {m.frames.size()};
-  timing.target_met = m.time_target_met;
-  timing.precision = precision;
-  add_timing_columns(r, timing);
-  r.set(kFramesTimedMs, m.frames_timed_ms());
-  set_verify_share(r);
-  const std::string warning = time_target_warning(timing);
-  if (!warning.empty()) {
-    const RecordValue* detail = r.get(kStatusDetail);
-    const std::string* text = detail ? std::get_if<std::string>(detail) : nullptr;
-    r.set(kStatusDetail, (text && !text->empty() ? *text + "; " : std::string()) + warning);
-  }
-
-  for (const auto& b : m.memory) {
-    r.set("mem_" + b.name + "_allocated", b.allocated);
-    r.set("mem_" + b.name + "_used", b.used);
-  }
-  for (const auto& b : m.pass_memory) {
-    r.set("mem_" + b.name + "_allocated", b.allocated);
-    r.set("mem_" + b.name + "_used", b.used);
-  }
-  if (m.work_counted) {
-    r.set(kWorkReplayMs, m.work_replay_ms);
-    for (const auto& [column, value] : m.work) r.put(column, value);
-  }
-  r.set(kBytesAllocated, m.bytes_allocated());
-  r.set(kBytesUsed, m.bytes_used());
-}
-
 Record measure_configuration(const Scene& scene, const Configuration& config,
                              const RunSettings& settings, const DeviceInfo& device,
                              const MeasurementPaths& paths, Repetition repetition) {
@@ -154,13 +77,8 @@ Record measure_configuration(const Scene& scene, const Configuration& config,
   request.before_measured_frames = [&] { before = sample_machine_state(gpu); };
   request.after_measured_frames = [&] { after = sample_machine_state(gpu); };
   const Measurement m = measure(scene, request);
-  add_measurement(r, m, config.values, settings.precision);
+  r.put_all(m.columns);  // every column measure() wrote, in its order
   set_machine_state_columns(r, before, after);
-  if (m.clock_warmup.checked) {
-    r.set(kClockWarmupFrames, m.clock_warmup.frames);
-    r.set(kClockWarmupSeconds, m.clock_warmup.seconds);
-  }
-  append_status_detail(r, clock_warmup_warning(m.clock_warmup));
   append_status_detail(r, clock_change_warning(before, after));
   add_scene_profile(r, scene, config, m);
   if (repetition.count > 1) r.set(kRepetition, repetition.index);

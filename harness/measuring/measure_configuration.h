@@ -41,12 +41,6 @@ Record measure_configuration(const Scene& scene, const Configuration& config,
 void describe_configuration(Record& record, const Configuration& config,
                             const RunSettings& settings, const DeviceInfo& device);
 
-// The measured columns of a record, in the order records have always had them; the time
-// columns from this one measurement's frames (measured under `precision`). The pass's
-// parameters' columns come from the configuration's values (`values`: pass_parameter_values()).
-void add_measurement(Record& record, const Measurement& measurement, const AxisValues& values,
-                     const TimePrecision& precision);
-
 // The samples file of a configuration's repetition: "<id>-frames.csv" for the only or the
 // combined one, "<id>-rep<index>-frames.csv" for one of several before they are combined.
 std::string samples_file_name(const std::string& config_id, Repetition repetition);

@@ -6,6 +6,8 @@
 #include <thread>
 
 #include "harness/measuring/measurement_session.h"
+#include "harness/measuring/timing_columns.h"
+#include "harness/records/harness_columns.h"
 #include "harness/metrics/image_checks.h"
 #include "harness/passes/raster_baseline.h"
 #include "harness/records/record.h"
@@ -59,16 +61,11 @@ std::string frame_samples_csv(const std::vector<TimingSeries>& repetitions) {
   return out;
 }
 
-uint64_t Measurement::bytes_allocated() const {
-  uint64_t total = 0;
-  for (const auto& m : memory) total += m.allocated;
-  return total;
-}
-
-uint64_t Measurement::bytes_used() const {
-  uint64_t total = 0;
-  for (const auto& m : memory) total += m.used;
-  return total;
+BuildStatus Measurement::status() const {
+  const std::string name = columns.text(columns::kStatus);
+  for (const BuildStatus status : {BuildStatus::Ok, BuildStatus::Lossy, BuildStatus::Invalid})
+    if (name == build_status_name(status)) return status;
+  throw std::logic_error("a measurement without a verdict (status '" + name + "')");
 }
 
 std::vector<std::string> image_problems(const std::vector<PassImage>& images) {
@@ -96,6 +93,31 @@ std::string cpu_model_name() {
   return "CPU: unknown model (" + std::to_string(std::thread::hardware_concurrency()) +
          " hardware threads)";
 }
+
+namespace {
+
+using namespace columns;
+
+// The columns of the measured frames' times: the timing summary (timing_columns.h), the
+// frames' total, the baselines' frame count and the verification's share of it.
+void add_frame_time_columns(Measurement& m, const MeasurementRequest& request) {
+  Record& r = m.columns;
+  const TimingSeries series = m.series();
+  if (const std::vector<double>* baseline = series.find(kRasterBaselineSubpass))
+    r.set(kBaselineFrames, baseline->size());
+  TimingOutcome timing;
+  timing.summaries = series.summarize();
+  timing.frames_per_repetition = {m.frames.size()};
+  // A loop the caller drives (Google Benchmark's) has no precision target to miss.
+  timing.target_met = request.keep_running || FrameStopRule(request.frames, request.precision).target_met(series);
+  timing.precision = request.precision;
+  add_timing_columns(r, timing);
+  r.set(kFramesTimedMs, m.frames_timed_ms());
+  set_verify_share(r);
+  append_note(r, kStatusDetail, time_target_warning(timing));
+}
+
+}  // namespace
 
 Measurement measure(const Scene& scene, const MeasurementRequest& request) {
   MeasurementSession session(scene, request);
@@ -127,10 +149,12 @@ Measurement measure(const Scene& scene, const MeasurementRequest& request) {
   if (request.count_work) session.count_work();
   Measurement m = session.result();
   m.clock_warmup = warmed;
-  if (!request.keep_running) {
-    m.time_target_met = stop_rule.target_met(measured);
-    m.time_half_width = FrameStopRule::worst_half_width(measured);
+  if (warmed.checked) {
+    m.columns.set(kClockWarmupFrames, warmed.frames);
+    m.columns.set(kClockWarmupSeconds, warmed.seconds);
   }
+  add_frame_time_columns(m, request);
+  append_note(m.columns, kStatusDetail, clock_warmup_warning(warmed));
   return m;
 }
 

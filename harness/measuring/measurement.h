@@ -21,6 +21,7 @@
 #include "harness/measure/gpu_timer.h"
 #include "harness/measure/timing_stats.h"
 #include "harness/passes/pass.h"
+#include "harness/records/record.h"
 #include "harness/scene/scene.h"
 #include "harness/settings/run_settings.h"
 #include "ldm_impls/common/build_health.h"
@@ -74,77 +75,41 @@ struct MeasurementRequest {
   bool count_work = true;
 };
 
-// The fragment census in the few numbers a record keeps.
-struct CensusSummary {
-  uint64_t fragments = 0;
-  uint32_t max_depth_complexity = 0;
-  double mean_depth_complexity = 0;
-  double nonempty_pixel_fraction = 0;
-  DepthProfile profile;  // the list lengths' distribution (ldm_impls/common/fragment_census.h)
-};
-
+// What measure() returns: the record columns it knows, each written once by the code that
+// learns its value (the session, the counting replay, the timing summary), and beside them
+// what is not a column — the frames, the images, the buffers, the census's depth profile.
+// `ldmbench run` puts the columns into its record as they are (measure_configuration.h);
+// the viewer, the benchmarks and the tests read them through the typed readers of Record.
 struct Measurement {
-  // What was measured.
-  std::string scene_name, scene_hash;
-  uint64_t triangles = 0;
-  std::string structure, pass;
-  std::vector<std::pair<std::string, RecordValue>> pass_settings;  // Pass::describe()
-  std::string scene_attributes, payload;
-  uint64_t scene_gpu_bytes = 0;
-  CensusSummary census;
-  TimerSource timer = TimerSource::FencedWallClock;
-  std::string device;  // empty: the GL context's renderer; a CPU pass: the CPU model
-
-  // The verdict on every build (warm-up included) and on the images.
-  BuildStatus status = BuildStatus::Ok;
-  std::string status_detail;
-  BuildStats last_build;  // stats() of the last build
-  bool overflow = false;
-  uint64_t checksum_changes = 0, lists_checksum = 0;
-  uint64_t tied_depths = 0;  // LdmIntegrity::tied_depths, the most of any build
-  // How the builds were checked, and the wall time the checks took (warm-up, measured).
-  std::string verify_mode;
-  uint32_t verify_stride = 0;
-  VerifyCounts verify_counts;
-  double verify_warmup_ms = 0, verify_measured_ms = 0;
-  // The structure's sizing() and the policy's (SizingDriver::describe()).
-  std::vector<std::pair<std::string, std::string>> sizing;
-  // Rebuilds after an overflow (all builds; in measured frames) and reallocations.
-  uint64_t sizing_rebuilds = 0, sizing_rebuilds_measured = 0, sizing_reallocations = 0;
-  std::vector<BufferMemory> memory;  // the structure's and the sizing policy's buffers
-  std::vector<BufferMemory> pass_memory;  // Pass::memory(): the pass's own (not in bytes_*)
+  // Declared columns only (measurement_record(): an undeclared one throws at its first use).
+  // Among them status and status_detail, the verdict on every build (warm-up included) and
+  // on the images.
+  Record columns;
 
   // Every measured frame, in order: each sub-pass's milliseconds, then "build" (the
   // structure's sub-passes), "pass" (the pass's own) and "frame" (everything but the raster
   // baselines).
   std::vector<FrameTimes> frames;
-  // Whether the frames reached the request's precision target (FrameStopRule), and the
-  // largest relative half-width of the watched sub-passes' intervals they did reach.
-  bool time_target_met = true;
-  double time_half_width = 0;
+  std::vector<std::string> pass_subpasses;  // the pass's own, as declared
+  std::vector<PassImage> images;
+  Image coverage;  // Pass::coverage(): where the camera sees a surface (empty: not known)
+  // The structure's and the sizing policy's buffers (the mem_* and bytes_* columns), in the
+  // structure's order.
+  std::vector<BufferMemory> memory;
+  DepthProfile depth_profile;  // the census's list lengths (ldm_impls/common/fragment_census.h)
   // The warm-up frames added until the GPU's clock reached its working level.
   ClockWarmupResult clock_warmup;
-  // Fragments the last raster_touch pass shaded (harness/passes/raster_baseline.h): the
-  // census total when the touch baseline really touched every fragment.
-  uint64_t raster_touch_fragments = 0;
-  std::vector<std::string> pass_subpasses;  // the pass's own, as declared
 
-  // The counting replay's work_* fields (empty: not counted), its wall time, and whether
-  // it ran; its disagreements with the measured frames make the record invalid.
-  std::vector<std::pair<std::string, RecordValue>> work;
-  bool work_counted = false;
-  double work_replay_ms = 0;
-
-  std::vector<PassImage> images;
-  std::vector<std::pair<std::string, RecordValue>> pass_results;  // Pass::results()
-  Image coverage;  // Pass::coverage(): where the camera sees a surface (empty: not known)
-
+  BuildStatus status() const;  // the status column's verdict
+  std::string status_detail() const { return columns.text("status_detail"); }
+  // An integer or number column's value; 0 where the measurement has none (a peer pass has
+  // no census).
+  uint64_t count(const Column& column) const { return uint64_t(columns.integer(column).value_or(0)); }
+  double number(const Column& column) const { return columns.number(column).value_or(0.0); }
   TimingSeries series() const;  // the measured frames
   // Sum over the measured frames of every timed sub-pass (the frame and the baselines).
   double frames_timed_ms() const;
   std::vector<TimingSummary> summaries() const;  // per sub-pass, first-seen order
-  uint64_t bytes_allocated() const;
-  uint64_t bytes_used() const;
 };
 
 // Every measured frame's times as a tidy CSV: "repetition,frame,subpass,ms", one row per

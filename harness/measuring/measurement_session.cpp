@@ -13,6 +13,7 @@
 #include "harness/measuring/ldm_setup.h"
 #include "harness/settings/record_schema.h"
 #include "harness/measure/work_counters.h"
+#include "harness/records/harness_columns.h"
 #include "harness/metrics/image_checks.h"
 #include "harness/passes/raster_baseline.h"
 #include "harness/util/error.h"
@@ -25,15 +26,34 @@
 namespace ldm {
 namespace {
 
-CensusSummary summarize_census(const FragmentCensus& census) {
-  CensusSummary s;
-  s.fragments = census.total_fragments;
-  s.max_depth_complexity = census.max_depth_complexity;
-  s.mean_depth_complexity = census.mean_depth_complexity();
-  s.nonempty_pixel_fraction =
-      census.total_pixels ? double(census.nonempty_pixels) / double(census.total_pixels) : 0.0;
-  s.profile = depth_profile(census);
-  return s;
+using namespace columns;
+
+// The fragment census in the few numbers a record keeps.
+void set_census_columns(Record& r, const FragmentCensus& census) {
+  r.set(kFragments, census.total_fragments);
+  r.set(kMaxDepthComplexity, census.max_depth_complexity);
+  r.set(kMeanDepthComplexity, census.mean_depth_complexity());
+  r.set(kNonemptyPixelFraction,
+        census.total_pixels ? double(census.nonempty_pixels) / double(census.total_pixels) : 0.0);
+}
+
+// The record's memory columns: every buffer's mem_<name>_allocated and _used, then the
+// structure's (or a peer pass's) totals; the pass's own buffers beside a structure's are
+// listed but not in the totals.
+void set_memory_columns(Record& r, const std::vector<BufferMemory>& counted,
+                        const std::vector<BufferMemory>& listed_only) {
+  for (const auto* buffers : {&counted, &listed_only})
+    for (const auto& b : *buffers) {
+      r.set("mem_" + b.name + "_allocated", b.allocated);
+      r.set("mem_" + b.name + "_used", b.used);
+    }
+  uint64_t allocated = 0, used = 0;
+  for (const auto& b : counted) {
+    allocated += b.allocated;
+    used += b.used;
+  }
+  r.set(kBytesAllocated, allocated);
+  r.set(kBytesUsed, used);
 }
 
 // Adds the sums "build" (the structure's sub-passes: all but the baselines and the pass's
@@ -66,7 +86,8 @@ std::unique_ptr<Pass> make_request_pass(const MeasurementRequest& request) {
 struct MeasurementSession::State {
   MeasurementRequest request;
   std::unique_ptr<Pass> pass;
-  Measurement m;  // the fields fixed before the first frame, and the kept frames
+  Measurement m;  // the columns fixed before the first frame, and the kept frames
+  std::string structure_name;  // the configuration's structure; "none" for a peer pass
   int frames_run = 0;
   GpuTimer timer;
 
@@ -80,6 +101,11 @@ struct MeasurementSession::State {
   std::unique_ptr<BuildVerifier> verifier;
   uint64_t rebuilds_in_warmup = 0;
   uint64_t sizing_changes_seen = 0;  // rebuilds + reallocations at the last verification
+  BuildStats last_build;  // stats() of the last build
+  // The wall time the builds' checks took (warm-up, measured).
+  double verify_warmup_ms = 0, verify_measured_ms = 0;
+  // The counting replay's columns (count_work(): work_replay_ms, the work_* counters).
+  Record work_columns = measurement_record();
   // Where the counting replay disagreed with the measured frames (count_work()).
   std::vector<std::string> work_problems;
   // measured_result() taken just before the counting replay wrote into the measured
@@ -121,39 +147,49 @@ MeasurementSession::MeasurementSession(const Scene& scene, const MeasurementRequ
   state_ = std::make_unique<State>(request, std::move(pass), timer_source);
   State& s = *state_;
   Measurement& m = s.m;
+  Record& r = m.columns = measurement_record();
   const Configuration& config = request.configuration;
-  m.scene_name = scene.name;
-  m.scene_hash = hex64(scene.content_hash());
-  m.triangles = scene.mesh.triangle_count();
-  m.pass = config.pass;
-  m.pass_settings = s.pass->describe(scene);
+  r.set(kSceneName, scene.name);
+  r.set(kSceneHash, hex64(scene.content_hash()));
+  r.set(kTriangles, scene.mesh.triangle_count());
+  for (const auto& [key, value] : s.pass->describe(scene)) r.put(key, value);
+  // Every parameter's own column, by one loop over the pass's declarations: what the
+  // configuration gives, else the declared default.
+  for (const auto& [column, value] : pass_parameter_values(config.pass, config.values)) r.put(column, value);
   for (const auto& sub : s.pass->subpasses()) m.pass_subpasses.push_back(sub.name);
-  m.scene_attributes = needs.scene_attributes.describe(scene.derived_normal_triangles, scene.mesh.triangle_count());
-  m.timer = timer_source;
-  if (needs.runs_on_cpu) m.device = cpu_model_name();
+  r.set(kSceneAttributes,
+        needs.scene_attributes.describe(scene.derived_normal_triangles, scene.mesh.triangle_count()));
+  // Last of the columns known before the first frame, whichever kind of pass.
+  const auto set_timer_columns = [&] {
+    r.set(kTimer, timer_source_name(timer_source));
+    if (needs.runs_on_cpu) r.set(kDevice, cpu_model_name());  // not GL_RENDERER: the CPU
+  };
 
   if (!needs.needs_structure) {
     // A screen-space or ray-traced peer such as HBAO: the scene uploaded with the attributes
     // the pass asks for, then frames of the pass alone. No census, views, baselines or
     // build: the record's structure is "none" and its "frame" time is the pass's whole cost.
-    m.structure = "none";
-    m.payload = "none";
+    s.structure_name = kNoStructure;
     s.peer_scene = std::make_unique<Scene>(scene);
     s.peer_gpu_scene = std::make_unique<GpuScene>(*s.peer_scene, needs.scene_attributes);
-    m.scene_gpu_bytes = needs.runs_on_cpu ? 0 : s.peer_gpu_scene->bytes();
+    r.set(kSceneGpuBytes, needs.runs_on_cpu ? 0 : s.peer_gpu_scene->bytes());
+    r.set(kPayload, "none");
+    set_timer_columns();
     s.prepare_pass();
     return;
   }
 
-  m.structure = config.structure;
+  s.structure_name = config.structure;
   // Only what the pass reads is uploaded, and the structure stores only its payload.
   s.setup = std::make_unique<LdmSetup>(scene, needs.scene_attributes, config.views, config.resolution,
                                        needs.payload, config.sizing);
   const FragmentCensus& census = s.setup->census;
   const BuildInputs& in = *s.setup->inputs;
-  m.scene_gpu_bytes = s.setup->gpu_scene->bytes();
-  m.payload = in.payload.describe();
-  m.census = summarize_census(census);
+  r.set(kSceneGpuBytes, s.setup->gpu_scene->bytes());
+  r.set(kPayload, in.payload.describe());
+  set_census_columns(r, census);
+  set_timer_columns();
+  m.depth_profile = depth_profile(census);
 
   try {
     const GlBufferOwnerScope owner(s.structure_storage());
@@ -219,10 +255,10 @@ FrameTimes MeasurementSession::run_frame() {
     const uint64_t sizing_changes = s.sizer->rebuilds() + s.sizer->reallocations();
     s.verifier->verify(sizing_changes != s.sizing_changes_seen);
     s.sizing_changes_seen = sizing_changes;
-    s.m.last_build = s.verifier->last_stats();
+    s.last_build = s.verifier->last_stats();
     const double verify_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - verify_start).count();
-    (warmup ? s.m.verify_warmup_ms : s.m.verify_measured_ms) += verify_ms;
+    (warmup ? s.verify_warmup_ms : s.verify_measured_ms) += verify_ms;
     if (warmup) {  // judged, but not measured
       s.rebuilds_in_warmup = s.sizer->rebuilds();
       return times;
@@ -266,7 +302,7 @@ void MeasurementSession::count_work() {
   // results, memory in use and losses first, so that the record keeps theirs.
   s.before_replay = measured_result();
   const auto start = std::chrono::steady_clock::now();
-  WorkCounterBuffer counts(configuration_work_counters(s.m.structure, config.pass));
+  WorkCounterBuffer counts(configuration_work_counters(s.structure_name, config.pass));
   GpuTimer timer(TimerSource::CpuWallClock);  // only to tell the counters the sub-passes
   timer.set_observer(&counts);
   std::unique_ptr<LdmStructure> structure;
@@ -334,11 +370,10 @@ void MeasurementSession::count_work() {
     // Rare (a pixel's total past 2^24 needs thousands of fragments over the views): counted
     // again, every site an atomic, so that the record's counts are exact.
     std::fprintf(stderr, "the counting replay of %s: %s; counted again with atomics\n",
-                 s.m.structure.empty() ? "the pass" : s.m.structure.c_str(), inexact.front().c_str());
+                 s.setup ? s.structure_name.c_str() : "the pass", inexact.front().c_str());
     replay(false);
   }
-  s.m.work = counts.read(&s.work_problems);
-  s.m.work_counted = true;
+  const std::vector<std::pair<std::string, RecordValue>> work = counts.read(&s.work_problems);
 
   // Counting must change nothing the measured frames computed: the same sorted lists (the
   // raw buffers may differ where fragments race) and bit for bit the same images.
@@ -360,8 +395,9 @@ void MeasurementSession::count_work() {
                                 (s.pass->image_order_tolerance() > 0 ? " beyond the pass's order tolerance" : ""));
   if (measured.size() != replayed.size())
     s.work_problems.push_back("the counting replay drew another number of images");
-  s.m.work_replay_ms =
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  s.work_columns.set(kWorkReplayMs,
+                    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  for (const auto& [column, value] : work) s.work_columns.put(column, value);
 }
 
 int MeasurementSession::frames_run() const { return state_->frames_run; }
@@ -375,88 +411,102 @@ void MeasurementSession::add_warmup_frame() {
 Measurement MeasurementSession::result() const {
   const State& s = *state_;
   Measurement m = s.before_replay ? *s.before_replay : measured_result();
-  m.work = s.m.work;
-  m.work_counted = s.m.work_counted;
-  m.work_replay_ms = s.m.work_replay_ms;
+  m.columns.put_all(s.work_columns);
   // Where counting changed what the measured frames computed, the record is invalid.
-  if (!s.work_problems.empty()) m.status = BuildStatus::Invalid;
-  for (const auto& problem : s.work_problems)
-    m.status_detail += (m.status_detail.empty() ? "" : "; ") + problem;
+  if (!s.work_problems.empty()) m.columns.set(kStatus, build_status_name(BuildStatus::Invalid));
+  for (const auto& problem : s.work_problems) append_note(m.columns, kStatusDetail, problem);
   return m;
 }
 
 Measurement MeasurementSession::measured_result() const {
   const State& s = *state_;
   Measurement m = s.m;
+  Record& r = m.columns;
   m.images = s.pass->images();
-  m.pass_results = s.pass->results();
   m.coverage = s.pass->coverage();
   if (m.images.empty()) throw std::logic_error("pass " + s.request.configuration.pass + " produced no image");
+  for (const auto& [key, value] : s.pass->results()) r.put(key, value);
   const std::vector<std::string> problems = image_problems(m.images);
+  BuildStatus status = BuildStatus::Ok;
+  std::string detail;
+  const auto note = [&detail](const std::string& text) { detail += (detail.empty() ? "" : "; ") + text; };
   if (!s.setup) {
     // The image's own problems and the pass's (e.g. a GPU ray tracer the device's loop limit
     // may have cut short) make a peer's record invalid, as they do an LDM pass's.
     std::vector<std::string> all_problems = problems;
     for (const auto& problem : s.pass->problems()) all_problems.push_back(problem);
-    m.status = all_problems.empty() ? BuildStatus::Ok : BuildStatus::Invalid;
+    status = all_problems.empty() ? BuildStatus::Ok : BuildStatus::Invalid;
+    for (const auto& problem : all_problems) note(problem);
     m.memory = s.pass->memory();
-    for (const auto& problem : all_problems)
-      m.status_detail += (m.status_detail.empty() ? "" : "; ") + problem;
+    set_memory_columns(r, m.memory, {});
   } else {
     BuildHealth health = *s.health;  // a snapshot: later frames are judged afresh
     // A touch baseline that shaded other fragments than the census would make
     // build_vs_raster_touch a ratio to something else.
-    m.raster_touch_fragments = s.baseline->touched_fragments();
-    if (m.raster_touch_fragments != s.setup->census.total_fragments)
-      health.report_problem("the raster_touch baseline shaded " +
-                            std::to_string(m.raster_touch_fragments) +
+    const uint64_t touched = s.baseline->touched_fragments();
+    if (touched != s.setup->census.total_fragments)
+      health.report_problem("the raster_touch baseline shaded " + std::to_string(touched) +
                             " fragments where the census counted " +
                             std::to_string(s.setup->census.total_fragments));
     for (const auto& problem : problems) health.report_problem(problem);
     for (const auto& problem : s.pass->problems()) health.report_problem(problem);
-    m.status = health.status();
-    m.status_detail = health.detail();
-    m.overflow = health.overflow();
-    m.checksum_changes = health.checksum_changes();
-    m.tied_depths = health.tied_depths();
+    status = health.status();
+    detail = health.detail();
+    r.set(kFragmentsStored, s.last_build.fragments_stored);
+    r.set(kFragmentsLost, s.last_build.fragments_lost);
+    r.set(kOverflow, health.overflow());
+    r.set(kChecksumChanges, health.checksum_changes());
+    r.set(kTiedDepths, health.tied_depths());
+    r.set(kListsChecksum, hex64(health.first_checksum()));
     // Ties in a structure that quantises depths may be distinct depths collided on one key:
     // their order is lost, which the record says rather than passing as exact (issue 35).
     if (const double quantum = s.structure->depth_quantum(s.setup->views.views.front());
-        m.tied_depths > 0 && quantum > 0.0) {
+        health.tied_depths() > 0 && quantum > 0.0) {
       char text[320];
       std::snprintf(text, sizeof text,
                     "%llu fragments stored at their predecessor's quantised depth (depth_quantum %.3g): "
                     "distinct depths within one key step collided, their order lost, or coincident "
                     "surfaces; the keys cannot tell which (tied_depths)",
-                    static_cast<unsigned long long>(m.tied_depths), quantum);
-      m.status_detail += std::string(m.status_detail.empty() ? "" : "; ") + text;
+                    static_cast<unsigned long long>(health.tied_depths()), quantum);
+      note(text);
     }
-    m.verify_mode = verify_mode_name(s.verifier->mode());
-    m.verify_stride = s.verifier->stride();
-    m.verify_counts = s.verifier->counts();
-    m.lists_checksum = health.first_checksum();
-    m.sizing = s.structure->sizing();
-    for (const auto& entry : s.sizer->describe()) m.sizing.push_back(entry);
-    m.sizing_rebuilds = s.sizer->rebuilds();
-    m.sizing_rebuilds_measured = s.sizer->rebuilds() - s.rebuilds_in_warmup;
-    m.sizing_reallocations = s.sizer->reallocations();
+    // How the builds were checked, and the wall time the checks took.
+    const VerifyCounts checks = s.verifier->counts();
+    r.set(kVerifyMode, verify_mode_name(s.verifier->mode()));
+    r.set(kVerifyStride, s.verifier->stride());
+    r.set(kVerifyFullChecks, checks.full);
+    r.set(kVerifySampledChecks, checks.sampled);
+    r.set(kVerifySampledPixels, checks.sampled_pixels);
+    r.set(kVerifyMs, s.verify_measured_ms);
+    r.set(kVerifyWarmupMs, s.verify_warmup_ms);
+    for (const auto& [name, value] : s.last_build.counters) r.set("counter_" + name, value);
+    // The structure's sizing() and the policy's (SizingDriver::describe()).
+    for (const auto& [key, value] : s.structure->sizing()) r.set("sizing_" + key, value);
+    for (const auto& [key, value] : s.sizer->describe()) r.set("sizing_" + key, value);
+    // Rebuilds after an overflow (all builds; in measured frames) and reallocations.
+    r.set(kSizingRebuilds, s.sizer->rebuilds());
+    r.set(kSizingRebuildsMeasured, s.sizer->rebuilds() - s.rebuilds_in_warmup);
+    r.set(kSizingReallocations, s.sizer->reallocations());
+    // Fragments the last raster_touch pass shaded (harness/passes/raster_baseline.h): the
+    // census total when the touch baseline really touched every fragment.
+    r.set(kRasterTouchFragments, touched);
     m.memory = s.structure->memory();
     for (const auto& buffer : s.sizer->memory()) m.memory.push_back(buffer);
-    m.pass_memory = s.pass->memory();  // beside the structure's, not in bytes_*
+    set_memory_columns(r, m.memory, s.pass->memory());  // the pass's own: not in bytes_*
     // The pass's own counted loss (e.g. photons beyond the photon buffer) is lossy, as a
     // structure's is; it never hides an invalid verdict.
     const std::string pass_loss = s.pass->loss();
     if (!pass_loss.empty()) {
-      if (m.status == BuildStatus::Ok) m.status = BuildStatus::Lossy;
-      m.status_detail += (m.status_detail.empty() ? "" : "; ") + pass_loss;
+      if (status == BuildStatus::Ok) status = BuildStatus::Lossy;
+      note(pass_loss);
     }
   }
-  for (const auto& warning : s.pass->warnings())  // measured, but known to be off: say so
-    m.status_detail += (m.status_detail.empty() ? "" : "; ") + warning;
+  for (const auto& warning : s.pass->warnings()) note(warning);  // measured, but known to be off: say so
   // What loading the scene replaced by a default (an OBJ's missing .mtl: grey albedo, on
   // which the indirect light depends): in the record, not only on stderr.
-  for (const auto& warning : scene().warnings)
-    m.status_detail += (m.status_detail.empty() ? "" : "; ") + warning;
+  for (const auto& warning : scene().warnings) note(warning);
+  r.set(kStatus, build_status_name(status));
+  r.set(kStatusDetail, detail);
   return m;
 }
 

@@ -13,31 +13,16 @@
 namespace ldm {
 namespace {
 
-std::string text_of(const Record& r, const std::string& key) {
-  const RecordValue* v = r.get(key);
-  const std::string* s = v ? std::get_if<std::string>(v) : nullptr;
-  return s ? *s : std::string();
-}
+double number_or_zero(const Record& r, const std::string& key) { return r.number(key).value_or(0.0); }
 
-double number_or_zero(const Record& r, const std::string& key) {
-  const RecordValue* v = r.get(key);
-  if (!v) return 0;
-  if (const int64_t* i = std::get_if<int64_t>(v)) return double(*i);
-  if (const double* d = std::get_if<double>(v)) return *d;
-  return 0;
-}
-
-bool flag_of(const Record& r, const std::string& key) {
-  const RecordValue* v = r.get(key);
-  const bool* b = v ? std::get_if<bool>(v) : nullptr;
-  return b ? *b : true;
-}
+// A flag the repetition may lack (a record of an older build): taken as met.
+bool flag_or_true(const Record& r, const std::string& key) { return !r.get(key) || r.flag(key); }
 
 // One repetition's frames, from the samples file its record names.
 TimingSeries repetition_frames(const Record& r, const std::string& out_dir) {
-  const std::string file = text_of(r, "frame_samples_csv");
+  const std::string file = r.text("frame_samples_csv");
   if (file.empty())
-    throw UserError("repetition of " + text_of(r, "config_id") + " names no samples file");
+    throw UserError("repetition of " + r.text("config_id") + " names no samples file");
   const std::vector<TimingSeries> series =
       load_frame_samples((std::filesystem::path(out_dir) / file).string());
   if (series.size() != 1)
@@ -73,7 +58,7 @@ Record combine_repetitions(const std::vector<Record>& repetitions, const std::st
   std::vector<TimingSeries> frames;
   TimingOutcome timing;
   timing.precision = precision;
-  std::string status = text_of(r, "status");
+  std::string status = r.text("status");
   std::vector<std::string> notes;
   double wall = 0;
   // The harness's own costs add up over the repetitions, as their frames do.
@@ -85,9 +70,9 @@ Record combine_repetitions(const std::vector<Record>& repetitions, const std::st
     const Record& rep = repetitions[j];
     frames.push_back(repetition_frames(rep, out_dir));
     timing.frames_per_repetition.push_back(frames.back().frames());
-    timing.target_met = timing.target_met && flag_of(rep, "time_target_met");
-    if (record_status_rank(text_of(rep, "status")) > record_status_rank(status)) status = text_of(rep, "status");
-    add_note(notes, text_of(rep, "status_detail"));
+    timing.target_met = timing.target_met && flag_or_true(rep, "time_target_met");
+    if (record_status_rank(rep.text("status")) > record_status_rank(status)) status = rep.text("status");
+    add_note(notes, rep.text("status_detail"));
     wall += number_or_zero(rep, "wall_seconds");
     for (const char* key : kSummed) sums[key] += number_or_zero(rep, key);
     if (j == 0) continue;

@@ -10,31 +10,17 @@
 namespace ldm {
 namespace {
 
-std::optional<double> number(const Record& r, const std::string& key) {
-  const RecordValue* v = r.get(key);
-  if (!v) return std::nullopt;
-  if (const double* d = std::get_if<double>(v)) return *d;
-  if (const int64_t* i = std::get_if<int64_t>(v)) return double(*i);
-  return std::nullopt;
-}
-
-std::string text(const Record& r, const std::string& key) {
-  const RecordValue* v = r.get(key);
-  const std::string* s = v ? std::get_if<std::string>(v) : nullptr;
-  return s ? *s : std::string();
-}
-
 std::string format(const char* pattern, double value) {
   char buffer[256];
   std::snprintf(buffer, sizeof buffer, pattern, value);
   return buffer;
 }
 
-// The fixed arrays' k, from the structure's sizing record (empty for other structures).
+// The fixed arrays' k, from the structure's sizing columns (empty for other structures).
 std::optional<uint32_t> fixed_array_k(const Measurement& m) {
-  for (const auto& [key, value] : m.sizing)
-    if (key == "k") return uint32_t(std::stoul(value));
-  return std::nullopt;
+  const std::string k = m.columns.text("sizing_k");
+  if (k.empty()) return std::nullopt;
+  return uint32_t(std::stoul(k));
 }
 
 }  // namespace
@@ -54,7 +40,7 @@ void add_scene_profile(Record& r, const Scene& scene, const Configuration& confi
   r.set(columns::kCollapsedTriangles, scene.collapsed_triangles);
   if (config.structure == kNoStructure) return;  // no census, no LDM pixels
 
-  const DepthProfile& profile = m.census.profile;
+  const DepthProfile& profile = m.depth_profile;
   r.set(columns::kDepthP50, profile.p50);
   r.set(columns::kDepthP90, profile.p90);
   r.set(columns::kDepthP99, profile.p99);
@@ -62,8 +48,8 @@ void add_scene_profile(Record& r, const Scene& scene, const Configuration& confi
   if (const auto k = fixed_array_k(m)) r.set(columns::kDepthShareAboveK, profile.share_above(*k));
 
   // The AO range in LDM pixels (the views' pixel, fitted to the bounding sphere).
-  if (text(r, "visibility") == "attenuated")
-    if (const auto d_max = number(r, "d_max")) {
+  if (r.text("visibility") == "attenuated")
+    if (const auto d_max = r.number("d_max")) {
       const double pixel = make_view_set(sphere, 1, config.resolution).views.front().pixel_size();
       r.set(columns::kDMaxLdmPixels, *d_max / pixel);
     }
@@ -75,16 +61,16 @@ void flag_degenerate_measurement(Record& r) {
     const std::string suffix = "ref_noise_mse";
     if (key.size() < suffix.size() || key.compare(key.size() - suffix.size(), suffix.size(), suffix) != 0)
       continue;
-    const auto noise = number(r, key);
+    const auto noise = r.number(key);
     if (noise && *noise == 0.0)
       reasons.push_back(key.substr(0, key.size() - suffix.size()) +
                         "reference without noise (" + key +
                         " = 0): every sample agreed, so it is a constant image (e.g. AO = 1 "
                         "wherever d_max reaches no occluder) and the error measures nothing");
   }
-  if (const auto covered = number(r, "covered_pixel_fraction"); covered && *covered == 0.0)
+  if (const auto covered = r.number("covered_pixel_fraction"); covered && *covered == 0.0)
     reasons.push_back("the camera sees no surface: no pixel of the image is measured");
-  if (const auto pixels = number(r, "d_max_ldm_pixels"); pixels && *pixels < kMinAoRangeLdmPixels)
+  if (const auto pixels = r.number("d_max_ldm_pixels"); pixels && *pixels < kMinAoRangeLdmPixels)
     reasons.push_back(format("d_max spans %.3g LDM pixels", *pixels) +
                       format(" (fewer than %g): the LDMs resolve the AO range in too few depth "
                              "samples; raise d_max or R_LDM", kMinAoRangeLdmPixels));

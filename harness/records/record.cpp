@@ -38,6 +38,42 @@ const RecordValue* Record::get(const std::string& key) const {
   return nullptr;
 }
 
+std::optional<double> Record::number(const std::string& key) const {
+  const RecordValue* value = get(key);
+  if (!value) return std::nullopt;
+  if (const auto* i = std::get_if<int64_t>(value)) return double(*i);
+  if (const auto* d = std::get_if<double>(value)) return *d;
+  return std::nullopt;
+}
+
+std::optional<int64_t> Record::integer(const std::string& key) const {
+  const RecordValue* value = get(key);
+  if (const auto* i = value ? std::get_if<int64_t>(value) : nullptr) return *i;
+  return std::nullopt;
+}
+
+std::string Record::text(const std::string& key) const {
+  const RecordValue* value = get(key);
+  const auto* s = value ? std::get_if<std::string>(value) : nullptr;
+  return s ? *s : std::string();
+}
+
+bool Record::flag(const std::string& key) const {
+  const RecordValue* value = get(key);
+  const auto* b = value ? std::get_if<bool>(value) : nullptr;
+  return b && *b;
+}
+
+void Record::put_all(const Record& other) {
+  for (const auto& [key, value] : other.fields()) put(key, value);
+}
+
+void append_note(Record& record, const Column& column, const std::string& note) {
+  if (note.empty()) return;
+  const std::string before = record.text(column);
+  record.set(column, before.empty() ? note : before + "; " + note);
+}
+
 namespace {
 
 std::string format_double(double x) {

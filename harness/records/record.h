@@ -4,6 +4,7 @@
 // keys in first-seen order, so sweeps over different structures (with different sub-passes)
 // still share one table.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <variant>
@@ -45,6 +46,18 @@ class Record {
   }
   const RecordValue* get(const std::string& key) const;
   const RecordValue* get(const Column& column) const { return get(column.name); }
+  // Typed reads of one column: a number (an integer or a double), an integer, text or a flag;
+  // nullopt, "" or false where the record has no such value of that type.
+  std::optional<double> number(const std::string& key) const;
+  std::optional<int64_t> integer(const std::string& key) const;
+  std::string text(const std::string& key) const;
+  bool flag(const std::string& key) const;
+  std::optional<double> number(const Column& column) const { return number(column.name); }
+  std::optional<int64_t> integer(const Column& column) const { return integer(column.name); }
+  std::string text(const Column& column) const { return text(column.name); }
+  bool flag(const Column& column) const { return flag(column.name); }
+  // Every field of `other`, in its order, each replacing this record's value in place.
+  void put_all(const Record& other);
   void erase(const std::string& key);  // no-op when absent
   const std::vector<std::pair<std::string, RecordValue>>& fields() const { return fields_; }
   // Whether the record checks its columns against a schema (made with a ColumnCheck).
@@ -54,6 +67,10 @@ class Record {
   std::vector<std::pair<std::string, RecordValue>> fields_;
   ColumnCheck declared_ = nullptr;
 };
+
+// Appends `note` to a text column's "; "-separated notes (the column made where absent;
+// nothing when `note` is empty).
+void append_note(Record& record, const Column& column, const std::string& note);
 
 // Formatting shared by the writers: doubles round-trip (%.17g trimmed), NaN and infinities as
 // nan / inf / -inf in CSV and as null in JSON (JSON has no such numbers).

@@ -23,12 +23,6 @@ namespace fs = std::filesystem;
 
 const char* const kStatuses[] = {"ok", "lossy", "invalid", "failed"};
 
-std::string text_of(const Record& r, const std::string& key) {
-  const RecordValue* v = r.get(key);
-  const std::string* s = v ? std::get_if<std::string>(v) : nullptr;
-  return s ? *s : "";
-}
-
 std::string read_whole(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw UserError(path.string() + ": cannot read (" + errno_text(errno) + ")");
@@ -67,8 +61,8 @@ bool cell_reads_as(const std::string& cell, const RecordValue* value) {
 }  // namespace
 
 bool from_other_build(const Record& record) {
-  return text_of(record, "git_commit") != git_commit() ||
-         text_of(record, "ldmbench_version") != ldmbench_version();
+  return record.text("git_commit") != git_commit() ||
+         record.text("ldmbench_version") != ldmbench_version();
 }
 
 std::string schema_problem(const Record& record, const std::vector<ColumnSpec>& columns, bool other_build) {
@@ -84,8 +78,8 @@ std::string schema_problem(const Record& record, const std::vector<ColumnSpec>& 
       return "column '" + key + "' (" + spec->unit + ") holds " + format_csv_value(value) +
              ", not a number";
   }
-  if (text_of(record, "config_id").empty()) return "no config_id";
-  const std::string status = text_of(record, "status");
+  if (record.text("config_id").empty()) return "no config_id";
+  const std::string status = record.text("status");
   if (std::find(std::begin(kStatuses), std::end(kStatuses), status) == std::end(kStatuses))
     return "status " + clipped(status) + " is none of ok, lossy, invalid, failed";
   return "";
@@ -96,7 +90,7 @@ void check_records_schema(const std::vector<Record>& records, const std::vector<
   for (size_t i = 0; i < records.size(); ++i)
     if (const std::string problem = schema_problem(records[i], columns, from_other_build(records[i])); !problem.empty())
       throw UserError(where + ": record " + std::to_string(i + 1) +
-                      (text_of(records[i], "config_id").empty() ? "" : " (" + text_of(records[i], "config_id") + ")") +
+                      (records[i].text("config_id").empty() ? "" : " (" + records[i].text("config_id") + ")") +
                       ": " + problem);
 }
 
@@ -113,7 +107,7 @@ void check_journal_records(const JournalContents& contents, const std::vector<Co
                            const std::vector<std::string>& always_written, const std::string& journal) {
   for (size_t i = 0; i < contents.records.size(); ++i) {
     const Record& r = contents.records[i];
-    const std::string id = text_of(r, "config_id");
+    const std::string id = r.text("config_id");
     const std::string where = journal + ":" +
                               (i < contents.record_lines.size() ? std::to_string(contents.record_lines[i]) : "?") +
                               (id.empty() ? "" : " (" + id + ")");
@@ -124,17 +118,17 @@ void check_journal_records(const JournalContents& contents, const std::vector<Co
     if (from_other_build(r)) {
       const Record* run = nullptr;
       for (auto it = contents.runs.rbegin(); it != contents.runs.rend() && !run; ++it)
-        if (text_of(*it, "git_commit") == text_of(r, "git_commit") &&
-            text_of(*it, "ldmbench_version") == text_of(r, "ldmbench_version") &&
-            !text_of(*it, "schema_columns").empty())
+        if (it->text("git_commit") == r.text("git_commit") &&
+            it->text("ldmbench_version") == r.text("ldmbench_version") &&
+            !it->text("schema_columns").empty())
           run = &*it;
       if (!run)
-        throw UserError(where + ": written by ldmbench " + clipped(text_of(r, "ldmbench_version")) + " (commit " +
-                        clipped(text_of(r, "git_commit")) +
+        throw UserError(where + ": written by ldmbench " + clipped(r.text("ldmbench_version")) + " (commit " +
+                        clipped(r.text("git_commit")) +
                         "), whose run entry declares no schema (schema_columns) to check its columns "
                         "against: merge it with the build that wrote it");
-      for (const auto& name : words(text_of(*run, "schema_columns"))) declared.push_back({"", name, "", ""});
-      declared_always = words(text_of(*run, "schema_always_written"));
+      for (const auto& name : words(run->text("schema_columns"))) declared.push_back({"", name, "", ""});
+      declared_always = words(run->text("schema_always_written"));
       schema = &declared;
       always = &declared_always;
     }
@@ -242,7 +236,7 @@ void check_tables_against_records(const std::vector<Record>& records, const std:
             const std::string cell = c < have[r].size() ? have[r][c] : "";
             const RecordValue* value = records[r - 1].get(header[c]);
             if (have[r].size() != header.size() || !cell_reads_as(cell, value))
-              what = "configuration " + text_of(records[r - 1], "config_id") + ", column " + header[c] +
+              what = "configuration " + records[r - 1].text("config_id") + ", column " + header[c] +
                      ": " + clipped(cell) + " in the table, " +
                      clipped(value ? format_csv_value(*value) : "") + " in the journal";
           }

@@ -25,12 +25,6 @@ struct Slice {
   size_t shard_index = 0;
 };
 
-std::string text(const Record& r, const std::string& key) {
-  const RecordValue* v = r.get(key);
-  const std::string* s = v ? std::get_if<std::string>(v) : nullptr;
-  return s ? *s : "";
-}
-
 // "i/n" of a run entry's shard; throws UserError naming the journal for anything else.
 std::pair<size_t, size_t> shard_of(const std::string& shard, const std::string& journal) {
   unsigned long index = 0, count = 0;
@@ -56,7 +50,7 @@ Slice read_slice(const std::string& dir, const MergeOptions& options) {
   // it always writes missing; each refusal names the journal's line.
   check_journal_records(contents, options.columns, options.always_written, "merge: " + journal.string());
   slice.records = latest_per_configuration(contents.records);
-  const std::string shard = text(slice.run, "shard");
+  const std::string shard = slice.run.text("shard");
   if (!shard.empty()) slice.shard_index = shard_of(shard, journal.string()).first;
   return slice;
 }
@@ -101,12 +95,12 @@ MergeResult merge_runs(const std::string& out_dir, const std::vector<std::string
   const Slice& first = slices.front();
   for (const Slice& s : slices) {
     for (const char* key : {"ldmbench_version", "git_commit", "device", "sweep_hash"}) {
-      std::string a = text(first.run, key), b = text(s.run, key);
+      std::string a = first.run.text(key), b = s.run.text(key);
       std::string what = key;
       if (std::string(key) == "sweep_hash" && a.empty() && b.empty()) {
         // Folders of `ldmbench run`: the same sweep is the same command but for --out.
-        a = text(first.run, "sweep_key");
-        b = text(s.run, "sweep_key");
+        a = first.run.text("sweep_key");
+        b = s.run.text("sweep_key");
         what = "sweep (sweep_key)";
       }
       if (a == b) continue;
@@ -120,7 +114,7 @@ MergeResult merge_runs(const std::string& out_dir, const std::vector<std::string
   std::map<std::string, std::string> owner;  // config_id -> folder
   for (const Slice& s : slices)
     for (const Record& r : s.records) {
-      const std::string id = text(r, "config_id");
+      const std::string id = r.text("config_id");
       const auto [it, fresh] = owner.emplace(id, s.dir);
       if (!fresh)
         throw UserError("merge: configuration " + id + " is in both '" + it->second + "' and '" +
@@ -130,7 +124,7 @@ MergeResult merge_runs(const std::string& out_dir, const std::vector<std::string
   std::set<size_t> seen;
   size_t count = 0;
   for (const Slice& s : slices) {
-    const std::string shard = text(s.run, "shard");
+    const std::string shard = s.run.text("shard");
     if (shard.empty()) continue;
     seen.insert(s.shard_index);
     count = std::max<size_t>(count, shard_of(shard, s.dir).second);
@@ -143,9 +137,9 @@ MergeResult merge_runs(const std::string& out_dir, const std::vector<std::string
                    [](const Slice& a, const Slice& b) { return a.shard_index < b.shard_index; });
 
   // OUT: fresh, or replaced when asked; the merged folder is not a sweep to resume.
-  const std::string merged_key = "merged:" + (text(first.run, "sweep_hash").empty()
-                                                  ? text(first.run, "sweep_key")
-                                                  : text(first.run, "sweep_hash"));
+  const std::string merged_key = "merged:" + (first.run.text("sweep_hash").empty()
+                                                  ? first.run.text("sweep_key")
+                                                  : first.run.text("sweep_hash"));
   std::error_code error;
   // One writer per folder (run_lock.h): OUT is locked before it is looked at.
   std::ostringstream lock_log;
@@ -165,7 +159,7 @@ MergeResult merge_runs(const std::string& out_dir, const std::vector<std::string
   std::string merged_from;
   for (const Slice& s : slices)
     merged_from += (merged_from.empty() ? "" : ";") + s.dir +
-                   (text(s.run, "shard").empty() ? "" : " (shard " + text(s.run, "shard") + ")");
+                   (s.run.text("shard").empty() ? "" : " (shard " + s.run.text("shard") + ")");
   run.set("merged_from", merged_from);
 
   std::vector<Record> records;

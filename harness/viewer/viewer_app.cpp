@@ -22,6 +22,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "harness/records/harness_columns.h"
 #include "harness/measuring/ldm_setup.h"
 #include "harness/measuring/measure_configuration.h"
 #include "harness/measuring/measurement_session.h"
@@ -282,9 +283,9 @@ void Viewer::print_status() const {
        << " sizing=" << sizing_policy_name(config_.sizing.policy);
   if (have_measurement_) {
     const Measurement& m = measurement_;
-    line << " status=" << build_status_name(m.status) << " fragments=" << m.census.fragments
-         << " stored=" << m.last_build.fragments_stored << " lost=" << m.last_build.fragments_lost
-         << " bytes_allocated=" << m.bytes_allocated();
+    line << " status=" << m.columns.text(columns::kStatus) << " fragments=" << m.count(columns::kFragments)
+         << " stored=" << m.count(columns::kFragmentsStored) << " lost=" << m.count(columns::kFragmentsLost)
+         << " bytes_allocated=" << m.count(columns::kBytesAllocated);
     for (const auto& [name, ms] : last_times_)
       if (name == "build" || name == "frame") line << " " << name << "_ms=" << format_significant(ms, 4);
   } else {

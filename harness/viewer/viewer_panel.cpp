@@ -13,6 +13,7 @@
 #include "harness/settings/harness_axes.h"
 #include "harness/measuring/timing_columns.h"
 #include "harness/passes/pass.h"
+#include "harness/records/harness_columns.h"
 #include "harness/scene/generators.h"
 #include "ldm_impls/ldm_structure.h"
 
@@ -190,18 +191,21 @@ void Viewer::draw_panel() {
     if (!error_.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.3f, 1), "%s", error_.c_str());
     if (have_measurement_) {
       const Measurement& m = measurement_;
-      const ImVec4 colour = m.status == BuildStatus::Ok      ? ImVec4(0.4f, 1, 0.4f, 1)
-                            : m.status == BuildStatus::Lossy ? ImVec4(1, 0.8f, 0.3f, 1)
-                                                             : ImVec4(1, 0.3f, 0.3f, 1);
-      ImGui::TextColored(colour, "status %s", build_status_name(m.status));
-      if (!m.status_detail.empty()) ImGui::TextWrapped("%s", m.status_detail.c_str());
+      using namespace columns;
+      const BuildStatus status = m.status();
+      const ImVec4 colour = status == BuildStatus::Ok      ? ImVec4(0.4f, 1, 0.4f, 1)
+                            : status == BuildStatus::Lossy ? ImVec4(1, 0.8f, 0.3f, 1)
+                                                           : ImVec4(1, 0.3f, 0.3f, 1);
+      ImGui::TextColored(colour, "status %s", build_status_name(status));
+      const std::string detail = m.status_detail();
+      if (!detail.empty()) ImGui::TextWrapped("%s", detail.c_str());
       ImGui::Text("%s  frames kept %zu, timer %s", config_.id().c_str(), m.frames.size(),
-                  timer_source_name(m.timer));
-      ImGui::Text("fragments %llu, stored %llu, lost %llu", (unsigned long long)m.census.fragments,
-                  (unsigned long long)m.last_build.fragments_stored,
-                  (unsigned long long)m.last_build.fragments_lost);
-      ImGui::Text("depth complexity max %u, mean %.2f, rebuilds %llu", m.census.max_depth_complexity,
-                  m.census.mean_depth_complexity, (unsigned long long)m.sizing_rebuilds);
+                  m.columns.text(kTimer).c_str());
+      ImGui::Text("fragments %llu, stored %llu, lost %llu", (unsigned long long)m.count(kFragments),
+                  (unsigned long long)m.count(kFragmentsStored), (unsigned long long)m.count(kFragmentsLost));
+      ImGui::Text("depth complexity max %llu, mean %.2f, rebuilds %llu",
+                  (unsigned long long)m.count(kMaxDepthComplexity), m.number(kMeanDepthComplexity),
+                  (unsigned long long)m.count(kSizingRebuilds));
       if (comparison_)
         ImGui::Text("MSE %.4g  PSNR %.2f dB  MSSIM %.4f", comparison_->mse, comparison_->psnr,
                     comparison_->mssim);
@@ -242,9 +246,9 @@ void Viewer::draw_panel() {
         ImGui::TableNextColumn();
         ImGui::TextUnformatted("total");
         ImGui::TableNextColumn();
-        ImGui::TextUnformatted(format_bytes(m.bytes_allocated()).c_str());
+        ImGui::TextUnformatted(format_bytes(m.count(columns::kBytesAllocated)).c_str());
         ImGui::TableNextColumn();
-        ImGui::TextUnformatted(format_bytes(m.bytes_used()).c_str());
+        ImGui::TextUnformatted(format_bytes(m.count(columns::kBytesUsed)).c_str());
         ImGui::EndTable();
       }
     }

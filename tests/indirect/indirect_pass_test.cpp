@@ -152,8 +152,7 @@ MeasurementRequest small_request(std::map<std::string, std::string> pass_params,
 }
 
 int64_t result(const Measurement& m, const std::string& key) {
-  for (const auto& [k, v] : m.pass_results)
-    if (k == key) return std::get<int64_t>(v);
+  if (const auto value = m.columns.integer(key)) return *value;
   ADD_FAILURE() << "no " << key;
   return -1;
 }
@@ -163,13 +162,13 @@ int64_t result(const Measurement& m, const std::string& key) {
 TEST(IndirectPass, PhotonOverflowIsCountedAndLossy) {
   const Scene scene = load_scene("cornell");
   const Measurement fixed = measure(scene, small_request({{"photon_capacity", "50"}}, SizingPolicy::PreviousFrame));
-  EXPECT_EQ(fixed.status, BuildStatus::Lossy) << fixed.status_detail;
-  EXPECT_NE(fixed.status_detail.find("photon buffer overflow"), std::string::npos) << fixed.status_detail;
+  EXPECT_EQ(fixed.status(), BuildStatus::Lossy) << fixed.status_detail();
+  EXPECT_NE(fixed.status_detail().find("photon buffer overflow"), std::string::npos) << fixed.status_detail();
   EXPECT_EQ(result(fixed, "photons_stored"), 50);
   EXPECT_GT(result(fixed, "photons_overflow"), 0);
 
   const Measurement grown = measure(scene, small_request({}, SizingPolicy::PreviousFrame));
-  EXPECT_EQ(grown.status, BuildStatus::Ok) << grown.status_detail;
+  EXPECT_EQ(grown.status(), BuildStatus::Ok) << grown.status_detail();
   EXPECT_EQ(result(grown, "photons_overflow"), 0);
   // Same photons either way: the fixed buffer stored 50 of them and counted the rest.
   EXPECT_EQ(result(fixed, "photons_stored") + result(fixed, "photons_overflow"),
@@ -177,11 +176,11 @@ TEST(IndirectPass, PhotonOverflowIsCountedAndLossy) {
 
   const Measurement budget =
       measure(scene, small_request({{"photon_budget_mib", "0.001"}}, SizingPolicy::Budget));
-  EXPECT_EQ(budget.status, BuildStatus::Lossy) << budget.status_detail;
+  EXPECT_EQ(budget.status(), BuildStatus::Lossy) << budget.status_detail();
   EXPECT_EQ(result(budget, "photons_stored"), int64_t(0.001 * (1 << 20)) / 80);
   for (SizingPolicy policy : {SizingPolicy::Oracle, SizingPolicy::Census}) {
     const Measurement m = measure(scene, small_request({}, policy));
-    EXPECT_EQ(m.status, BuildStatus::Ok) << m.status_detail;
+    EXPECT_EQ(m.status(), BuildStatus::Ok) << m.status_detail();
     EXPECT_EQ(result(m, "photons_stored"), result(grown, "photons_stored"));
   }
 }

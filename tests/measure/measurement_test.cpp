@@ -6,6 +6,7 @@
 #include <fstream>
 #include <map>
 
+#include "harness/records/harness_columns.h"
 #include "harness/measuring/measurement.h"
 #include "harness/measuring/measurement_session.h"
 #include "harness/passes/pass.h"
@@ -126,9 +127,9 @@ TEST(Measurement, KeepsEveryFrameAndSplitsBuildFromThePass) {
   int seen = 0;
   request.on_frame = [&](const FrameTimes&) { ++seen; };
   const Measurement m = measure(load_scene("cornell"), request);
-  EXPECT_EQ(m.status, BuildStatus::Ok) << m.status_detail;
-  EXPECT_GT(m.census.fragments, 0u);
-  EXPECT_EQ(m.last_build.fragments_stored, m.census.fragments);
+  EXPECT_EQ(m.status(), BuildStatus::Ok) << m.status_detail();
+  EXPECT_GT(m.count(columns::kFragments), 0u);
+  EXPECT_EQ(m.count(columns::kFragmentsStored), m.count(columns::kFragments));
   ASSERT_EQ(m.frames.size(), 3u);
   EXPECT_EQ(seen, 3);
   EXPECT_EQ(m.pass_subpasses, (std::vector<std::string>{"gbuffer", "ao"}));
@@ -146,7 +147,7 @@ TEST(Measurement, KeepsEveryFrameAndSplitsBuildFromThePass) {
     EXPECT_DOUBLE_EQ(t["frame"], t["build"] + t["gbuffer"] + t["ao"]);
     EXPECT_DOUBLE_EQ(t["pass"], t["frame"] - t["build"]);  // the pass's own, summed per frame
   }
-  EXPECT_EQ(m.raster_touch_fragments, m.census.fragments);
+  EXPECT_EQ(m.count(columns::kRasterTouchFragments), m.count(columns::kFragments));
   const std::vector<TimingSummary> summaries = m.summaries();
   EXPECT_EQ(find_summary(summaries, "build")->samples, 3u);
   EXPECT_EQ(find_summary(summaries, "raster_baseline")->samples, 2u);  // frames 0 and 2
@@ -162,8 +163,67 @@ TEST(Measurement, KeepsEveryFrameAndSplitsBuildFromThePass) {
   ASSERT_EQ(m.images.size(), 1u);
   EXPECT_EQ(m.images[0].name, "ao");
   EXPECT_EQ(m.images[0].image.width, 32);
-  EXPECT_GT(m.bytes_allocated(), 0u);
-  EXPECT_EQ(m.scene_attributes, "position+normal");
+  EXPECT_GT(m.count(columns::kBytesAllocated), 0u);
+  EXPECT_EQ(m.columns.text(columns::kSceneAttributes), "position+normal");
+}
+
+// A measurement's columns are a record of declared columns, written by the code that knows
+// each value (no mirror of the record to copy from): an undeclared column is refused at its
+// first use, and a peer pass, which has no census and no structure, writes none of their
+// columns instead of zeros that would read as measured.
+TEST(Measurement, ItsColumnsAreDeclaredAndAPeerWritesNoStructureColumns) {
+  MeasurementRequest request = test::measurement_request("psppsll", 2, 16, 16, 0, 1);
+  const Measurement ldm = measure(load_scene("cornell"), request);
+  EXPECT_TRUE(ldm.columns.checked());
+  Measurement copy = ldm;
+  EXPECT_THROW(copy.columns.set("not_a_declared_column", 1), std::logic_error);
+  for (const Column* column : {&columns::kFragments, &columns::kFragmentsStored, &columns::kListsChecksum,
+                               &columns::kTiedDepths, &columns::kVerifyMode, &columns::kSizingRebuilds,
+                               &columns::kRasterTouchFragments, &columns::kBytesAllocated,
+                               &columns::kFramesTimedMs, &columns::kWorkReplayMs})
+    EXPECT_TRUE(ldm.columns.get(*column)) << column->name;
+
+  request.configuration.structure = "none";
+  request.configuration.pass = "hbao";
+  const Measurement peer = measure(load_scene("cornell"), request);
+  EXPECT_EQ(peer.status(), BuildStatus::Ok) << peer.status_detail();
+  for (const Column* column : {&columns::kFragments, &columns::kMaxDepthComplexity, &columns::kFragmentsStored,
+                               &columns::kListsChecksum, &columns::kOverflow, &columns::kTiedDepths,
+                               &columns::kSizingRebuilds, &columns::kRasterTouchFragments})
+    EXPECT_EQ(peer.columns.get(*column), nullptr) << column->name << " written for a peer pass";
+  EXPECT_GT(peer.count(columns::kBytesAllocated), 0u);  // the pass's own buffers
+  EXPECT_TRUE(peer.columns.get(columns::kFramesTimedMs));
+}
+
+// The record's typed readers read a value of their type and nothing else.
+TEST(Record, TypedReadersReadOnlyTheirType) {
+  Record r;
+  r.set("count", 7);
+  r.set("ratio", 0.5);
+  r.set("name", "psppsll");
+  r.set("on", true);
+  EXPECT_EQ(r.integer("count"), 7);
+  EXPECT_EQ(r.number("count"), 7.0);
+  EXPECT_EQ(r.number("ratio"), 0.5);
+  EXPECT_EQ(r.integer("ratio"), std::nullopt);
+  EXPECT_EQ(r.number("name"), std::nullopt);
+  EXPECT_EQ(r.text("name"), "psppsll");
+  EXPECT_EQ(r.text("count"), "");
+  EXPECT_TRUE(r.flag("on"));
+  EXPECT_FALSE(r.flag("count"));
+  EXPECT_EQ(r.number("absent"), std::nullopt);
+  Record more;
+  more.set("ratio", 0.25);
+  more.set("extra", 1);
+  r.put_all(more);  // replaced in place, new ones appended
+  EXPECT_EQ(r.fields()[1].first, "ratio");
+  EXPECT_EQ(r.number("ratio"), 0.25);
+  EXPECT_EQ(r.fields().back().first, "extra");
+  append_note(r, columns::kStatusDetail, "");
+  EXPECT_EQ(r.get(columns::kStatusDetail), nullptr);
+  append_note(r, columns::kStatusDetail, "one");
+  append_note(r, columns::kStatusDetail, "two");
+  EXPECT_EQ(r.text(columns::kStatusDetail), "one; two");
 }
 
 // Normals the importer derived (issue 37): an OBJ without `vn` gets face normals, and the
@@ -182,9 +242,9 @@ TEST(Measurement, DerivedNormalsAreRecordedInSceneAttributes) {
   EXPECT_EQ(smooth.derived_normal_triangles, 0u);
   MeasurementRequest request = test::measurement_request("dfbuffer", 2, 16, 16, 0, 1);
   const Measurement derived = measure(bare, request);
-  EXPECT_EQ(derived.status, BuildStatus::Ok) << derived.status_detail;
-  EXPECT_EQ(derived.scene_attributes, "position+normal(derived)");
-  EXPECT_EQ(measure(smooth, request).scene_attributes, "position+normal");
+  EXPECT_EQ(derived.status(), BuildStatus::Ok) << derived.status_detail();
+  EXPECT_EQ(derived.columns.text(columns::kSceneAttributes), "position+normal(derived)");
+  EXPECT_EQ(measure(smooth, request).columns.text(columns::kSceneAttributes), "position+normal");
   // Some triangles' normals derived: how many of how many.
   AttributeSet normals;
   normals.normals = true;

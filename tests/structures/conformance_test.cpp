@@ -19,6 +19,7 @@
 #include <functional>
 #include <optional>
 
+#include "harness/records/harness_columns.h"
 #include "harness/measuring/measurement.h"
 #include "ldm_impls/common/build_health.h"
 #include "structures/structure_test_support.h"
@@ -185,8 +186,8 @@ TEST_P(StructureConformance, AoEqualsAoThroughPsppsll) {
 TEST_P(StructureConformance, TheSharedMeasurementJudgesADefaultBuildOk) {
   MeasurementRequest request = test::measurement_request(structure(), 4, 16, 16, 1, 2);
   const Measurement m = measure(load_scene("cornell"), request);
-  EXPECT_EQ(m.status, BuildStatus::Ok) << m.status_detail;
-  EXPECT_EQ(m.last_build.fragments_stored, m.census.fragments);
+  EXPECT_EQ(m.status(), BuildStatus::Ok) << m.status_detail();
+  EXPECT_EQ(m.count(columns::kFragmentsStored), m.count(columns::kFragments));
   EXPECT_EQ(m.frames.size(), 2u);
 }
 

@@ -110,7 +110,7 @@ TEST(ClockWarmup, MeasureRunsTheAddedFramesAsWarmUpAndSamplesAroundTheMeasuredOn
   request.on_frame = [&](const FrameTimes&) { order.push_back("frame"); };
   request.after_measured_frames = [&] { order.push_back("after"); };
   const Measurement m = measure(load_scene("cornell"), request);
-  EXPECT_EQ(m.status, BuildStatus::Ok) << m.status_detail;
+  EXPECT_EQ(m.status(), BuildStatus::Ok) << m.status_detail();
   EXPECT_TRUE(m.clock_warmup.checked);
   EXPECT_TRUE(m.clock_warmup.reached);
   EXPECT_GE(m.clock_warmup.frames, 2);  // at least one frame per slice, two slices

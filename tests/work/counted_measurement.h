@@ -8,6 +8,7 @@
 #include <variant>
 
 #include "harness/measuring/measurement.h"
+#include "harness/records/harness_columns.h"
 #include "harness/scene/scene_loader.h"
 #include "support/test_support.h"
 
@@ -49,11 +50,12 @@ inline Counted count(const std::string& structure, uint32_t views, uint32_t reso
   request.warmup = 1;
   request.frames = 2;
   Counted c{measure(scene, request), {}};
-  for (const auto& [name, value] : c.m.work) c.work[name] = as_number(value);
-  c.fragments = double(c.m.census.fragments);
+  for (const auto& [name, value] : c.m.columns.fields())
+    if (name.rfind("work_", 0) == 0 && name != columns::kWorkReplayMs.name) c.work[name] = as_number(value);
+  c.fragments = c.m.number(columns::kFragments);
   EXPECT_GT(c.fragments, 0) << structure << ": the census counted no fragments";
-  EXPECT_TRUE(c.m.work_counted);
-  EXPECT_EQ(c.m.status, BuildStatus::Ok) << structure << ": " << c.m.status_detail;
+  EXPECT_TRUE(c.m.columns.get(columns::kWorkReplayMs)) << structure << ": no counting replay";
+  EXPECT_EQ(c.m.status(), BuildStatus::Ok) << structure << ": " << c.m.status_detail();
   return c;
 }
 
@@ -61,7 +63,7 @@ inline Counted count(const std::string& structure, uint32_t views, uint32_t reso
 template <typename F>
 double over_pixels(const Counted& c, F f) {
   double sum = 0;
-  const auto& by_length = c.m.census.profile.pixels_by_length;
+  const auto& by_length = c.m.depth_profile.pixels_by_length;
   for (size_t n = 0; n < by_length.size(); ++n) sum += double(by_length[n]) * f(double(n));
   return sum;
 }

@@ -75,7 +75,7 @@ TEST(HashAndArrayWork, PpflaCountsWhatTheCensusAndTheTraceSay) {
   EXPECT_EQ(std::fmod(c["work_sort_invocations"], 64.0), 0.0);
   EXPECT_EQ(c["work_sort_bytes_loaded_counts"], 4 * all_pixels);
   EXPECT_EQ(c["work_sort_list_length_total"], fragments);
-  EXPECT_EQ(c["work_sort_list_length_max"], c.m.census.max_depth_complexity);
+  EXPECT_EQ(c["work_sort_list_length_max"], c.m.number(columns::kMaxDepthComplexity));
   EXPECT_DOUBLE_EQ(c["work_sort_list_length_mean"], fragments / all_pixels);
   // A heap sort of n >= 2 entries reads every one at least once and writes every one.
   const double sorted_entries = over_pixels(c, [](double n) { return n >= 2 ? n : 0.0; });
@@ -106,7 +106,7 @@ TEST(HashAndArrayWork, PsppflaCountsWhatTheCensusAndTheTraceSay) {
   EXPECT_EQ(c["work_construct_atomic_add"], 0);
   // A fragment shifts at most the entries it walked past (all but the empty one it took).
   EXPECT_LE(c["work_construct_slots_shifted_total"], walked - fragments);
-  EXPECT_LE(c["work_construct_slots_shifted_max"], c.m.census.max_depth_complexity - 1.0);
+  EXPECT_LE(c["work_construct_slots_shifted_max"], c.m.number(columns::kMaxDepthComplexity) - 1.0);
   EXPECT_DOUBLE_EQ(c["work_construct_slots_shifted_mean"] * fragments,
                    c["work_construct_slots_shifted_total"]);
   EXPECT_FALSE(hash_declared_deterministic("work_construct_slots_shifted_total"));

@@ -76,7 +76,7 @@ TEST(ListStructuresWork, PsppsllCountsWhatTheCensusAndTheTraceSay) {
   const double steps = c["work_construct_insert_steps_total"];
   EXPECT_GE(steps, fragments);
   EXPECT_LE(steps, over_pixels(c, [](double n) { return n * (n + 1) / 2; }) + failed);
-  EXPECT_LE(c["work_construct_insert_steps_max"], c.m.census.max_depth_complexity + failed);
+  EXPECT_LE(c["work_construct_insert_steps_max"], c.m.number(columns::kMaxDepthComplexity) + failed);
   EXPECT_DOUBLE_EQ(c["work_construct_insert_steps_mean"] * fragments, steps);
   // Every step that passes a node reads its depth and next index: 8 bytes.
   EXPECT_GE(c["work_construct_bytes_loaded_nodes"], 8 * (steps - cas));
@@ -104,7 +104,7 @@ TEST(ListStructuresWork, PpsllCountsWhatTheCensusAndTheTraceSay) {
   EXPECT_GE(c["work_sort_invocations"], all_pixels);
   EXPECT_EQ(std::fmod(c["work_sort_invocations"], 64.0), 0.0);
   EXPECT_EQ(c["work_sort_list_length_total"], fragments);
-  EXPECT_EQ(c["work_sort_list_length_max"], c.m.census.max_depth_complexity);
+  EXPECT_EQ(c["work_sort_list_length_max"], c.m.number(columns::kMaxDepthComplexity));
   EXPECT_DOUBLE_EQ(c["work_sort_list_length_mean"], fragments / all_pixels);
   EXPECT_EQ(c["work_sort_bytes_loaded_heads"], 4 * all_pixels);
   // Local arrays hold every list (oracle K): copy in (depth + next), write back (next) per node.
@@ -145,7 +145,7 @@ TEST(ListStructuresWork, DfBufferCountsWhatTheCensusAndTheScanSay) {
   // The sort: copies every range of 2 or more in and out of the local array.
   const double sorted = over_pixels(c, [](double n) { return n >= 2 ? n : 0.0; });
   EXPECT_EQ(c["work_sort_list_length_total"], fragments);
-  EXPECT_EQ(c["work_sort_list_length_max"], c.m.census.max_depth_complexity);
+  EXPECT_EQ(c["work_sort_list_length_max"], c.m.number(columns::kMaxDepthComplexity));
   EXPECT_EQ(c["work_sort_bytes_loaded_offsets"], 8 * all_pixels);
   EXPECT_EQ(c["work_sort_bytes_loaded_depths"], 4 * sorted);
   EXPECT_EQ(c["work_sort_bytes_stored_depths"], 4 * sorted);
