@@ -515,8 +515,9 @@ class VerifyRepeatedPrecision(unittest.TestCase):
             self.assertNotIn("work", sweep_file(question, one, verify, "t")["settings"])
 
 
-class VerifyMoreUncertain(unittest.TestCase):
-    """The rounds after the first verification (ldmbench_advise.verify_more_uncertain)."""
+class VerificationFakes:
+    """A search's states and a stage runner that returns given measurements, for the rounds
+    after the first verification."""
 
     class State:
         def __init__(self, m):
@@ -533,6 +534,10 @@ class VerifyMoreUncertain(unittest.TestCase):
     @staticmethod
     def m(time, low, high, error):
         return Measurement(time=time, time_low=low, time_high=high, error=error, error_band=0.0, memory=1)
+
+
+class VerifyMoreUncertain(VerificationFakes, unittest.TestCase):
+    """The rounds after the first verification (ldmbench_advise.verify_more_uncertain)."""
 
     def run_rounds(self, truth, search_measured, uncertain, verified):
         import ldmbench_advise
@@ -573,6 +578,47 @@ class VerifyMoreUncertain(unittest.TestCase):
         straddling = {k: self.m(6.0, 5.0, 7.0, 0.001 * (i + 1)) for i, k in enumerate(names)}
         runner, _, _ = self.run_rounds(straddling, dict(straddling), names, verified)
         self.assertEqual([len(keys) for _, keys, _ in runner.stages], [2, 2])
+
+
+class SettleBudgetLine(VerificationFakes, unittest.TestCase):
+    """The last round (ldmbench_advise.settle_budget_line): a verified candidate still across
+    the budget line, better than the best surely within, measured with twice the repetitions."""
+
+    def settle(self, truth, verified):
+        import ldmbench_advise
+        goal = Goal(budget_ms=6.5)
+        search = type("S", (), {})()
+        search.states = {k: self.State(m) for k, m in verified.items()}
+        runner = self.Runner(truth)
+        vsource = {k: ("verify", {}, "verify/run") for k in verified}
+        ldmbench_advise.settle_budget_line(runner, search, goal, verified, vsource, "verify")
+        return runner, verified, vsource
+
+    def test_the_likely_within_candidate_across_the_line_is_measured_with_more_repetitions(self):
+        # The Cornell box of 2026-12-05 at 6.5 ms: the answer (0.0098) surely within; PPFLA N 8
+        # R_LDM 64 (0.0079) across the line by its upper bound; N 16 (0.0031) across with its
+        # median over the budget, so less likely within: the first is settled.
+        rec, n8, n16 = "rec", "ppfla-n8-r64", "psppsll-n16-r32"
+        verified = {rec: self.m(4.13, 3.29, 5.19, 0.0098), n8: self.m(5.23, 4.11, 6.66, 0.0079),
+                    n16: self.m(7.21, 6.13, 8.49, 0.0031)}
+        truth = {n8: self.m(5.1, 4.6, 5.7, 0.0079)}
+        runner, verified, vsource = self.settle(truth, verified)
+        self.assertEqual(runner.stages, [("verify-settle", [n8], "verify-settle")])
+        self.assertEqual(verified[n8].time_high, 5.7)
+        self.assertEqual(vsource[n8], ("verify-settle", {n8: {}}, "verify-settle/run"))
+
+    def test_nothing_is_settled_when_no_candidate_across_the_line_beats_the_best_within(self):
+        rec, tied, worse = "rec", "tied", "worse"
+        verified = {rec: self.m(4.1, 3.3, 5.2, 0.0079), tied: self.m(5.2, 4.1, 6.7, 0.0079),
+                    worse: self.m(6.0, 5.0, 7.0, 0.0098)}
+        runner, _, _ = self.settle({}, verified)
+        self.assertEqual(runner.stages, [])
+
+    def test_without_a_candidate_surely_within_the_best_across_the_line_is_settled(self):
+        a, b = "a", "b"
+        verified = {a: self.m(6.0, 5.0, 7.0, 0.004), b: self.m(6.2, 5.1, 7.4, 0.002)}
+        runner, _, _ = self.settle({b: self.m(6.1, 5.8, 6.4, 0.002)}, verified)
+        self.assertEqual(runner.stages, [("verify-settle", [b], "verify-settle")])
 
 
 if __name__ == "__main__":

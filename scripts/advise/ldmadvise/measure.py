@@ -35,6 +35,9 @@ VERIFY = {"name": "verify", "frames": 5, "warmup": 2, "target": 0.03, "cap_s": 2
 # repetition in a process of its own: repetitions in one process share its offset from other
 # runs, and their interval keeps the whole spread (docs/timing.md, "Widening").
 VERIFY_UNCERTAIN = dict(VERIFY, name="verify-repeated", repetitions=3, isolation="process")
+# A verified candidate still across the budget line, better than the answer: twice the
+# repetitions (ldmbench_advise.settle_budget_line says why).
+VERIFY_SETTLE = dict(VERIFY_UNCERTAIN, name="verify-settle", repetitions=6)
 
 
 class MeasureError(Exception):
