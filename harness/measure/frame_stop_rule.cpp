@@ -27,7 +27,7 @@ double FrameStopRule::worst_half_width(const TimingSeries& measured) {
 }
 
 bool FrameStopRule::target_met(const TimingSeries& measured) const {
-  return precision_.target <= 0 || worst_half_width(measured) <= precision_.target;
+  return precision_.effective_target() <= 0 || worst_half_width(measured) <= precision_.effective_target();
 }
 
 bool FrameStopRule::want_another(const TimingSeries& measured) {
@@ -37,7 +37,7 @@ bool FrameStopRule::want_another(const TimingSeries& measured) {
   }
   const int frames = int(measured.frames());
   if (frames < min_frames_) return true;
-  if (precision_.target <= 0 || frames >= precision_.max_frames) return false;
+  if (precision_.effective_target() <= 0 || frames >= precision_.max_frames) return false;
   const double elapsed =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
   if (elapsed >= precision_.cap_seconds) return false;

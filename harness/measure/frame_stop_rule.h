@@ -9,6 +9,7 @@
 //
 // A repetition that stops without meeting the target says so (target_met() false): the
 // record warns in status_detail, as it does for a missed reference noise target.
+#include <algorithm>
 #include <chrono>
 #include <string>
 #include <vector>
@@ -25,6 +26,13 @@ struct TimePrecision {
   // Where the GPU's clock can be read (NVIDIA): warm-up frames after the fixed ones until it
   // reaches its working clock, for at most this long (harness/measure/clock_warmup.h; 0: off).
   double clock_warmup_seconds = 3.0;
+  // The least target worth reaching on this machine (frame_precision_floor(),
+  // harness/measure/run_to_run_spread.h: a third of the spread between processes); 0: none.
+  double spread_floor = 0.0;
+
+  // The target the frames aim at: `target` raised to `spread_floor` (0 stays 0: exactly
+  // the minimum frames).
+  double effective_target() const { return target > 0 ? std::max(target, spread_floor) : 0.0; }
 };
 
 class FrameStopRule {

@@ -107,6 +107,11 @@ double widened_log_half_width(double within, double spread, size_t repetitions, 
   return std::sqrt(w * w + between * between);
 }
 
+double frame_precision_floor(const RunToRunSpread* spread, double z) {
+  if (!spread || !std::isfinite(spread->spread) || spread->spread <= 0) return 0.0;
+  return z * spread->spread / (3.0 * std::sqrt(2.0));
+}
+
 std::string calibration_key(const std::string& device, const std::string& driver, const std::string& host) {
   Fnv1a hash;
   for (const std::string* part : {&device, &driver, &host}) {

@@ -42,6 +42,8 @@ void add_timing_columns(Record& r, const TimingOutcome& t) {
   for (const RunSetting& setting : run_setting_table())
     if (const auto* field = std::get_if<double TimePrecision::*>(&setting.field); field && setting.column)
       r.set(*setting.column, t.precision.**field);
+  if (t.precision.effective_target() != t.precision.target)
+    r.set(columns::kTimeTargetEffective, t.precision.effective_target());
   r.set(columns::kTimeTargetMet, t.target_met);
   r.set(columns::kTimeInterval, repetitions > 1 ? kRepetitionInterval : kFrameInterval);
   for (const auto& s : t.summaries) {
@@ -115,7 +117,7 @@ std::string time_target_warning(const TimingOutcome& t) {
                 "time target missed: a repetition stopped at its cap (%g s or %d frames) "
                 "before the median's %g%% interval was within +-%g%%",
                 t.precision.cap_seconds, t.precision.max_frames, 100 * kTimeConfidence,
-                100 * t.precision.target);
+                100 * t.precision.effective_target());
   return text;
 }
 

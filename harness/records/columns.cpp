@@ -119,6 +119,7 @@ std::vector<ColumnSpec> main_columns() {
       kFramesMeasured,
       kFramesPerRepetition,
       kTimeTarget,
+      kTimeTargetEffective,
       kTimeCapS,
       kTimeClockWarmupS,
       kTimeTargetMet,

@@ -255,8 +255,11 @@ inline const Column kTimeTarget{"time", "time_target", "",
 inline const Column kTimeCapS{"time", "time_cap_s", "s",
     "measured frames' wall time after which a repetition stops, target met or not (--time-cap)",
     ColumnKind::Number, VariesBetweenRuns::No, Better::Neither};
+inline const Column kTimeTargetEffective{"time", "time_target_effective", "",
+    "the precision target the frames aimed at where the run-to-run spread raised time_target: a third of the spread between two processes' medians (z x time_run_to_run_spread / (3 sqrt 2)), past which more frames narrow the widened interval by at most 5 % (absent: time_target itself)",
+    ColumnKind::Number, VariesBetweenRuns::Yes, Better::Neither};
 inline const Column kTimeTargetMet{"time", "time_target_met", "",
-    "whether every repetition reached time_target before its cap (a miss is a warning in status_detail)",
+    "whether every repetition reached its target (time_target_effective where written, else time_target) before its cap (a miss is a warning in status_detail)",
     ColumnKind::Flag, VariesBetweenRuns::Yes, Better::Neither};
 inline const Column kTimeInterval{"time", "time_interval", "",
     "how the _ms_ci_ columns were made: order_statistics_of_frames (one repetition: distribution-free interval of the median, assumes independent frames) or t_on_log_repetition_medians (a t interval over the repetitions' medians), with +run_to_run_spread when widened to hold another run's median (time_calibration)",

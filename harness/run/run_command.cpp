@@ -22,6 +22,7 @@
 #include "harness/settings/record_schema.h"
 #include "harness/measuring/repetitions.h"
 #include "harness/measuring/timing_columns.h"
+#include "harness/stats/intervals.h"
 #include "harness/run/run_summary.h"
 #include "harness/run/sweep_progress.h"
 #include "harness/passes/pass.h"
@@ -708,8 +709,12 @@ std::optional<ConfigurationLoop::Outcome> ConfigurationLoop::measure(const Plann
   Outcome outcome;
   const MeasurementPaths config_paths{paths_.out_dir, paths_.images_dir, &outcome.written};
   const auto started = std::chrono::steady_clock::now();
+  // Frames past the point the run-to-run spread makes pointless are not measured
+  // (frame_precision_floor(), harness/measure/run_to_run_spread.h).
+  RunSettings settings = planned.settings;
+  settings.precision.spread_floor = frame_precision_floor(spread_, normal_quantile(0.5 + kTimeConfidence / 2));
   try {
-    outcome.record = measure_configuration(job_.scenes->at(config.scene), config, planned.settings, device_,
+    outcome.record = measure_configuration(job_.scenes->at(config.scene), config, settings, device_,
                                            config_paths, repetition);
     if (repetitions_ == 1)
       widen_time_intervals(outcome.record, spread_, calibration_.source, RepetitionProcesses::Separate);

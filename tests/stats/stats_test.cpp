@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "harness/measure/run_to_run_spread.h"
 #include "harness/measuring/timing_columns.h"
 #include "harness/measure/frame_stop_rule.h"
 #include "harness/measure/timing_stats.h"
@@ -268,6 +269,32 @@ auto exponential_frames(unsigned seed) {
   return [rng = std::mt19937(seed), noise = std::exponential_distribution<double>(0.1)]() mutable {
     return FrameTimes{{"frame", noise(rng)}};
   };
+}
+
+// The run-to-run spread's floor raises the target: the same 10 % noise that needs about 150
+// frames for +-2 % stops far sooner at a floor of +-9 % (a noisy machine's, s 0.2), with the
+// target met at the floor and missed at the requested 2 %; a target of 0 stays exact.
+TEST(FrameStopRule, TheSpreadsFloorRaisesTheTargetButNeverAnExactCount) {
+  RunToRunSpread spread;
+  spread.spread = 0.2;
+  const double floor = frame_precision_floor(&spread, 1.96);
+  EXPECT_NEAR(floor, 1.96 * 0.2 / (3 * std::sqrt(2.0)), 1e-12);
+  EXPECT_EQ(frame_precision_floor(nullptr, 1.96), 0.0);
+  TimePrecision precision{0.02, 60.0, 400};
+  precision.spread_floor = floor;
+  EXPECT_EQ(precision.effective_target(), floor);
+  std::mt19937 rng(1);
+  std::normal_distribution<double> noise(10, 1);
+  FrameStopRule rule(5, precision);
+  const TimingSeries s = frames_until_stopped(rule, [&] { return FrameTimes{{"frame", noise(rng)}, {"build", 4.0}}; });
+  EXPECT_LT(s.frames(), 40u);
+  EXPECT_TRUE(rule.target_met(s));
+  EXPECT_GT(FrameStopRule::worst_half_width(s), 0.02);
+  TimePrecision exact{0.0, 60.0, 400};
+  exact.spread_floor = floor;
+  EXPECT_EQ(exact.effective_target(), 0.0);
+  FrameStopRule fixed(5, exact);
+  EXPECT_EQ(frames_until_stopped(fixed, [] { return FrameTimes{{"frame", 10.0}}; }).frames(), 5u);
 }
 
 TEST(FrameStopRule, StopsAtTheTargetTheCapOrTheMinimum) {
