@@ -7,6 +7,8 @@
 #include <iostream>
 #include <memory>
 
+#include <nlohmann/json.hpp>
+
 #include "harness/measuring/calibration.h"
 #include "harness/measuring/machine_state.h"
 #include "harness/cli/commands.h"
@@ -17,10 +19,34 @@
 namespace ldm::cli {
 namespace {
 
+// The cache entry's state as `calibrate --show --json` prints it: where it is, whether it
+// exists, its spread, and whether --calibration auto would read it as it is (current) or
+// probe again (stale, with why). `ldmbench advise` reads it once and hands the file to
+// every stage, so that all its stages judge time by one spread.
+std::string cache_state_json(const std::string& cache) {
+  nlohmann::ordered_json state;
+  state["file"] = cache;
+  state["cached"] = std::filesystem::is_regular_file(cache);
+  if (state["cached"]) {
+    const RunToRunSpread cached = read_calibration_file(cache);
+    const auto load = current_load_average();
+    const std::string stale =
+        calibration_staleness(cached, int64_t(std::time(nullptr)), load ? *load : std::nan(""));
+    state["spread"] = cached.spread;
+    state["current"] = stale.empty();
+    state["stale"] = stale;
+  } else {
+    state["current"] = false;
+    state["stale"] = "no spread cached for this device";
+  }
+  return state.dump();
+}
+
 struct CalibrateOptions {
   ProbeOptions probe;
   std::string out;
   bool show = false;
+  bool json = false;
   GpuOption gpu;
 };
 
@@ -41,6 +67,9 @@ Runner add_calibrate_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--out", o->out, "Write the spread to this file instead of the cache");
   cmd->add_flag("--show", o->show, "Print the cached spread of this device and whether it is current; measure nothing");
+  cmd->add_flag("--json", o->json,
+                "With --show: one JSON object (file, cached, spread, current, stale) for tools that "
+                "hand the file to --calibration");
   add_gpu_option(cmd, o->gpu);
   return [o]() {
     export_gpu_option(o->gpu);  // the probe's processes read LDM_GPU
@@ -50,6 +79,10 @@ Runner add_calibrate_command(CLI::App& app) {
     const DeviceInfo device = context->device();
     context.reset();
     const std::string cache = calibration_cache_file(device).string();
+    if (o->show && o->json) {
+      std::cout << cache_state_json(cache) << "\n";
+      return 0;
+    }
     if (o->show) {
       if (!std::filesystem::is_regular_file(cache)) {
         std::cout << "no run-to-run spread cached for this device (" << cache << ")\n";

@@ -594,18 +594,21 @@ class SettleBudgetLine(VerificationFakes, unittest.TestCase):
         ldmbench_advise.settle_budget_line(runner, search, goal, verified, vsource, "verify")
         return runner, verified, vsource
 
-    def test_the_likely_within_candidate_across_the_line_is_measured_with_more_repetitions(self):
+    def test_the_candidates_across_the_line_are_measured_with_more_repetitions_likely_within_first(self):
         # The Cornell box of 2026-12-05 at 6.5 ms: the answer (0.0098) surely within; PPFLA N 8
-        # R_LDM 64 (0.0079) across the line by its upper bound; N 16 (0.0031) across with its
-        # median over the budget, so less likely within: the first is settled.
-        rec, n8, n16 = "rec", "ppfla-n8-r64", "psppsll-n16-r32"
+        # R_LDM 64 (0.0079) across the line by its upper bound; PSPPSLL N 16 (0.0031) across
+        # with its median over the budget, so less likely within; N 32 (0.0013) too, worse
+        # still: the first two are settled, likely within first.
+        rec, n8, n16, n32 = "rec", "ppfla-n8-r64", "psppsll-n16-r32", "psppsll-n32-r32"
         verified = {rec: self.m(4.13, 3.29, 5.19, 0.0098), n8: self.m(5.23, 4.11, 6.66, 0.0079),
-                    n16: self.m(7.21, 6.13, 8.49, 0.0031)}
-        truth = {n8: self.m(5.1, 4.6, 5.7, 0.0079)}
+                    n16: self.m(7.21, 6.13, 8.49, 0.0031), n32: self.m(12.0, 9.0, 16.0, 0.0013)}
+        truth = {n8: self.m(5.1, 4.6, 5.7, 0.0079), n16: self.m(7.0, 6.6, 7.4, 0.0031)}
         runner, verified, vsource = self.settle(truth, verified)
-        self.assertEqual(runner.stages, [("verify-settle", [n8], "verify-settle")])
+        # Likely within first, then the least over the budget (not the least error: N 32 is
+        # twice over it).
+        self.assertEqual(runner.stages, [("verify-settle", [n8, n16], "verify-settle")])
         self.assertEqual(verified[n8].time_high, 5.7)
-        self.assertEqual(vsource[n8], ("verify-settle", {n8: {}}, "verify-settle/run"))
+        self.assertEqual(vsource[n8], ("verify-settle", {n8: {}, n16: {}}, "verify-settle/run"))
 
     def test_nothing_is_settled_when_no_candidate_across_the_line_beats_the_best_within(self):
         rec, tied, worse = "rec", "tied", "worse"
@@ -614,11 +617,76 @@ class SettleBudgetLine(VerificationFakes, unittest.TestCase):
         runner, _, _ = self.settle({}, verified)
         self.assertEqual(runner.stages, [])
 
-    def test_without_a_candidate_surely_within_the_best_across_the_line_is_settled(self):
+    def test_without_a_candidate_surely_within_those_across_the_line_are_settled_best_first(self):
         a, b = "a", "b"
         verified = {a: self.m(6.0, 5.0, 7.0, 0.004), b: self.m(6.2, 5.1, 7.4, 0.002)}
-        runner, _, _ = self.settle({b: self.m(6.1, 5.8, 6.4, 0.002)}, verified)
-        self.assertEqual(runner.stages, [("verify-settle", [b], "verify-settle")])
+        runner, _, _ = self.settle({a: self.m(6.0, 5.0, 7.0, 0.004), b: self.m(6.1, 5.8, 6.4, 0.002)}, verified)
+        self.assertEqual(runner.stages, [("verify-settle", [b, a], "verify-settle")])  # best first
+
+
+class FreezeCalibration(unittest.TestCase):
+    """ldmbench_advise.freeze_calibration: one spread handed to every stage."""
+
+    def fake_ldmbench(self, current):
+        """A stand-in for ldmbench that answers `calibrate --show --json` (current or stale until
+        a `calibrate` ran) and logs its calls."""
+        import tempfile
+        folder = tempfile.mkdtemp(prefix="ldm-fake-calibrate-")
+        path = os.path.join(folder, "ldmbench")
+        with open(path, "w") as f:
+            f.write(f"""#!/bin/sh
+echo "$@" >> {folder}/calls
+if [ "$2" = "--show" ]; then
+  if [ -f {folder}/probed ] || [ {int(current)} = 1 ]; then
+    echo '{{"file": "{folder}/spread.json", "cached": true, "spread": 0.2, "current": true, "stale": ""}}'
+  else
+    echo '{{"file": "{folder}/spread.json", "cached": true, "spread": 0.3, "current": false, "stale": "older than a day"}}'
+  fi
+else
+  touch {folder}/probed
+fi
+""")
+        os.chmod(path, 0o755)
+        return path, folder
+
+    def freeze(self, ldmbench, launcher="local", env=None):
+        import ldmbench_advise
+        events, saved = [], os.environ.pop("LDM_CALIBRATION", None)
+        try:
+            if env is not None:
+                os.environ["LDM_CALIBRATION"] = env
+            ldmbench_advise.freeze_calibration(ldmbench, launcher, events.append)
+            return events, os.environ.get("LDM_CALIBRATION")
+        finally:
+            os.environ.pop("LDM_CALIBRATION", None)
+            if saved is not None:
+                os.environ["LDM_CALIBRATION"] = saved
+
+    def calls(self, folder):
+        with open(os.path.join(folder, "calls")) as f:
+            return [line.split() for line in f]
+
+    def test_a_current_entry_is_handed_to_the_stages_without_probing(self):
+        ldmbench, folder = self.fake_ldmbench(current=True)
+        events, handed = self.freeze(ldmbench)
+        self.assertEqual(handed, os.path.join(folder, "spread.json"))
+        self.assertEqual(self.calls(folder), [["calibrate", "--show", "--json"]])
+        self.assertIsNone(events[0]["probed_because"])
+
+    def test_a_stale_entry_is_probed_once_first(self):
+        ldmbench, folder = self.fake_ldmbench(current=False)
+        events, handed = self.freeze(ldmbench)
+        self.assertEqual(handed, os.path.join(folder, "spread.json"))
+        self.assertEqual([c[:2] for c in self.calls(folder)],
+                         [["calibrate", "--show"], ["calibrate"], ["calibrate", "--show"]])
+        self.assertEqual(events[0]["probed_because"], "older than a day")
+        self.assertEqual(events[0]["spread"], 0.2)
+
+    def test_a_users_choice_and_slurm_stages_are_left_alone(self):
+        ldmbench, folder = self.fake_ldmbench(current=True)
+        self.assertEqual(self.freeze(ldmbench, env="skip"), ([], "skip"))
+        self.assertEqual(self.freeze(ldmbench, launcher="slurm"), ([], None))
+        self.assertFalse(os.path.exists(os.path.join(folder, "calls")))
 
 
 if __name__ == "__main__":

@@ -134,5 +134,33 @@ TEST(Calibration, AutoReadsAFreshCacheEntryWithoutProbing) {
   EXPECT_NE(r.at("time_calibration").get<std::string>().find("cache " + entry), std::string::npos);
 }
 
+// What a tool reads before handing the cache entry to --calibration: where it is and whether
+// auto would read it as it is; a missing entry is not current.
+TEST(Calibration, ShowJsonSaysWhereTheEntryIsAndWhetherItIsCurrent) {
+  const std::string cache = make_temp_dir("calibrate-show-cache");
+  const std::string entry = own_cache_entry(cache);
+  const auto missing = ldmbench("calibrate --show --json", "XDG_CACHE_HOME=" + cache);
+  ASSERT_EQ(missing.status, 0) << missing.output;
+  const auto none = nlohmann::json::parse(missing.output.substr(missing.output.find('{')));
+  EXPECT_EQ(none.at("file"), entry);
+  EXPECT_FALSE(none.at("cached").get<bool>());
+  EXPECT_FALSE(none.at("current").get<bool>());
+  RunToRunSpread spread;
+  spread.spread = 0.123;
+  spread.measured_at = int64_t(std::time(nullptr));
+  write_calibration_file(entry, spread);  // no load: any load holds
+  const auto fresh = ldmbench("calibrate --show --json", "XDG_CACHE_HOME=" + cache);
+  ASSERT_EQ(fresh.status, 0) << fresh.output;
+  const auto state = nlohmann::json::parse(fresh.output.substr(fresh.output.find('{')));
+  EXPECT_TRUE(state.at("current").get<bool>()) << fresh.output;
+  EXPECT_EQ(state.at("spread").get<double>(), 0.123);
+  spread.measured_at -= kCalibrationMaxAgeSeconds + 60;
+  write_calibration_file(entry, spread);
+  const auto old = ldmbench("calibrate --show --json", "XDG_CACHE_HOME=" + cache);
+  const auto aged = nlohmann::json::parse(old.output.substr(old.output.find('{')));
+  EXPECT_FALSE(aged.at("current").get<bool>());
+  EXPECT_FALSE(aged.at("stale").get<std::string>().empty());
+}
+
 }  // namespace
 }  // namespace ldm

@@ -100,6 +100,18 @@ class Goal:
         return (self.memory_fits(m) and (self.budget_ms is None or m.time <= self.budget_ms) and
                 (self.max_error is None or m.error <= self.max_error))
 
+    def overshoot(self, m):
+        """How far the medians lie over the budgets, as the largest ratio of a median to its
+        budget (memory in bytes, time, error); 1 or less: within every budget."""
+        ratios = [1.0]
+        if self.budget_bytes:
+            ratios.append(m.memory / self.budget_bytes)
+        if self.budget_ms:
+            ratios.append(m.time / self.budget_ms)
+        if self.max_error:
+            ratios.append(m.error / self.max_error)
+        return max(ratios)
+
     def verdict(self, m):
         """yes: surely within every budget; no: surely outside one; maybe otherwise."""
         if not self.memory_fits(m):
