@@ -61,6 +61,8 @@ std::string frame_samples_csv(const std::vector<TimingSeries>& repetitions) {
   return out;
 }
 
+std::string Measurement::status_detail() const { return columns.text(columns::kStatusDetail); }
+
 BuildStatus Measurement::status() const {
   const std::string name = columns.text(columns::kStatus);
   for (const BuildStatus status : {BuildStatus::Ok, BuildStatus::Lossy, BuildStatus::Invalid})

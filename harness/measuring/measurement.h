@@ -101,7 +101,7 @@ struct Measurement {
   ClockWarmupResult clock_warmup;
 
   BuildStatus status() const;  // the status column's verdict
-  std::string status_detail() const { return columns.text("status_detail"); }
+  std::string status_detail() const;  // the status_detail column
   // An integer or number column's value; 0 where the measurement has none (a peer pass has
   // no census).
   uint64_t count(const Column& column) const { return uint64_t(columns.integer(column).value_or(0)); }
