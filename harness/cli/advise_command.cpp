@@ -32,7 +32,7 @@ namespace fs = std::filesystem;
 struct AdviseOptions {
   std::string scene, pass = "ao", space, out, image_size = "128x128", cache_dir, launcher = "local";
   std::vector<std::string> structures;
-  std::optional<double> budget_ms, budget_mib, max_error, min_mssim;
+  std::optional<double> budget_ms, budget_mib, max_error, min_mssim, cost_share;
   std::optional<unsigned> reference_max_spp, levels;
   unsigned shards = 1;
   bool overwrite = false;
@@ -55,6 +55,7 @@ void check_options(const AdviseOptions& o) {
   check_positive("--budget-ms", o.budget_ms);
   check_positive("--budget-mib", o.budget_mib);
   check_positive("--max-error", o.max_error);
+  check_positive("--cost-share", o.cost_share);
   if (o.min_mssim && !(std::isfinite(*o.min_mssim) && *o.min_mssim > 0 && *o.min_mssim <= 1))
     throw UserError("--min-mssim " + number(*o.min_mssim) + ": expected a number in (0, 1]");
   if (o.max_error && o.min_mssim) throw UserError("--max-error and --min-mssim: give one error bound, not both");
@@ -102,6 +103,11 @@ Runner add_advise_command(CLI::App& app) {
                   "Cap of the references' samples per pixel per half, every stage");
   cmd->add_option("--levels", o->levels, "Precision levels of the race before verification, 1 or 2 (default 2)")
       ->check(CLI::Range(1, 2));
+  cmd->add_option("--cost-share", o->cost_share,
+                  "After the first verification, further rounds of repeated verification (uncertain "
+                  "candidates, the budget line) run while advise's recorded time stays within this share of "
+                  "an exhaustive sweep's, estimated from that verification (default 1; 0.25 for a cheaper answer); the rounds left out "
+                  "are named in the answer, and a rerun with a larger share measures them");
   cmd->add_option("--shards", o->shards,
                   "Measure every stage in this many shards of its sweep (ldmbench sweep --shard), merged; "
                   "with --launcher slurm each shard is an array task on a GPU node of its own")
@@ -144,6 +150,7 @@ Runner add_advise_command(CLI::App& app) {
     if (!o->cache_dir.empty()) argv.insert(argv.end(), {"--cache-dir", o->cache_dir});
     if (o->reference_max_spp) argv.insert(argv.end(), {"--reference-max-spp", std::to_string(*o->reference_max_spp)});
     if (o->levels) argv.insert(argv.end(), {"--levels", std::to_string(*o->levels)});
+    if (o->cost_share) argv.insert(argv.end(), {"--cost-share", number(*o->cost_share)});
     if (o->overwrite) argv.push_back("--overwrite");
     argv.insert(argv.end(), {"--shards", std::to_string(o->shards), "--launcher", o->launcher});
     const ProcessResult result = run_process(argv, /*capture=*/false, /*forward_stop=*/true);

@@ -24,6 +24,7 @@ import time
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "report"))
 
+from ldmadvise.cost import DEFAULT_SHARE, VerificationBudget  # noqa: E402
 from ldmadvise.launch import LocalShards, SingleProcess, SlurmShards  # noqa: E402
 from ldmadvise.measure import (CENSUS, LEVELS, VERIFY, VERIFY_SETTLE, VERIFY_UNCERTAIN, MeasureError, StageRunner,  # noqa: E402
                                measurement_of)
@@ -63,6 +64,9 @@ def parse_arguments(argv):
     p.add_argument("--cache-dir")
     p.add_argument("--reference-max-spp", type=int)
     p.add_argument("--levels", type=int, default=len(LEVELS), choices=range(1, len(LEVELS) + 1))
+    p.add_argument("--cost-share", type=float, default=DEFAULT_SHARE,
+                   help="the rounds of repeated verification run while advise's recorded time stays within "
+                        "this share of an exhaustive sweep's (estimated; ldmadvise/cost.py)")
     p.add_argument("--overwrite", action="store_true")
     p.add_argument("--shards", type=int, default=1)
     p.add_argument("--launcher", default="local", choices=["local", "slurm"])
@@ -80,6 +84,8 @@ def check_budgets(a):
         fail("--max-error and --min-mssim: give one error bound, not both")
     if a.shards < 1:
         fail(f"--shards {a.shards}: expected a positive count")
+    if not (math.isfinite(a.cost_share) and a.cost_share > 0):
+        fail(f"--cost-share {a.cost_share}: expected a positive finite share of an exhaustive sweep's time")
     if a.launcher == "slurm":
         if not a.slurm_script or not os.access(a.slurm_script, os.X_OK):
             fail(f"--launcher slurm: the job script {a.slurm_script or 'slurm-sweep.sh'} is not found or not "
@@ -182,26 +188,44 @@ def verify_again(runner, search, keys, precision, stage, verified, vsource):
         vsource[k] = (folder, rows, records)
 
 
-def verify_more_uncertain(runner, search, goal, outcome, verified, vsource, stage):
+def affordable(runner, budget, keys, precision, stage):
+    """Whether the round fits the verification budget (ldmadvise/cost.py); a round left out is
+    journaled and kept for the answer."""
+    why = budget.refusal(runner.recorded_s(), keys, precision.get("repetitions", 1))
+    if why:
+        budget.skip(stage, keys, why)
+        runner.log({"event": "skipped", "stage": stage, "keys": list(keys), "why": why})
+    return not why
+
+
+def verify_more_uncertain(runner, search, goal, outcome, verified, vsource, stage, budget):
     pending = [k for k in outcome.uncertain if k not in verified]
     for round_number in range(1, VERIFY_MORE_ROUNDS + 1):
         better = beats_best_within(goal, verified)
         batch = [k for k in pending if better(search.states[k].measurement)][:2]
-        if not batch:
+        round_stage = f"{stage}-uncertain-{round_number}"
+        if not batch or not affordable(runner, budget, batch, VERIFY_UNCERTAIN, round_stage):
             return
-        verify_again(runner, search, batch, VERIFY_UNCERTAIN, f"{stage}-uncertain-{round_number}", verified, vsource)
+        verify_again(runner, search, batch, VERIFY_UNCERTAIN, round_stage, verified, vsource)
         pending = [k for k in pending if k not in batch]
 
 
-def settle_budget_line(runner, search, goal, verified, vsource, stage):
+def settle_budget_line(runner, search, goal, verified, vsource, stage, budget):
     better = beats_best_within(goal, verified)
     across = [k for k, m in verified.items() if m.status == "ok" and goal.verdict(m) == MAYBE and better(m)]
     # Likely within first (best first); then the least over a budget, the likeliest to be
     # found within.
     across.sort(key=lambda k: (0, rank_key(goal, verified[k])) if goal.likely_within(verified[k])
                 else (1, (goal.overshoot(verified[k]),)))
-    if across:
+    if across and affordable(runner, budget, across[:SETTLE_KEYS], VERIFY_SETTLE, f"{stage}-settle"):
         verify_again(runner, search, across[:SETTLE_KEYS], VERIFY_SETTLE, f"{stage}-settle", verified, vsource)
+
+
+def skipped_rounds_line(budget):
+    rounds = "; ".join(f"{r['stage']} ({', '.join(r['keys'])})" for r in budget.skipped)
+    return (f"- not measured again, the verification budget being spent (--cost-share {budget.share:g}; "
+            f"{budget.skipped[0]['why']}): {rounds}. The same command with a larger --cost-share measures "
+            "them, keeping every stage done.")
 
 
 def freeze_calibration(ldmbench, launcher, log):
@@ -312,6 +336,7 @@ def main(argv):
         return plan
 
     search = Search(candidates, goal, a.levels, measure, log, census)
+    budget = VerificationBudget(a.cost_share, len(ids))
     try:
         outcome = search.run()
         verified, attempt = {}, 1
@@ -331,8 +356,9 @@ def main(argv):
                 search.states[k].measurement = m
                 search.states[k].history.append(m)
             if any(m.status == "ok" and goal.verdict(m) != "no" for m in verified.values()):
-                verify_more_uncertain(runner, search, goal, outcome, verified, vsource, stage)
-                settle_budget_line(runner, search, goal, verified, vsource, stage)
+                budget.learn(runner.costs[-1])
+                verify_more_uncertain(runner, search, goal, outcome, verified, vsource, stage, budget)
+                settle_budget_line(runner, search, goal, verified, vsource, stage, budget)
                 break
             for k in keys:
                 search.recheck(k, stage)
@@ -368,6 +394,7 @@ def main(argv):
               "why_stopped": outcome.why, "configurations": len(ids),
               "plan_differs": search.plan_differences,
               "wall_s_this_call": round(elapsed, 2), "resumed": resumed,
+              "verification_budget": budget.summary(runner.recorded_s()),
               "pruned": {k: s.pruned for k, s in search.states.items() if s.pruned}}
     # Every count the outputs say, from the stages' costs alone (ldmadvise/report.py counts_of):
     # the console, summary.md and result.json say the same numbers.
@@ -407,6 +434,8 @@ def main(argv):
                   f"- surer: `--repetitions 3` on the verify run narrows the time interval for about 3 x "
                   f"{vf:.3g} s; halving the error band needs a reference with twice the samples "
                   f"(noise {ref_noise:.2g} now)."]
+        if budget.skipped:
+            answer.insert(-1, skipped_rounds_line(budget))
     else:
         answer = ["No configuration of the space meets the budgets "
                   f"({outcome.why}); see the pruned table for each one's reason."]

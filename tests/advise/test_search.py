@@ -524,12 +524,24 @@ class VerificationFakes:
             self.measurement, self.history = m, []
 
     class Runner:
-        def __init__(self, truth):
-            self.truth, self.stages = truth, []
+        def __init__(self, truth, recorded_s=0.0):
+            self.truth, self.stages, self.events, self.recorded = truth, [], [], recorded_s
 
         def run_stage(self, keys, precision, stage):
             self.stages.append((stage, list(keys), precision["name"]))
             return {k: self.truth[k] for k in keys}, stage, {k: {} for k in keys}, stage + "/run"
+
+        def recorded_s(self):
+            return self.recorded
+
+        def log(self, event):
+            self.events.append(event)
+
+    @staticmethod
+    def unlimited():
+        """A budget that learnt nothing: every round fits."""
+        from ldmadvise.cost import VerificationBudget
+        return VerificationBudget(0.25, 60)
 
     @staticmethod
     def m(time, low, high, error):
@@ -539,15 +551,16 @@ class VerificationFakes:
 class VerifyMoreUncertain(VerificationFakes, unittest.TestCase):
     """The rounds after the first verification (ldmbench_advise.verify_more_uncertain)."""
 
-    def run_rounds(self, truth, search_measured, uncertain, verified):
+    def run_rounds(self, truth, search_measured, uncertain, verified, budget=None, recorded_s=0.0):
         import ldmbench_advise
         goal = Goal(budget_ms=6.0)
         search = type("S", (), {})()
         search.states = {k: self.State(m) for k, m in search_measured.items()}
         outcome = type("O", (), {"uncertain": uncertain})()
-        runner = self.Runner(truth)
+        runner = self.Runner(truth, recorded_s)
         vsource = {k: ("verify", {}, "verify/run") for k in verified}
-        ldmbench_advise.verify_more_uncertain(runner, search, goal, outcome, verified, vsource, "verify")
+        ldmbench_advise.verify_more_uncertain(runner, search, goal, outcome, verified, vsource, "verify",
+                                              budget or self.unlimited())
         return runner, verified, vsource
 
     def test_unverified_better_candidates_are_verified_until_none_beats_the_best_within(self):
@@ -579,19 +592,41 @@ class VerifyMoreUncertain(VerificationFakes, unittest.TestCase):
         runner, _, _ = self.run_rounds(straddling, dict(straddling), names, verified)
         self.assertEqual([len(keys) for _, keys, _ in runner.stages], [2, 2])
 
+    def test_a_round_over_the_verification_budget_is_left_out_and_named(self):
+        # The Cornell box of 2026-12-05: the first verification recorded 3.0 s for 3
+        # candidates x 3 repetitions; 60 configurations make an exhaustive sweep of about 20 s,
+        # a quarter of it 5 s; the search and the verification had recorded 9 s.
+        from ldmadvise.cost import VerificationBudget
+        budget = VerificationBudget(0.25, 60)
+        budget.learn({"stage": "verify", "configurations": 3, "repetitions": 3, "wall_s_recorded": 3.0})
+        verified = {"rec": self.m(3.2, 2.9, 3.5, 0.01)}
+        straddling = {"u1": self.m(6.0, 5.0, 7.0, 0.002), "u2": self.m(6.0, 5.0, 7.0, 0.003)}
+        runner, _, _ = self.run_rounds(straddling, dict(straddling), ["u1", "u2"], verified, budget, recorded_s=9.0)
+        self.assertEqual(runner.stages, [])
+        self.assertEqual([(r["stage"], r["keys"]) for r in budget.skipped], [("verify-uncertain-1", ["u1", "u2"])])
+        self.assertEqual(runner.events[0]["event"], "skipped")
+        self.assertIn("estimated at 20.0 s", runner.events[0]["why"])
+        # The same round within a larger share (a rerun with --cost-share 1) is measured.
+        roomy = VerificationBudget(1.0, 60)
+        roomy.learn({"stage": "verify", "configurations": 3, "repetitions": 3, "wall_s_recorded": 3.0})
+        runner, _, _ = self.run_rounds(straddling, dict(straddling), ["u1", "u2"], verified, roomy, recorded_s=9.0)
+        self.assertEqual([stage for stage, _, _ in runner.stages], ["verify-uncertain-1"])
+        self.assertEqual(roomy.skipped, [])
+
 
 class SettleBudgetLine(VerificationFakes, unittest.TestCase):
     """The last round (ldmbench_advise.settle_budget_line): a verified candidate still across
     the budget line, better than the best surely within, measured with twice the repetitions."""
 
-    def settle(self, truth, verified):
+    def settle(self, truth, verified, budget=None, recorded_s=0.0):
         import ldmbench_advise
         goal = Goal(budget_ms=6.5)
         search = type("S", (), {})()
         search.states = {k: self.State(m) for k, m in verified.items()}
-        runner = self.Runner(truth)
+        runner = self.Runner(truth, recorded_s)
         vsource = {k: ("verify", {}, "verify/run") for k in verified}
-        ldmbench_advise.settle_budget_line(runner, search, goal, verified, vsource, "verify")
+        ldmbench_advise.settle_budget_line(runner, search, goal, verified, vsource, "verify",
+                                           budget or self.unlimited())
         return runner, verified, vsource
 
     def test_the_candidates_across_the_line_are_measured_with_more_repetitions_likely_within_first(self):
@@ -617,11 +652,59 @@ class SettleBudgetLine(VerificationFakes, unittest.TestCase):
         runner, _, _ = self.settle({}, verified)
         self.assertEqual(runner.stages, [])
 
+    def test_the_settle_round_is_left_out_when_it_would_pass_the_verification_budget(self):
+        from ldmadvise.cost import VerificationBudget
+        rec, n8 = "rec", "ppfla-n8-r64"
+        verified = {rec: self.m(4.13, 3.29, 5.19, 0.0098), n8: self.m(5.23, 4.11, 6.66, 0.0079)}
+        budget = VerificationBudget(0.25, 60)
+        budget.learn({"stage": "verify", "configurations": 2, "repetitions": 3, "wall_s_recorded": 1.2})
+        # 60 x 0.2 s = 12 s, a quarter 3 s: one candidate's six repetitions (1.2 s) fit after
+        # 1.5 s, not after 2 s.
+        runner, _, _ = self.settle({n8: self.m(5.1, 4.6, 5.7, 0.0079)}, dict(verified), budget, recorded_s=1.5)
+        self.assertEqual([stage for stage, _, _ in runner.stages], ["verify-settle"])
+        runner, _, _ = self.settle({n8: self.m(5.1, 4.6, 5.7, 0.0079)}, dict(verified), budget, recorded_s=2.0)
+        self.assertEqual(runner.stages, [])
+        self.assertEqual([r["stage"] for r in budget.skipped], ["verify-settle"])
+
     def test_without_a_candidate_surely_within_those_across_the_line_are_settled_best_first(self):
         a, b = "a", "b"
         verified = {a: self.m(6.0, 5.0, 7.0, 0.004), b: self.m(6.2, 5.1, 7.4, 0.002)}
         runner, _, _ = self.settle({a: self.m(6.0, 5.0, 7.0, 0.004), b: self.m(6.1, 5.8, 6.4, 0.002)}, verified)
         self.assertEqual(runner.stages, [("verify-settle", [b, a], "verify-settle")])  # best first
+
+
+class VerificationBudgetTest(unittest.TestCase):
+    """ldmadvise/cost.py: the estimate of an exhaustive sweep and what fits in a share of it."""
+
+    def test_the_estimate_is_the_verifications_time_per_measurement_times_the_space(self):
+        from ldmadvise.cost import VerificationBudget
+        b = VerificationBudget(0.25, 60)
+        self.assertIsNone(b.exhaustive_s())
+        self.assertIsNone(b.refusal(1e9, ["a"], 6))  # nothing learnt: every round fits
+        b.learn({"configurations": 4, "repetitions": 3, "wall_s_recorded": 6.0})
+        self.assertAlmostEqual(b.exhaustive_s(), 30.0)
+        self.assertIsNone(b.refusal(6.0, ["a"], 3))          # 6 + 1.5 <= 7.5
+        self.assertIsNotNone(b.refusal(6.1, ["a"], 3))       # 7.6 > 7.5
+        self.assertIsNotNone(b.refusal(0.0, ["a", "b"], 24))  # a round alone past the share
+        summary = b.summary(6.0)
+        self.assertEqual((summary["exhaustive_estimate_s"], summary["per_measurement_s"]), (30.0, 0.5))
+
+    def test_a_verification_without_recorded_times_teaches_nothing(self):
+        from ldmadvise.cost import VerificationBudget
+        b = VerificationBudget(0.25, 60)
+        b.learn({"configurations": 2, "wall_s_recorded": None})
+        self.assertIsNone(b.exhaustive_s())
+
+    def test_the_share_is_checked_with_the_options_name(self):
+        import subprocess
+        script = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts", "advise",
+                              "ldmbench_advise.py")
+        for bad in ("0", "-1", "nan"):
+            r = subprocess.run([sys.executable, script, "--ldmbench", "x", "--axes", "x", "--scene", "cornell",
+                                "--out", "/nonexistent/x", "--budget-ms", "5", "--cost-share", bad],
+                               capture_output=True, text=True)
+            self.assertEqual(r.returncode, 2, bad)
+            self.assertIn("--cost-share", r.stderr)
 
 
 class FreezeCalibration(unittest.TestCase):

@@ -128,6 +128,10 @@ class StageRunner:
                   "refused": sum(rows[k].get("status") == "refused" for k in keys), "wall_s": round(seconds, 2)})
         return {k: rows[k] for k in keys}
 
+    def recorded_s(self):
+        """The stages' recorded seconds so far (what the report counts as recorded)."""
+        return sum(c["wall_s_recorded"] or 0 for c in self.costs)
+
     def run_stage(self, keys, precision, stage):
         """The stage's measurements by key, its folder, its record rows and its records
         folder (STAGE/run, or STAGE/shards-N/merged when sharded)."""
@@ -139,7 +143,8 @@ class StageRunner:
             raise MeasureError(f"stage {stage}: {run}/records.csv lacks {', '.join(missing)}")
         recorded = sum(number(rows[k], "wall_seconds") for k in keys)
         self.costs.append({"stage": stage, "folder": folder, "records": run, "configurations": len(keys),
-                           "keys": list(keys), "precision": precision["name"], "wall_s_this_call": round(seconds, 2),
+                           "keys": list(keys), "precision": precision["name"],
+                           "repetitions": precision.get("repetitions", 1), "wall_s_this_call": round(seconds, 2),
                            "wall_s_recorded": round(recorded, 2) if math.isfinite(recorded) else None})
         self.log({"event": "measured", "stage": stage, "folder": folder, "records": run,
                   "configurations": len(keys), "wall_s": round(seconds, 2)})
