@@ -29,9 +29,7 @@ std::string cache_state_json(const std::string& cache) {
   state["cached"] = std::filesystem::is_regular_file(cache);
   if (state["cached"]) {
     const RunToRunSpread cached = read_calibration_file(cache);
-    const auto load = current_load_average();
-    const std::string stale =
-        calibration_staleness(cached, int64_t(std::time(nullptr)), load ? *load : std::nan(""));
+    const std::string stale = calibration_staleness_now(cached);
     state["spread"] = cached.spread;
     state["current"] = stale.empty();
     state["stale"] = stale;
@@ -89,9 +87,7 @@ Runner add_calibrate_command(CLI::App& app) {
         return 0;
       }
       const RunToRunSpread cached = read_calibration_file(cache);
-      const auto load = current_load_average();
-      const std::string stale = calibration_staleness(
-          cached, int64_t(std::time(nullptr)), load ? *load : std::nan(""));
+      const std::string stale = calibration_staleness_now(cached);
       std::printf("run-to-run spread: %.4f, %s (%s)\n", cached.spread, stale.empty() ? "current" : ("stale: " + stale).c_str(),
                   cache.c_str());
       return 0;
@@ -101,9 +97,15 @@ Runner add_calibrate_command(CLI::App& app) {
     write_calibration_file(path, spread);
     std::printf("run-to-run spread: %.4f (RMS of %zu log ratios between %zu processes, %.1f s)\n", spread.spread,
                 spread.pairs, spread.processes, spread.probe_seconds);
-    if (spread.pooled_probes > 1)
-      std::printf("pooled with %zu earlier probes of the last 24 h at load %.2f +- %.1f (this probe alone: %.4f)\n",
-                  spread.pooled_probes - 1, spread.load_average, kCalibrationMaxLoadChange, spread.probes.back().spread);
+    if (spread.pooled_probes > 1) {
+      char load[80];
+      if (std::isfinite(spread.busy_cpus))
+        std::snprintf(load, sizeof load, "%.2f CPUs busy with other work", spread.busy_cpus);
+      else
+        std::snprintf(load, sizeof load, "load average %.2f", spread.load_average);
+      std::printf("pooled with %zu earlier probes of the last 24 h at this load +- %.1f (%s; this probe alone: %.4f)\n",
+                  spread.pooled_probes - 1, kCalibrationMaxLoadChange, load, spread.probes.back().spread);
+    }
     std::printf("an interval of one repetition is widened by +-%.1f%% (95%%); written to %s\n",
                 100 * (std::exp(1.959964 * spread.spread) - 1), path.c_str());
     // One run's median varies by spread / sqrt 2 (the spread is that of a difference of two).

@@ -29,7 +29,15 @@ RunToRunSpread spread_from_processes(const std::vector<ProbeMedians>& processes)
   return out;
 }
 
-std::string calibration_staleness(const RunToRunSpread& cached, int64_t now, double load_average_now) {
+bool same_load(double load_average_a, double busy_cpus_a, double load_average_b, double busy_cpus_b) {
+  if (std::isfinite(busy_cpus_a) && std::isfinite(busy_cpus_b))
+    return std::fabs(busy_cpus_a - busy_cpus_b) <= kCalibrationMaxLoadChange;
+  return std::isfinite(load_average_a) && std::isfinite(load_average_b) &&
+         std::fabs(load_average_a - load_average_b) <= kCalibrationMaxLoadChange;
+}
+
+std::string calibration_staleness(const RunToRunSpread& cached, int64_t now, double load_average_now,
+                                  double busy_cpus_now) {
   char text[160];
   const int64_t age = now - cached.measured_at;
   if (age > kCalibrationMaxAgeSeconds || age < 0) {
@@ -37,8 +45,15 @@ std::string calibration_staleness(const RunToRunSpread& cached, int64_t now, dou
                   int(kCalibrationMaxAgeSeconds / 3600));
     return text;
   }
-  if (std::isfinite(load_average_now) && std::isfinite(cached.load_average) &&
-      std::fabs(load_average_now - cached.load_average) > kCalibrationMaxLoadChange) {
+  if (std::isfinite(busy_cpus_now) && std::isfinite(cached.busy_cpus)) {
+    if (std::fabs(busy_cpus_now - cached.busy_cpus) > kCalibrationMaxLoadChange) {
+      std::snprintf(text, sizeof text,
+                    "other processes keep %.2f CPUs busy now, %.2f before the probe (differs by more than %.1f)",
+                    busy_cpus_now, cached.busy_cpus, kCalibrationMaxLoadChange);
+      return text;
+    }
+  } else if (std::isfinite(load_average_now) && std::isfinite(cached.load_average) &&
+             std::fabs(load_average_now - cached.load_average) > kCalibrationMaxLoadChange) {
     std::snprintf(text, sizeof text, "load average %.2f now, %.2f at the probe (differs by more than %.1f)",
                   load_average_now, cached.load_average, kCalibrationMaxLoadChange);
     return text;
@@ -51,7 +66,7 @@ RunToRunSpread pool_with_earlier_probes(const RunToRunSpread& fresh, const std::
                                         int64_t now) {
   RunToRunSpread out = fresh;
   const ProbeEntry own{fresh.spread,       fresh.pairs,  fresh.processes, fresh.measured_at,
-                       fresh.load_average, fresh.commit, fresh.medians};
+                       fresh.load_average, fresh.commit, fresh.medians,   fresh.busy_cpus};
   out.probes.clear();
   for (const ProbeEntry& e : earlier) {
     const int64_t age = now - e.measured_at;
@@ -65,11 +80,12 @@ RunToRunSpread pool_with_earlier_probes(const RunToRunSpread& fresh, const std::
   size_t rms_pairs = 0, process_count = 0, pooled = 0;
   for (const ProbeEntry& e : out.probes) {
     // Another load, another spread; another build, other times: only probes by this build at
-    // about this one's load pool with it. A probe whose load is unknown pools only with itself.
+    // about this one's load (same_load) pool with it. A probe whose load is unknown pools only
+    // with itself.
     const bool own_probe = &e == &out.probes.back();
-    const bool same_load = own_probe || (std::isfinite(e.load_average) && std::isfinite(fresh.load_average) &&
-                                         std::fabs(e.load_average - fresh.load_average) <= kCalibrationMaxLoadChange);
-    if (!same_load || (!own_probe && e.commit != fresh.commit)) continue;
+    const bool at_this_load =
+        own_probe || same_load(e.load_average, e.busy_cpus, fresh.load_average, fresh.busy_cpus);
+    if (!at_this_load || (!own_probe && e.commit != fresh.commit)) continue;
     if (e.medians.size() >= 2 || (own_probe && !e.medians.empty())) {
       processes.insert(processes.end(), e.medians.begin(), e.medians.end());
     } else {
@@ -133,6 +149,7 @@ std::string spread_to_json(const RunToRunSpread& s) {
   j["measured_at"] = s.measured_at;
   j["load_average"] = std::isfinite(s.load_average) ? nlohmann::ordered_json(s.load_average)
                                                     : nlohmann::ordered_json();
+  j["busy_cpus"] = std::isfinite(s.busy_cpus) ? nlohmann::ordered_json(s.busy_cpus) : nlohmann::ordered_json();
   j["probe_seconds"] = s.probe_seconds;
   j["device"] = s.device;
   j["driver"] = s.driver;
@@ -147,6 +164,7 @@ std::string spread_to_json(const RunToRunSpread& s) {
     p["processes"] = e.processes;
     p["measured_at"] = e.measured_at;
     p["load_average"] = std::isfinite(e.load_average) ? nlohmann::ordered_json(e.load_average) : nlohmann::ordered_json();
+    p["busy_cpus"] = std::isfinite(e.busy_cpus) ? nlohmann::ordered_json(e.busy_cpus) : nlohmann::ordered_json();
     p["commit"] = e.commit;
     nlohmann::ordered_json medians = nlohmann::ordered_json::array();
     for (const ProbeMedians& process : e.medians) medians.push_back(process);
@@ -185,6 +203,7 @@ RunToRunSpread spread_from_json(const std::string& text, const std::string& orig
   const double at = number("measured_at", false);
   s.measured_at = std::isfinite(at) ? int64_t(at) : 0;
   s.load_average = number("load_average", false);
+  s.busy_cpus = number("busy_cpus", false);
   const double seconds = number("probe_seconds", false);
   s.probe_seconds = std::isfinite(seconds) ? seconds : 0;
   s.device = text_of("device");
@@ -210,6 +229,7 @@ RunToRunSpread spread_from_json(const std::string& text, const std::string& orig
       e.processes = entry_processes >= 0 ? size_t(entry_processes) : 0;
       e.measured_at = std::isfinite(at_) ? int64_t(at_) : 0;
       e.load_average = field("load_average");
+      e.busy_cpus = field("busy_cpus");
       if (const auto commit = p.find("commit"); commit != p.end() && commit->is_string()) e.commit = commit->get<std::string>();
       if (const auto medians = p.find("medians"); medians != p.end()) {
         if (!medians->is_array()) throw UserError(origin + ": a probe's \"medians\" must be an array");

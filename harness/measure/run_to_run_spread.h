@@ -34,6 +34,9 @@ struct ProbeEntry {
   double load_average = std::numeric_limits<double>::quiet_NaN();
   std::string commit;                 // the build that probed
   std::vector<ProbeMedians> medians;  // each process's (none in an entry written before)
+  // CPUs other processes kept busy just before the probe (busy_cpus_now(); NaN in an entry
+  // written before it was read): the load the spread belongs to.
+  double busy_cpus = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct RunToRunSpread {
@@ -42,6 +45,7 @@ struct RunToRunSpread {
   size_t processes = 0;          // probe processes (every pooled probe's)
   int64_t measured_at = 0;       // Unix time of the probe's end
   double load_average = std::numeric_limits<double>::quiet_NaN();  // 1-minute, at the probe
+  double busy_cpus = std::numeric_limits<double>::quiet_NaN();     // other processes', before it
   double probe_seconds = 0;      // the probe's wall time
   // What it holds for (the cache key, calibration_key(), but for the commit that probed).
   std::string device, driver, host, commit;
@@ -60,11 +64,22 @@ struct RunToRunSpread {
 RunToRunSpread spread_from_processes(const std::vector<ProbeMedians>& processes);
 
 // Why a cached spread must be measured again, or "" when it holds: older than
-// kCalibrationMaxAgeSeconds, or the machine's load average now differs from the probe's by
-// more than kCalibrationMaxLoadChange (the spread depends on the load).
+// kCalibrationMaxAgeSeconds, or the machine's load now differs from the probe's by more than
+// kCalibrationMaxLoadChange (the spread depends on the load). The load is the CPUs other
+// processes keep busy (busy_cpus_now()) where both the entry and now have it, else the
+// 1-minute load average: the average lags a minute behind, so right after a run of
+// ldmbench's own it reads 1-2 on an idle machine (2026-12-05: the advise comparison's
+// Cornell box probed again for that, 6 s of its 17.6 s, and each needless probe drew a new
+// spread between 0.04 and 0.30).
 inline constexpr int64_t kCalibrationMaxAgeSeconds = 24 * 3600;
 inline constexpr double kCalibrationMaxLoadChange = 0.5;
-std::string calibration_staleness(const RunToRunSpread& cached, int64_t now, double load_average_now);
+std::string calibration_staleness(const RunToRunSpread& cached, int64_t now, double load_average_now,
+                                  double busy_cpus_now = std::numeric_limits<double>::quiet_NaN());
+
+// Whether two probes (or a probe and now) saw about the same load: busy CPUs within
+// kCalibrationMaxLoadChange where both have them, else load averages within it; false when
+// neither is known for both.
+bool same_load(double load_average_a, double busy_cpus_a, double load_average_b, double busy_cpus_b);
 
 // One probe of a few processes is a rough estimate, and of the wrong time scale: its
 // processes run back to back within seconds, while the spread that matters is between runs

@@ -90,6 +90,11 @@ std::string describe(const RunToRunSpread& s) {
     std::snprintf(load, sizeof load, ", load %.2f", s.load_average);
     text << load;
   }
+  if (std::isfinite(s.busy_cpus)) {
+    char busy[48];
+    std::snprintf(busy, sizeof busy, ", %.2f CPUs busy with other work", s.busy_cpus);
+    text << busy;
+  }
   text << ")";
   return text.str();
 }
@@ -98,7 +103,7 @@ std::string describe(const RunToRunSpread& s) {
 std::vector<ProbeEntry> probes_of(const RunToRunSpread& cached) {
   if (!cached.probes.empty()) return cached.probes;
   return {ProbeEntry{cached.spread, cached.pairs, cached.processes, cached.measured_at, cached.load_average,
-                     cached.commit, {}}};
+                     cached.commit, {}, cached.busy_cpus}};
 }
 
 }  // namespace
@@ -154,6 +159,8 @@ RunToRunSpread run_calibration_probe(const DeviceInfo& device, const ProbeOption
   std::vector<ProbeMedians> processes;
   double load_sum = 0;
   int load_count = 0;
+  // The load the spread belongs to is other processes', read before the probe's own start.
+  const auto busy = busy_cpus_now();
   try {
     for (int p = 0; p < options.processes; ++p) {
       if (p && options.gap_seconds > 0) std::this_thread::sleep_for(std::chrono::duration<double>(options.gap_seconds));
@@ -184,6 +191,7 @@ RunToRunSpread run_calibration_probe(const DeviceInfo& device, const ProbeOption
   spread.medians = processes;
   spread.measured_at = now_seconds();
   spread.load_average = load_count ? load_sum / load_count : std::nan("");
+  spread.busy_cpus = busy ? *busy : std::nan("");
   spread.probe_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   spread.device = device.gl_renderer;
   spread.driver = device.gl_version;
@@ -207,6 +215,13 @@ std::filesystem::path calibration_cache_file(const DeviceInfo& device) {
 }
 
 RunToRunSpread read_calibration_file(const std::string& path) { return spread_from_json(read_text(path), path); }
+
+std::string calibration_staleness_now(const RunToRunSpread& cached) {
+  const auto load = current_load_average();
+  // Only an entry that knows its busy CPUs is judged by them (older ones by the load average).
+  const auto busy = std::isfinite(cached.busy_cpus) ? busy_cpus_now() : std::nullopt;
+  return calibration_staleness(cached, now_seconds(), load ? *load : std::nan(""), busy ? *busy : std::nan(""));
+}
 
 void write_calibration_file(const std::string& path, const RunToRunSpread& spread) {
   const std::filesystem::path parent = std::filesystem::path(path).parent_path();
@@ -239,8 +254,7 @@ ResolvedCalibration resolve_calibration(const CalibrationChoice& choice, const D
   if (std::filesystem::is_regular_file(path)) {
     try {
       RunToRunSpread cached = read_calibration_file(path);
-      const auto load = current_load_average();
-      why = calibration_staleness(cached, now_seconds(), load ? *load : std::nan(""));
+      why = calibration_staleness_now(cached);
       if (why.empty()) {
         out.spread = cached;
         out.file = path;

@@ -54,6 +54,10 @@ std::filesystem::path calibration_cache_file(const DeviceInfo& device);
 // Reads a saved spread (throws UserError naming the file on bad input), writes one
 // atomically (throws IoError).
 RunToRunSpread read_calibration_file(const std::string& path);
+
+// Why the cached spread must be probed again now, or "" (calibration_staleness() with the
+// load average and the CPUs other processes keep busy, read now: a quarter second).
+std::string calibration_staleness_now(const RunToRunSpread& cached);
 void write_calibration_file(const std::string& path, const RunToRunSpread& spread);
 
 struct ResolvedCalibration {

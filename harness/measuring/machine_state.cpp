@@ -1,11 +1,15 @@
 #include "harness/measuring/machine_state.h"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 #include "harness/records/harness_columns.h"
 #include "harness/util/process.h"
@@ -67,6 +71,47 @@ std::optional<double> current_load_average() {
   double load[1];
   if (::getloadavg(load, 1) != 1) return std::nullopt;
   return load[0];
+}
+
+std::optional<CpuTicks> parse_cpu_ticks(const std::string& proc_stat) {
+  std::istringstream in(proc_stat);
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind("cpu ", 0) != 0) continue;
+    std::istringstream fields(line.substr(4));
+    // user nice system idle iowait irq softirq steal (guest time is inside user and nice)
+    unsigned long long value[8] = {};
+    int read = 0;
+    while (read < 8 && fields >> value[read]) ++read;
+    if (read < 4) return std::nullopt;
+    CpuTicks ticks;
+    for (int i = 0; i < read; ++i) ticks.total += value[i];
+    ticks.busy = ticks.total - value[3] - (read > 4 ? value[4] : 0);
+    return ticks;
+  }
+  return std::nullopt;
+}
+
+std::optional<double> busy_cpus_between(const CpuTicks& before, const CpuTicks& after, int cpus) {
+  if (after.total <= before.total || after.busy < before.busy || cpus < 1) return std::nullopt;
+  return double(after.busy - before.busy) / double(after.total - before.total) * cpus;
+}
+
+std::optional<double> busy_cpus_now(double seconds) {
+  const auto read = []() -> std::optional<CpuTicks> {
+    std::ifstream file("/proc/stat");
+    if (!file) return std::nullopt;
+    std::stringstream text;
+    text << file.rdbuf();
+    return parse_cpu_ticks(text.str());
+  };
+  const auto before = read();
+  if (!before) return std::nullopt;
+  std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
+  const auto after = read();
+  const long cpus = ::sysconf(_SC_NPROCESSORS_ONLN);
+  if (!after || cpus < 1) return std::nullopt;
+  return busy_cpus_between(*before, *after, int(cpus));
 }
 
 std::optional<GpuClockState> parse_nvidia_smi_clocks(const std::string& line) {

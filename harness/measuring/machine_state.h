@@ -38,6 +38,21 @@ struct GpuStateQuery {
 // This machine's 1-minute load average, where readable.
 std::optional<double> current_load_average();
 
+// The CPUs other processes keep busy now: the busy share of every CPU's time over `seconds`
+// (/proc/stat), times the CPUs, while this process sleeps. Unlike the load average, which
+// lags a minute behind, it does not count a run that has just ended: after ldmbench's own
+// sweep the 1-minute average stays near 1-2 on an idle machine, and the calibration took
+// that for a change of load and probed again (docs/timing.md, "Run-to-run spread").
+std::optional<double> busy_cpus_now(double seconds = 0.25);
+
+// The aggregate "cpu" line of /proc/stat as busy and total ticks; nullopt when absent.
+struct CpuTicks {
+  unsigned long long busy = 0, total = 0;
+};
+std::optional<CpuTicks> parse_cpu_ticks(const std::string& proc_stat);
+// Busy CPUs between two readings of `cpus` CPUs; nullopt when no tick passed.
+std::optional<double> busy_cpus_between(const CpuTicks& before, const CpuTicks& after, int cpus);
+
 MachineState sample_machine_state(const GpuStateQuery& gpu);
 
 // The GPU's SM clock and its maximum now (nvidia-smi), for the clock warm-up; nullopt where

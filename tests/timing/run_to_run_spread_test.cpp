@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <thread>
 
 #include "harness/measuring/machine_state.h"
 #include "harness/measuring/timing_columns.h"
@@ -96,6 +97,75 @@ TEST(RunToRunSpread, RoundTripsThroughJsonAndRefusesBadFiles) {
 
 // A probe of the day at about the fresh one's load pools with it (every log ratio weighing
 // the same); one at another load, one older than a day and one of unknown load do not.
+// The load is other processes' busy CPUs where the entry has them: the load average, which
+// lags a minute, reads 1-2 right after ldmbench's own run on an idle machine.
+TEST(RunToRunSpread, JudgesTheLoadByOtherProcessesBusyCpusWhereTheEntryHasThem) {
+  RunToRunSpread cached;
+  cached.spread = 0.1;
+  cached.measured_at = 1'000'000;
+  cached.load_average = 0.2;
+  cached.busy_cpus = 0.05;
+  // The average moved (a run just ended), the CPUs other work keeps busy did not: current.
+  EXPECT_EQ(calibration_staleness(cached, 1'000'000 + 60, 1.9, 0.1), "");
+  // Another job took a CPU: stale, and the why names the busy CPUs.
+  EXPECT_NE(calibration_staleness(cached, 1'000'000 + 60, 0.2, 1.2).find("keep 1.20 CPUs busy now, 0.05 before"),
+            std::string::npos);
+  // Busy CPUs unknown now, or an entry written before they were read: the load average decides.
+  EXPECT_NE(calibration_staleness(cached, 1'000'000 + 60, 1.9).find("load average 1.90"), std::string::npos);
+  cached.busy_cpus = std::nan("");
+  EXPECT_NE(calibration_staleness(cached, 1'000'000 + 60, 1.9, 0.1).find("load average"), std::string::npos);
+  // Age is judged first either way.
+  cached.busy_cpus = 0.05;
+  EXPECT_NE(calibration_staleness(cached, 1'000'000 + kCalibrationMaxAgeSeconds + 1, 0.2, 0.05).find("h ago"),
+            std::string::npos);
+  EXPECT_TRUE(same_load(2.0, 0.1, 0.2, 0.3));
+  EXPECT_FALSE(same_load(0.2, 0.1, 0.2, 0.7));
+  EXPECT_TRUE(same_load(0.2, std::nan(""), 0.6, 0.9));  // one lacks busy CPUs: the averages
+  EXPECT_FALSE(same_load(std::nan(""), std::nan(""), 0.6, 0.9));
+}
+
+TEST(RunToRunSpread, PoolsProbesByOtherProcessesBusyCpusNotTheirLaggingLoadAverage) {
+  const int64_t now = 2'000'000;
+  ProbeEntry fresh_probe{0.08, 18, 4, now, 1.9};
+  fresh_probe.busy_cpus = 0.0;
+  const RunToRunSpread fresh = test::probe_spread(fresh_probe);
+  ProbeEntry after_a_run{0.20, 18, 4, now - 600, 0.1};  // average 1.8 apart, both idle
+  after_a_run.busy_cpus = 0.1;
+  ProbeEntry beside_a_build{0.40, 18, 4, now - 300, 1.8};  // same average, a CPU taken
+  beside_a_build.busy_cpus = 1.1;
+  const ProbeEntry older{0.30, 18, 4, now - 900, 1.7};  // no busy CPUs: by its average, pooled
+  const RunToRunSpread pooled = pool_with_earlier_probes(fresh, {after_a_run, beside_a_build, older}, now);
+  EXPECT_EQ(pooled.pooled_probes, 3u);
+  EXPECT_NEAR(pooled.spread, std::sqrt((0.08 * 0.08 + 0.2 * 0.2 + 0.3 * 0.3) * 18 / 54), 1e-12);
+  EXPECT_EQ(pooled.busy_cpus, 0.0);
+  // Kept through the cache file.
+  const RunToRunSpread back = spread_from_json(spread_to_json(pooled), "test");
+  EXPECT_EQ(back.busy_cpus, 0.0);
+  ASSERT_EQ(back.probes.size(), 4u);
+  EXPECT_EQ(back.probes[1].busy_cpus, 1.1);
+  EXPECT_TRUE(std::isnan(back.probes[2].busy_cpus));
+}
+
+TEST(MachineState, CountsTheCpusOtherProcessesKeepBusyFromProcStat) {
+  const std::string before =
+      "cpu  100 0 50 800 50 0 0 0 0 0\ncpu0 50 0 25 400 25 0 0 0 0 0\ncpu1 50 0 25 400 25 0 0 0 0 0\nintr 1\n";
+  const std::string after =
+      "cpu  200 0 100 900 50 0 0 0 0 0\ncpu0 150 0 75 400 25 0 0 0 0 0\ncpu1 50 0 25 500 25 0 0 0 0 0\n";
+  const auto a = parse_cpu_ticks(before), b = parse_cpu_ticks(after);
+  ASSERT_TRUE(a && b);
+  EXPECT_EQ(a->busy, 150u);    // user + system
+  EXPECT_EQ(a->total, 1000u);  // idle and iowait count in the total only
+  // 150 busy ticks of 250 on 2 CPUs: one CPU and a fifth kept busy.
+  EXPECT_NEAR(*busy_cpus_between(*a, *b, 2), 1.2, 1e-12);
+  EXPECT_FALSE(busy_cpus_between(*a, *a, 2));  // no tick passed
+  EXPECT_FALSE(parse_cpu_ticks("intr 1\n"));
+  // This machine's own reading, where it has /proc/stat: between none and every CPU busy.
+  if (const auto now = busy_cpus_now(0.05)) {
+    EXPECT_GE(*now, 0.0);
+    EXPECT_LE(*now, double(std::thread::hardware_concurrency()) + 1e-9);
+  }
+}
+
 TEST(RunToRunSpread, PoolsAFreshProbeWithTheDaysProbesAtItsLoad) {
   const int64_t now = 2'000'000;
   const RunToRunSpread fresh = test::probe_spread({0.08, 18, 4, now, 1.0});
