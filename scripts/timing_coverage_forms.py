@@ -9,41 +9,66 @@ judged against the other run's median.
 
   scripts/timing_coverage_forms.py DIR    (DIR/first/records.csv, DIR/second/records.csv)
 """
-import csv, math, re, sys, statistics
+import math
+import re
+import statistics
+import sys
+
 from scipy import stats
-z = 1.959963984540054
-def rows(p): return {r['config_id']: r for r in csv.DictReader(open(p))}
-a, b = rows(sys.argv[1] + '/first/records.csv'), rows(sys.argv[1] + '/second/records.csv')
-def nu_of(r):
-    m = re.search(r'from (\d+) processes', r['time_calibration'])
-    return int(m.group(1)) - 1
-def recover(r, sub):
-    S = float(r['time_run_to_run_spread']); K = int(r['repetitions']); nu = nu_of(r)
-    med = float(r[sub + '_ms_median']); low = float(r[sub + '_ms_ci_low']); high = float(r[sub + '_ms_ci_high'])
-    h = max(math.log(med / low), math.log(high / med))
-    bpart = z * S / math.sqrt(2 * K)
-    wp = math.sqrt(max(h * h - bpart * bpart, 0))
-    t = stats.t.ppf(0.975, nu + K - 1)
-    v = ((wp / t) ** 2 * K * (nu + K - 1) - nu * S * S / 2) / (K - 1)
-    return S, K, nu, med, max(v, 0), bpart
-def forms(S, K, nu, v, bpart):
-    own = stats.t.ppf(0.975, K - 1) * math.sqrt(v / K)
-    pooled = stats.t.ppf(0.975, nu + K - 1) * math.sqrt(((K - 1) * v + nu * S * S / 2) / (nu + K - 1) / K)
-    F = v / (S * S / 2); Fcrit = stats.f.ppf(0.95, K - 1, nu)
-    ftest = pooled if F <= Fcrit else own
-    known = z * math.sqrt(S * S / 2 / K)
-    return {'unpooled': math.hypot(own, bpart), 'pooled': math.hypot(pooled, bpart),
-            'pooled_unless_F': math.hypot(ftest, bpart), 'max(pooled,own)': math.hypot(max(pooled, own), bpart)}
-for sub in ['build', 'pass', 'frame']:
-    for name, x, y in (('first', a, b), ('second', b, a)):
-        hits = {}; widths = {}; ratios = []
-        for k in x:
-            if k not in y: continue
-            S, K, nu, med, v, bp = recover(x[k], sub)
-            m2 = float(y[k][sub + '_ms_median'])
-            ratios.append(math.log(m2 / med))
-            for f, h in forms(S, K, nu, v, bp).items():
-                hits[f] = hits.get(f, 0) + (abs(math.log(m2 / med)) <= h)
-                widths.setdefault(f, []).append(h)
-        rms = math.sqrt(sum(r * r for r in ratios) / len(ratios))
-        print(sub, name, 'n', len(ratios), 'rms', round(rms, 3), ' '.join(f"{f}:{hits[f]}/{len(ratios)} w{statistics.median(widths[f]):.3f}({statistics.median(widths[f])/rms:.2f}x)" for f in hits))
+
+import ldmrecords
+
+Z = stats.norm.ppf(0.975)
+SUBPASSES = ("build", "pass", "frame")
+
+
+def calibration_dof(row):
+    """The calibration's degrees of freedom as the pooled form took them: its processes less one."""
+    return int(re.search(r"from (\d+) processes", row["time_calibration"]).group(1)) - 1
+
+
+def recovered(row, sub):
+    """(spread, repetitions, dof, median, own variance, other run's share) of a pooled record."""
+    spread, k, dof = float(row["time_run_to_run_spread"]), int(row["repetitions"]), calibration_dof(row)
+    median = float(row[f"{sub}_ms_median"])
+    h = max(math.log(median / float(row[f"{sub}_ms_ci_low"])), math.log(float(row[f"{sub}_ms_ci_high"]) / median))
+    other = Z * spread / math.sqrt(2 * k)
+    pooled_half = math.sqrt(max(h * h - other * other, 0))
+    t = stats.t.ppf(0.975, dof + k - 1)
+    variance = ((pooled_half / t) ** 2 * k * (dof + k - 1) - dof * spread * spread / 2) / (k - 1)
+    return spread, k, dof, median, max(variance, 0.0), other
+
+
+def half_widths(spread, k, dof, variance, other):
+    """The log half-width of each form."""
+    own = stats.t.ppf(0.975, k - 1) * math.sqrt(variance / k)
+    pooled = stats.t.ppf(0.975, dof + k - 1) * math.sqrt(((k - 1) * variance + dof * spread * spread / 2)
+                                                          / (dof + k - 1) / k)
+    poolable = variance / (spread * spread / 2) <= stats.f.ppf(0.95, k - 1, dof)
+    return {"unpooled": math.hypot(own, other), "pooled": math.hypot(pooled, other),
+            "pooled_unless_F": math.hypot(pooled if poolable else own, other),
+            "max(pooled,own)": math.hypot(max(pooled, own), other)}
+
+
+def main(folder):
+    first, second = (ldmrecords.by_config_id(f"{folder}/{run}") for run in ("first", "second"))
+    for sub in SUBPASSES:
+        for name, these, others in (("first", first, second), ("second", second, first)):
+            held, widths, log_ratios = {}, {}, []
+            for key, row in these.items():
+                if key not in others:
+                    continue
+                spread, k, dof, median, variance, other = recovered(row, sub)
+                log_ratio = math.log(float(others[key][f"{sub}_ms_median"]) / median)
+                log_ratios.append(log_ratio)
+                for form, h in half_widths(spread, k, dof, variance, other).items():
+                    held[form] = held.get(form, 0) + (abs(log_ratio) <= h)
+                    widths.setdefault(form, []).append(h)
+            rms = math.sqrt(sum(r * r for r in log_ratios) / len(log_ratios))
+            print(sub, name, "n", len(log_ratios), "rms", round(rms, 3), " ".join(
+                f"{form}:{held[form]}/{len(log_ratios)} w{statistics.median(widths[form]):.3f}"
+                f"({statistics.median(widths[form]) / rms:.2f}x)" for form in held))
+
+
+if __name__ == "__main__":
+    main(sys.argv[1])
