@@ -45,17 +45,18 @@ std::string calibration_staleness(const RunToRunSpread& cached, int64_t now, dou
                   int(kCalibrationMaxAgeSeconds / 3600));
     return text;
   }
-  if (std::isfinite(busy_cpus_now) && std::isfinite(cached.busy_cpus)) {
-    if (std::fabs(busy_cpus_now - cached.busy_cpus) > kCalibrationMaxLoadChange) {
+  // One comparison for staleness and pooling (same_load): busy CPUs where both sides have
+  // them, else the load averages; nothing known, nothing stale.
+  const bool by_busy_cpus = std::isfinite(busy_cpus_now) && std::isfinite(cached.busy_cpus);
+  const bool load_known = by_busy_cpus || (std::isfinite(load_average_now) && std::isfinite(cached.load_average));
+  if (load_known && !same_load(cached.load_average, cached.busy_cpus, load_average_now, busy_cpus_now)) {
+    if (by_busy_cpus)
       std::snprintf(text, sizeof text,
                     "other processes keep %.2f CPUs busy now, %.2f before the probe (differs by more than %.1f)",
                     busy_cpus_now, cached.busy_cpus, kCalibrationMaxLoadChange);
-      return text;
-    }
-  } else if (std::isfinite(load_average_now) && std::isfinite(cached.load_average) &&
-             std::fabs(load_average_now - cached.load_average) > kCalibrationMaxLoadChange) {
-    std::snprintf(text, sizeof text, "load average %.2f now, %.2f at the probe (differs by more than %.1f)",
-                  load_average_now, cached.load_average, kCalibrationMaxLoadChange);
+    else
+      std::snprintf(text, sizeof text, "load average %.2f now, %.2f at the probe (differs by more than %.1f)",
+                    load_average_now, cached.load_average, kCalibrationMaxLoadChange);
     return text;
   }
   if (!std::isfinite(cached.spread)) return "no spread measured";
