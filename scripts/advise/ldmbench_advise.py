@@ -207,6 +207,7 @@ def verify_more_uncertain(runner, search, goal, outcome, verified, vsource, stag
         if not batch or not affordable(runner, budget, batch, VERIFY_UNCERTAIN, round_stage):
             return
         verify_again(runner, search, batch, VERIFY_UNCERTAIN, round_stage, verified, vsource)
+        budget.observe(runner.costs[-1])
         pending = [k for k in pending if k not in batch]
 
 

@@ -524,11 +524,17 @@ class VerificationFakes:
             self.measurement, self.history = m, []
 
     class Runner:
-        def __init__(self, truth, recorded_s=0.0):
+        def __init__(self, truth, recorded_s=0.0, per_measurement_s=None):
             self.truth, self.stages, self.events, self.recorded = truth, [], [], recorded_s
+            self.per_measurement_s, self.costs = per_measurement_s, []
 
         def run_stage(self, keys, precision, stage):
             self.stages.append((stage, list(keys), precision["name"]))
+            repetitions = precision.get("repetitions", 1)
+            recorded = None if self.per_measurement_s is None else self.per_measurement_s * len(keys) * repetitions
+            self.costs.append({"stage": stage, "configurations": len(keys), "repetitions": repetitions,
+                               "wall_s_recorded": recorded})
+            self.recorded += recorded or 0.0
             return {k: self.truth[k] for k in keys}, stage, {k: {} for k in keys}, stage + "/run"
 
         def recorded_s(self):
@@ -591,6 +597,26 @@ class VerifyMoreUncertain(VerificationFakes, unittest.TestCase):
         straddling = {k: self.m(6.0, 5.0, 7.0, 0.001 * (i + 1)) for i, k in enumerate(names)}
         runner, _, _ = self.run_rounds(straddling, dict(straddling), names, verified)
         self.assertEqual([len(keys) for _, keys, _ in runner.stages], [2, 2])
+
+    def test_a_dear_round_leaves_out_the_next_one_the_first_verification_would_have_allowed(self):
+        import ldmbench_advise
+        from ldmadvise.cost import VerificationBudget
+        budget = VerificationBudget(1.0, 60)
+        budget.learn({"configurations": 3, "repetitions": 3, "wall_s_recorded": 2.7})  # 18 s estimated
+        verified = {"rec": self.m(3.2, 2.9, 3.5, 0.01)}
+        names = [f"u{i}" for i in range(4)]
+        straddling = {k: self.m(6.0, 5.0, 7.0, 0.001 * (i + 1)) for i, k in enumerate(names)}
+        goal = Goal(budget_ms=6.0)
+        search = type("S", (), {})()
+        search.states = {k: self.State(m) for k, m in straddling.items()}
+        outcome = type("O", (), {"uncertain": names})()
+        # The first round's six measurements cost 1 s each, not the verification's 0.3 s: after
+        # it (10 + 6 = 16 s recorded) the second, predicted at 6 s, would pass the 18 s.
+        runner = self.Runner(straddling, recorded_s=10.0, per_measurement_s=1.0)
+        ldmbench_advise.verify_more_uncertain(runner, search, goal, outcome, verified,
+                                              {"rec": ("verify", {}, "verify/run")}, "verify", budget)
+        self.assertEqual([stage for stage, _, _ in runner.stages], ["verify-uncertain-1"])
+        self.assertEqual([r["stage"] for r in budget.skipped], ["verify-uncertain-2"])
 
     def test_a_round_over_the_verification_budget_is_left_out_and_named(self):
         # The Cornell box of 2026-12-05: the first verification recorded 3.0 s for 3
@@ -688,6 +714,17 @@ class VerificationBudgetTest(unittest.TestCase):
         self.assertIsNotNone(b.refusal(0.0, ["a", "b"], 24))  # a round alone past the share
         summary = b.summary(6.0)
         self.assertEqual((summary["exhaustive_estimate_s"], summary["per_measurement_s"]), (30.0, 0.5))
+
+    def test_a_round_dearer_than_the_first_verification_raises_the_next_rounds_prediction(self):
+        from ldmadvise.cost import VerificationBudget
+        b = VerificationBudget(1.0, 60)
+        b.learn({"configurations": 3, "repetitions": 3, "wall_s_recorded": 2.7})   # 0.3 s each: 18 s
+        self.assertIsNone(b.refusal(12.0, ["a", "b"], 6))                           # 12 + 3.6 <= 18
+        b.observe({"configurations": 2, "repetitions": 3, "wall_s_recorded": 3.6})  # 0.6 s each
+        self.assertIsNotNone(b.refusal(12.0, ["a", "b"], 6))                        # 12 + 7.2 > 18
+        self.assertAlmostEqual(b.exhaustive_s(), 18.0)  # the estimate stays the first verification's
+        b.observe({"configurations": 2, "repetitions": 3, "wall_s_recorded": 0.6})  # a cheap one: the dearest stands
+        self.assertIsNotNone(b.refusal(12.0, ["a", "b"], 6))
 
     def test_a_verification_without_recorded_times_teaches_nothing(self):
         from ldmadvise.cost import VerificationBudget
