@@ -8,6 +8,11 @@ form, the pooled form unless an F test rejects pooling, and the wider of the two
 judged against the other run's median.
 
   scripts/timing_coverage_forms.py DIR    (DIR/first/records.csv, DIR/second/records.csv)
+
+The calibration's processes are read from the time_calibration text (calibration.cpp's
+describe(): "... from N processes ..."), the one place a record states them; the pooled form
+took its degrees of freedom from the same count. A record without it is refused by the
+regular expression, not guessed.
 """
 import math
 import re
@@ -24,7 +29,10 @@ SUBPASSES = ("build", "pass", "frame")
 
 def calibration_dof(row):
     """The calibration's degrees of freedom as the pooled form took them: its processes less one."""
-    return int(re.search(r"from (\d+) processes", row["time_calibration"]).group(1)) - 1
+    found = re.search(r"from (\d+) processes", row["time_calibration"])
+    if not found:
+        raise SystemExit(f"{row['config_id']}: time_calibration names no probe processes")
+    return int(found.group(1)) - 1
 
 
 def recovered(row, sub):
